@@ -1,0 +1,12 @@
+//! flexopt: design and optimization of piezo-driven compliant (flexure-hinge) mechanisms.
+//!
+//! - [`model`]: the closed-form mechanism models, generic over dual numbers.
+//! - [`problem`]: problem files (TOML), units, validation and the binding of model
+//!   outputs to an objective and constraints.
+//! - [`report`]: JSON export and plots.
+//! - [`sweep`]: curves of every output against one design variable.
+
+pub mod model;
+pub mod problem;
+pub mod report;
+pub mod sweep;

@@ -1,0 +1,161 @@
+//! The physics: closed-form mechanism models, pure functions of a design, SI units.
+//!
+//! Each model is written once, generic over [`scalar::Scalar`], and exposed through the
+//! object-safe [`Model`] trait, which speaks `f64` at its boundary and uses dual numbers
+//! inside for exact gradients.
+
+pub mod bridge;
+pub mod bridge_matrix;
+pub mod hinge;
+pub mod material;
+pub mod scalar;
+
+use serde::Serialize;
+
+use scalar::Jet;
+
+/// The physical dimension of a parameter or output; the problem layer converts units
+/// against it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Dimension {
+    /// Dimensionless.
+    Ratio,
+    /// m
+    Length,
+    /// rad
+    Angle,
+    /// N
+    Force,
+    /// Pa
+    Stress,
+    /// N/m
+    Stiffness,
+    /// m/N
+    Compliance,
+}
+
+impl Dimension {
+    /// The SI unit, as printed in outputs.
+    pub fn si_unit(self) -> &'static str {
+        match self {
+            Dimension::Ratio => "1",
+            Dimension::Length => "m",
+            Dimension::Angle => "rad",
+            Dimension::Force => "N",
+            Dimension::Stress => "Pa",
+            Dimension::Stiffness => "N/m",
+            Dimension::Compliance => "m/N",
+        }
+    }
+}
+
+/// A design parameter of a model.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ParameterInfo {
+    pub name: &'static str,
+    pub dimension: Dimension,
+    pub description: &'static str,
+}
+
+impl ParameterInfo {
+    pub const fn new(name: &'static str, dimension: Dimension, description: &'static str) -> Self {
+        ParameterInfo {
+            name,
+            dimension,
+            description,
+        }
+    }
+}
+
+/// A named output of a model.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct OutputInfo {
+    pub name: &'static str,
+    pub dimension: Dimension,
+    pub description: &'static str,
+}
+
+impl OutputInfo {
+    pub const fn new(name: &'static str, dimension: Dimension, description: &'static str) -> Self {
+        OutputInfo {
+            name,
+            dimension,
+            description,
+        }
+    }
+}
+
+/// A mechanism model as the problem layer and the optimizer see it.
+///
+/// `x` holds every parameter of [`Model::parameters`] in SI units; `wanted` lists indices
+/// into [`Model::outputs`]; only those outputs are computed.
+pub trait Model: Send + Sync {
+    fn parameters(&self) -> &[ParameterInfo];
+    fn outputs(&self) -> &[OutputInfo];
+    /// Writes the wanted outputs into `out` (same length as `wanted`).
+    fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]);
+    /// As [`Model::evaluate`], and the exact gradients into `jacobian`, row-major:
+    /// `jacobian[i * n + j]` is d out_i / d x_j with `n = parameters().len()`.
+    fn evaluate_with_gradient(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    );
+
+    /// Index of the output called `name`.
+    fn output_index(&self, name: &str) -> Option<usize> {
+        self.outputs().iter().position(|o| o.name == name)
+    }
+}
+
+/// Splits gradient-carrying results into values and a row-major Jacobian.
+fn unseed<const N: usize>(y: &[Jet<N>], out: &mut [f64], jacobian: &mut [f64]) {
+    for (i, yi) in y.iter().enumerate() {
+        out[i] = yi.re;
+        jacobian[i * N..(i + 1) * N].copy_from_slice(&yi.grad);
+    }
+}
+
+/// Largest number of outputs one evaluation may ask for.
+pub const MAX_WANTED: usize = 32;
+
+/// Largest number of parameters a model may have.
+pub const MAX_PARAMETERS: usize = 16;
+
+impl Model for bridge::Bridge {
+    fn parameters(&self) -> &[ParameterInfo] {
+        &bridge::PARAMETERS
+    }
+
+    fn outputs(&self) -> &[OutputInfo] {
+        &bridge::OUTPUTS
+    }
+
+    fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {
+        let x: [f64; 8] = x.try_into().expect("a bridge design has 8 parameters");
+        bridge::Bridge::evaluate(self, &bridge::Geometry::from_array(x), wanted, out);
+    }
+
+    fn evaluate_with_gradient(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        // most problems name a few outputs: keep them on the stack without zeroing much
+        let mut small = [Jet::<8>::from(0.0); 8];
+        let mut large = Vec::new();
+        let y = if wanted.len() <= small.len() {
+            &mut small[..wanted.len()]
+        } else {
+            large.resize(wanted.len(), Jet::from(0.0));
+            &mut large[..]
+        };
+        bridge::Bridge::evaluate(self, &bridge::Geometry::seeded(x), wanted, y);
+        unseed(y, out, jacobian);
+    }
+}

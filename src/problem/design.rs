@@ -1,0 +1,91 @@
+//! Designs written on the command line: `l2=1.96,delta2=4.07,...` in the file's units.
+
+use super::{Problem, ProblemError};
+
+/// A full design (every model parameter, SI) read from `name=value` pairs, with a
+/// warning for each value outside its variable's bounds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParsedDesign {
+    pub x: Vec<f64>,
+    pub warnings: Vec<String>,
+}
+
+/// Reads `text` against `problem`. Fixed variables may be left out; every free one must
+/// be given. Values are in the units the problem file gives each variable.
+pub fn parse_design(problem: &Problem, text: &str) -> Result<ParsedDesign, ProblemError> {
+    let err = |key: &str, message: String| ProblemError {
+        file: problem.file.clone(),
+        key: format!("--design {key}").trim_end().to_string(),
+        position: None,
+        message,
+    };
+    let mut given: Vec<Option<f64>> = vec![None; problem.variables.len()];
+    for pair in text.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let Some((name, value)) = pair.split_once('=') else {
+            return Err(err("", format!("\"{pair}\" is not of the form name=value")));
+        };
+        let (name, value) = (name.trim(), value.trim());
+        let Some(i) = problem.variables.iter().position(|v| v.name == name) else {
+            let names: Vec<_> = problem.variables.iter().map(|v| v.name.as_str()).collect();
+            return Err(err(
+                name,
+                format!(
+                    "unknown variable \"{name}\"; expected one of {}",
+                    names.join(", ")
+                ),
+            ));
+        };
+        let v: f64 = value
+            .parse()
+            .ok()
+            .filter(|v: &f64| v.is_finite())
+            .ok_or_else(|| err(name, format!("\"{value}\" is not a finite number")))?;
+        if given[i].is_some() {
+            return Err(err(name, format!("\"{name}\" is given twice")));
+        }
+        given[i] = Some(problem.variables[i].unit.to_si(v));
+    }
+    let mut x = Vec::with_capacity(given.len());
+    let mut warnings = Vec::new();
+    for (var, g) in problem.variables.iter().zip(given) {
+        let value = match (g, var.fixed) {
+            (Some(v), _) => v,
+            (None, true) => var.lower,
+            (None, false) => {
+                return Err(err(
+                    &var.name,
+                    format!(
+                        "missing: the design must give the free variable \"{}\"",
+                        var.name
+                    ),
+                ))
+            }
+        };
+        let tol = 1e-12 * var.upper.abs().max(var.lower.abs());
+        if value < var.lower - tol || value > var.upper + tol {
+            let u = &var.unit;
+            warnings.push(if var.fixed {
+                format!(
+                    "{} = {} {} differs from its fixed value {} {}",
+                    var.name,
+                    u.from_si(value),
+                    u.name,
+                    u.from_si(var.lower),
+                    u.name
+                )
+            } else {
+                format!(
+                    "{} = {} {} lies outside its bounds [{}, {}] {}",
+                    var.name,
+                    u.from_si(value),
+                    u.name,
+                    u.from_si(var.lower),
+                    u.from_si(var.upper),
+                    u.name
+                )
+            });
+        }
+        x.push(value);
+    }
+    Ok(ParsedDesign { x, warnings })
+}

@@ -1,0 +1,179 @@
+//! Units at the boundary: problem files speak mm, um, degrees, MPa...; the models speak SI.
+
+use crate::model::Dimension;
+
+/// The units accepted for each dimension, with their factor to SI.
+const UNITS: &[(Dimension, &[(&str, f64)])] = &[
+    (Dimension::Ratio, &[("1", 1.0), ("", 1.0), ("%", 0.01)]),
+    (
+        Dimension::Length,
+        &[
+            ("m", 1.0),
+            ("cm", 1e-2),
+            ("mm", 1e-3),
+            ("um", 1e-6),
+            ("nm", 1e-9),
+        ],
+    ),
+    (
+        Dimension::Angle,
+        &[
+            ("rad", 1.0),
+            ("mrad", 1e-3),
+            ("deg", std::f64::consts::PI / 180.0),
+        ],
+    ),
+    (Dimension::Force, &[("N", 1.0), ("kN", 1e3), ("mN", 1e-3)]),
+    (
+        Dimension::Stress,
+        &[("Pa", 1.0), ("kPa", 1e3), ("MPa", 1e6), ("GPa", 1e9)],
+    ),
+    (
+        Dimension::Stiffness,
+        &[("N/m", 1.0), ("N/mm", 1e3), ("N/um", 1e6), ("kN/mm", 1e6)],
+    ),
+    (
+        Dimension::Compliance,
+        &[("m/N", 1.0), ("mm/N", 1e-3), ("um/N", 1e-6), ("nm/N", 1e-9)],
+    ),
+];
+
+/// A unit of measure: its name as written and its factor to SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Unit {
+    pub name: String,
+    pub dimension: Dimension,
+    pub to_si: f64,
+}
+
+impl Unit {
+    /// Looks `name` up among the units of `dimension`.
+    pub fn parse(name: &str, dimension: Dimension) -> Result<Unit, String> {
+        let table = units_of(dimension);
+        match table.iter().find(|(n, _)| *n == name) {
+            Some((n, f)) => Ok(Unit {
+                name: n.to_string(),
+                dimension,
+                to_si: *f,
+            }),
+            None => Err(format!(
+                "unknown unit \"{name}\" for a {} quantity; expected one of {}",
+                dimension_word(dimension),
+                accepted(dimension)
+            )),
+        }
+    }
+
+    /// The SI unit of a dimension.
+    pub fn si(dimension: Dimension) -> Unit {
+        Unit {
+            name: dimension.si_unit().to_string(),
+            dimension,
+            to_si: 1.0,
+        }
+    }
+
+    pub fn to_si(&self, value: f64) -> f64 {
+        value * self.to_si
+    }
+
+    pub fn from_si(&self, value: f64) -> f64 {
+        value / self.to_si
+    }
+}
+
+fn units_of(dimension: Dimension) -> &'static [(&'static str, f64)] {
+    UNITS
+        .iter()
+        .find(|(d, _)| *d == dimension)
+        .map(|(_, t)| *t)
+        .unwrap_or(&[])
+}
+
+/// The accepted unit names of a dimension, for messages.
+pub fn accepted(dimension: Dimension) -> String {
+    units_of(dimension)
+        .iter()
+        .filter(|(n, _)| !n.is_empty())
+        .map(|(n, _)| format!("\"{n}\""))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A word for a dimension, for messages.
+pub fn dimension_word(dimension: Dimension) -> &'static str {
+    match dimension {
+        Dimension::Ratio => "dimensionless",
+        Dimension::Length => "length",
+        Dimension::Angle => "angle",
+        Dimension::Force => "force",
+        Dimension::Stress => "stress",
+        Dimension::Stiffness => "stiffness",
+        Dimension::Compliance => "compliance",
+    }
+}
+
+/// Parses a quantity written as `"<number> <unit>"` (for example `"72 GPa"`) into SI.
+pub fn parse_quantity(text: &str, dimension: Dimension) -> Result<f64, String> {
+    let text = text.trim();
+    let split = text.find(|c: char| c.is_whitespace()).unwrap_or(text.len());
+    let (number, unit) = text.split_at(split);
+    let value: f64 = number.parse().map_err(|_| {
+        format!(
+            "\"{text}\" is not a {} quantity: write a number and a unit, e.g. \"{}\"",
+            dimension_word(dimension),
+            example(dimension)
+        )
+    })?;
+    if !value.is_finite() {
+        return Err(format!("\"{text}\" is not a finite number"));
+    }
+    let unit = Unit::parse(unit.trim(), dimension)?;
+    Ok(unit.to_si(value))
+}
+
+fn example(dimension: Dimension) -> &'static str {
+    match dimension {
+        Dimension::Ratio => "0.5",
+        Dimension::Length => "10 mm",
+        Dimension::Angle => "5 deg",
+        Dimension::Force => "40 N",
+        Dimension::Stress => "505 MPa",
+        Dimension::Stiffness => "7e6 N/m",
+        Dimension::Compliance => "1.4 um/N",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quantities_convert_to_si() {
+        assert_eq!(parse_quantity("72 GPa", Dimension::Stress).unwrap(), 72e9);
+        assert_eq!(
+            parse_quantity("17.4 um", Dimension::Length).unwrap(),
+            17.4e-6
+        );
+        assert!(
+            (parse_quantity("180 deg", Dimension::Angle).unwrap() - std::f64::consts::PI).abs()
+                < 1e-15
+        );
+    }
+
+    #[test]
+    fn wrong_units_and_numbers_are_explained() {
+        let e = parse_quantity("72 GPa", Dimension::Length).unwrap_err();
+        assert!(e.contains("\"GPa\"") && e.contains("\"mm\""), "{e}");
+        let e = parse_quantity("lots mm", Dimension::Length).unwrap_err();
+        assert!(e.contains("\"lots mm\""), "{e}");
+        assert!(parse_quantity("inf mm", Dimension::Length).is_err());
+        assert!(parse_quantity("NaN mm", Dimension::Length).is_err());
+    }
+
+    #[test]
+    fn round_trip() {
+        let u = Unit::parse("mm", Dimension::Length).unwrap();
+        assert_eq!(u.from_si(u.to_si(1.96)), 1.96);
+    }
+}

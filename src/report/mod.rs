@@ -1,0 +1,244 @@
+//! Exports: JSON reports of designs, and plots.
+//!
+//! Every file is written whole or not at all: it is written beside its target under a
+//! temporary name and renamed into place.
+
+pub mod plot;
+
+use indexmap::IndexMap;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::model::bridge::Geometry;
+use crate::problem::{Constraint, ModelSpec, Problem};
+
+/// An error while writing results.
+#[derive(Debug)]
+pub struct WriteError {
+    pub path: PathBuf,
+    pub message: String,
+}
+
+impl std::fmt::Display for WriteError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.path.display(), self.message)
+    }
+}
+
+impl std::error::Error for WriteError {}
+
+/// The temporary name a file is written under before it is renamed into place: hidden,
+/// and with the same extension, which some encoders go by.
+pub fn temporary_path(path: &Path) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map(|n| n.to_string_lossy())
+        .unwrap_or_default();
+    match path.extension() {
+        Some(ext) => path.with_file_name(format!(".{stem}.partial.{}", ext.to_string_lossy())),
+        None => path.with_file_name(format!(".{stem}.partial")),
+    }
+}
+
+/// Writes `path` whole or not at all, creating its folder.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
+    write_with(path, |tmp| {
+        let mut f = std::fs::File::create(tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()
+    })
+}
+
+/// Lets `render` write the file under a temporary name, then renames it into place; on
+/// failure the temporary file is removed and `path` is left as it was.
+pub fn write_with(
+    path: &Path,
+    render: impl FnOnce(&Path) -> std::io::Result<()>,
+) -> Result<(), WriteError> {
+    let fail = |e: &dyn std::fmt::Display| WriteError {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| fail(&e))?;
+    }
+    let tmp = temporary_path(path);
+    let result = render(&tmp).and_then(|()| std::fs::rename(&tmp, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(fail(&e));
+    }
+    Ok(())
+}
+
+/// Serializes `value` as pretty JSON into `path`, whole or not at all.
+pub fn write_json(path: &Path, value: &impl Serialize) -> Result<(), WriteError> {
+    let mut text = serde_json::to_string_pretty(value).map_err(|e| WriteError {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    text.push('\n');
+    write_atomic(path, text.as_bytes())
+}
+
+/// One constraint at a design.
+#[derive(Debug, Clone, Serialize)]
+pub struct ConstraintReport {
+    pub output: String,
+    /// Value, limits and margin in the unit the problem file uses (`unit`).
+    pub value: Option<f64>,
+    pub lower: Option<f64>,
+    pub upper: Option<f64>,
+    pub unit: String,
+    /// Distance to the nearest limit, positive inside; in `unit`.
+    pub margin: Option<f64>,
+    /// Relative margin: `margin` over the size of the nearest limit (or 1 when it is 0).
+    pub relative_margin: Option<f64>,
+    pub satisfied: bool,
+    /// Within the activity tolerance of a limit.
+    pub active: bool,
+}
+
+impl ConstraintReport {
+    /// Reports constraint `c` whose output has SI value `value`; `active_tol` is relative.
+    pub fn new(c: &Constraint, value: f64, active_tol: f64) -> Self {
+        let u = &c.unit;
+        let finite = value.is_finite();
+        let margins = [
+            c.lower.map(|lo| (value - lo, lo)),
+            c.upper.map(|hi| (hi - value, hi)),
+        ];
+        let nearest = margins
+            .into_iter()
+            .flatten()
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        let (margin, relative) = match nearest {
+            Some((m, limit)) if finite => {
+                let scale = if limit == 0.0 { 1.0 } else { limit.abs() };
+                (Some(u.from_si(m)), Some(m / scale))
+            }
+            _ => (None, None),
+        };
+        ConstraintReport {
+            output: c.output.clone(),
+            value: finite.then(|| u.from_si(value)),
+            lower: c.lower.map(|v| u.from_si(v)),
+            upper: c.upper.map(|v| u.from_si(v)),
+            unit: u.name.clone(),
+            margin,
+            relative_margin: relative,
+            satisfied: relative.is_some_and(|r| r >= -active_tol),
+            active: relative.is_some_and(|r| r.abs() <= active_tol),
+        }
+    }
+}
+
+/// A design with every output of its model: what `flexopt eval` prints and what
+/// `optimum.json` holds.
+#[derive(Debug, Clone, Serialize)]
+pub struct DesignReport {
+    pub problem: String,
+    pub model: String,
+    /// Variable -> value in the file's unit.
+    pub design: IndexMap<String, f64>,
+    /// Variable -> the file's unit.
+    pub design_units: IndexMap<String, String>,
+    /// Variable -> SI value.
+    pub design_si: IndexMap<String, f64>,
+    /// Output -> SI value (`null` where the model gives no finite number).
+    pub outputs: IndexMap<String, Option<f64>>,
+    /// Output -> SI unit.
+    pub output_units: IndexMap<String, String>,
+    pub objective: ObjectiveReport,
+    pub constraints: Vec<ConstraintReport>,
+    pub feasible: bool,
+    /// The quarter bridge's nodes 2..5 in mm, origin at node 2 (bridge models only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nodes_mm: Option<Vec<[f64; 2]>>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct ObjectiveReport {
+    pub output: String,
+    pub sense: crate::problem::Sense,
+    pub absolute: bool,
+    /// The objective as the problem states it (absolute value taken if asked), SI.
+    pub value: Option<f64>,
+}
+
+/// Relative tolerance within which a constraint counts as active or met.
+pub const ACTIVE_TOLERANCE: f64 = 1e-6;
+
+impl DesignReport {
+    /// Evaluates every output of `problem`'s model at the full design `x` (SI).
+    pub fn new(problem: &Problem, x: &[f64]) -> Self {
+        let model = problem.model();
+        let all: Vec<usize> = (0..model.outputs().len()).collect();
+        let mut out = vec![0.0; all.len()];
+        model.evaluate(x, &all, &mut out);
+        let finite = |v: f64| v.is_finite().then_some(v);
+        let mut report = DesignReport {
+            problem: problem.name.clone(),
+            model: match &problem.model {
+                ModelSpec::Bridge(_) => "bridge".into(),
+            },
+            design: IndexMap::new(),
+            design_units: IndexMap::new(),
+            design_si: IndexMap::new(),
+            outputs: IndexMap::new(),
+            output_units: IndexMap::new(),
+            objective: ObjectiveReport {
+                output: problem.objective.output.clone(),
+                sense: problem.objective.sense,
+                absolute: problem.objective.absolute,
+                value: finite(out[problem.objective.index]).map(|v| {
+                    if problem.objective.absolute {
+                        v.abs()
+                    } else {
+                        v
+                    }
+                }),
+            },
+            constraints: problem
+                .constraints
+                .iter()
+                .map(|c| ConstraintReport::new(c, out[c.index], ACTIVE_TOLERANCE))
+                .collect(),
+            feasible: false,
+            nodes_mm: None,
+        };
+        for (v, &xi) in problem.variables.iter().zip(x) {
+            report.design.insert(v.name.clone(), v.unit.from_si(xi));
+            report
+                .design_units
+                .insert(v.name.clone(), v.unit.name.clone());
+            report.design_si.insert(v.name.clone(), xi);
+        }
+        for (info, &v) in model.outputs().iter().zip(&out) {
+            report.outputs.insert(info.name.into(), finite(v));
+            report
+                .output_units
+                .insert(info.name.into(), info.dimension.si_unit().into());
+        }
+        report.feasible =
+            report.objective.value.is_some() && report.constraints.iter().all(|c| c.satisfied);
+        report.nodes_mm = match &problem.model {
+            ModelSpec::Bridge(_) => {
+                let g = Geometry::from_array(<[f64; 8]>::try_from(x).expect("8 bridge parameters"));
+                Some(g.nodes().iter().map(|p| [p[0] * 1e3, p[1] * 1e3]).collect())
+            }
+        };
+        report
+    }
+
+    /// Names of outputs without a finite value.
+    pub fn non_finite_outputs(&self) -> Vec<&str> {
+        self.outputs
+            .iter()
+            .filter(|(_, v)| v.is_none())
+            .map(|(k, _)| k.as_str())
+            .collect()
+    }
+}

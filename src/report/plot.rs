@@ -1,0 +1,143 @@
+//! PNG plots with plotters, drawn with the DejaVu Sans font that ships in `assets/fonts`,
+//! so no system font library is needed.
+
+use std::path::Path;
+use std::sync::Once;
+
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+
+use super::{write_with, WriteError};
+
+const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+const FAMILY: &str = "sans-serif";
+
+/// Registers the bundled font with plotters, once per process.
+pub fn register_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The bytes are a valid TrueType font checked in with the source; a failure here
+        // is a broken build, caught by the plot tests.
+        plotters::style::register_font(FAMILY, FontStyle::Normal, FONT).unwrap_or_else(|_| {
+            panic!("the bundled font assets/fonts/DejaVuSans.ttf does not load")
+        });
+    });
+}
+
+/// One panel of a figure: a curve of `y` against `x`.
+#[derive(Debug, Clone)]
+pub struct Panel {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Draws `panels` on a grid, `columns` wide, each `cell` pixels, into the PNG `path`.
+pub fn line_panels(
+    path: &Path,
+    title: &str,
+    panels: &[Panel],
+    columns: usize,
+    cell: (u32, u32),
+) -> Result<(), WriteError> {
+    register_font();
+    let columns = columns.clamp(1, panels.len().max(1));
+    let rows = panels.len().div_ceil(columns).max(1);
+    let size = (cell.0 * columns as u32, cell.1 * rows as u32 + 40);
+    write_with(path, |tmp| {
+        draw_panels(tmp, size, title, panels, rows, columns).map_err(std::io::Error::other)
+    })
+}
+
+fn draw_panels(
+    path: &Path,
+    size: (u32, u32),
+    title: &str,
+    panels: &[Panel],
+    rows: usize,
+    columns: usize,
+) -> Result<(), String> {
+    let root = BitMapBackend::new(path, size).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let root = root
+        .titled(title, (FAMILY, 22))
+        .map_err(|e| e.to_string())?;
+    let areas = root.split_evenly((rows, columns));
+    for (panel, area) in panels.iter().zip(areas) {
+        draw_panel(&area, panel).map_err(|e| e.to_string())?;
+    }
+    root.present().map_err(|e| e.to_string())
+}
+
+/// Padded range of finite values, never empty.
+pub fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let pad = if hi > lo {
+        0.05 * (hi - lo)
+    } else {
+        0.5 * lo.abs().max(1e-12)
+    };
+    (lo - pad, hi + pad)
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    p: &Panel,
+) -> Result<(), Box<dyn std::error::Error + 'static>>
+where
+    DB::ErrorType: 'static,
+{
+    let xr = range(p.points.iter().map(|q| q.0));
+    let yr = range(p.points.iter().map(|q| q.1));
+    let mut chart = ChartBuilder::on(area)
+        .caption(&p.title, (FAMILY, 16))
+        .margin(8)
+        .x_label_area_size(36)
+        .y_label_area_size(64)
+        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
+    chart
+        .configure_mesh()
+        .x_desc(&p.x_label)
+        .y_desc(&p.y_label)
+        .label_style((FAMILY, 12))
+        .y_label_formatter(&|v| format_tick(*v))
+        .x_label_formatter(&|v| format_tick(*v))
+        .draw()?;
+    // a gap where the model gives no finite value
+    for run in p.points.split(|q| !q.1.is_finite()) {
+        chart.draw_series(LineSeries::new(run.iter().copied(), BLUE.stroke_width(2)))?;
+    }
+    Ok(())
+}
+
+/// Compact tick labels with up to 5 significant digits: 12.5, 0.01195, 7.00e6.
+pub fn format_tick(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && !(1e-3..1e5).contains(&a) {
+        return format!("{v:.3e}");
+    }
+    let decimals = if a == 0.0 {
+        0
+    } else {
+        (4 - a.log10().floor() as i32).clamp(0, 8) as usize
+    };
+    let s = format!("{v:.decimals$}");
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        &s
+    };
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.to_string()
+    }
+}

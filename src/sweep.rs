@@ -1,0 +1,188 @@
+//! Curves of model outputs against one design variable, the others held at a base design.
+
+use indexmap::IndexMap;
+use std::path::Path;
+
+use serde::Serialize;
+
+use crate::problem::{Problem, ProblemError};
+use crate::report::plot::{line_panels, Panel};
+use crate::report::{write_json, WriteError};
+
+/// What to sweep, in the problem file's units.
+#[derive(Debug, Clone)]
+pub struct SweepSpec {
+    pub variable: String,
+    pub from: f64,
+    pub to: f64,
+    pub steps: usize,
+    /// Outputs to record; empty for all.
+    pub outputs: Vec<String>,
+}
+
+/// The result of a sweep.
+#[derive(Debug, Clone, Serialize)]
+pub struct Sweep {
+    pub problem: String,
+    pub variable: String,
+    pub unit: String,
+    /// The swept values, in `unit`.
+    pub values: Vec<f64>,
+    /// The base design, variable -> value in the file's units.
+    pub around: IndexMap<String, f64>,
+    /// Output -> values (SI), `null` where the model gives no finite number.
+    pub outputs: IndexMap<String, Vec<Option<f64>>>,
+    /// Output -> SI unit.
+    pub output_units: IndexMap<String, String>,
+    /// Order of the outputs as the model lists them.
+    #[serde(skip)]
+    order: Vec<String>,
+}
+
+/// Sweeps `spec.variable` with every other variable at `base` (full design, SI).
+/// Values outside the variable's bounds are allowed: a sweep explores the model.
+pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep, ProblemError> {
+    let err = |key: &str, message: String| ProblemError {
+        file: problem.file.clone(),
+        key: key.into(),
+        position: None,
+        message,
+    };
+    let Some(vi) = problem
+        .variables
+        .iter()
+        .position(|v| v.name == spec.variable)
+    else {
+        let names: Vec<_> = problem.variables.iter().map(|v| v.name.as_str()).collect();
+        return Err(err(
+            "--param",
+            format!(
+                "unknown variable \"{}\"; expected one of {}",
+                spec.variable,
+                names.join(", ")
+            ),
+        ));
+    };
+    let var = &problem.variables[vi];
+    let model = problem.model();
+    if spec.steps < 2 {
+        return Err(err(
+            "--steps",
+            format!("a sweep needs at least 2 steps, got {}", spec.steps),
+        ));
+    }
+    if !(spec.from.is_finite() && spec.to.is_finite()) || spec.from == spec.to {
+        return Err(err(
+            "--from",
+            format!(
+                "the range {} to {} is empty or not finite",
+                spec.from, spec.to
+            ),
+        ));
+    }
+    let positive = model.parameters()[var.parameter].dimension == crate::model::Dimension::Length;
+    if positive && spec.from.min(spec.to) <= 0.0 {
+        return Err(err(
+            "--from",
+            format!(
+                "{} is a length: the range {} to {} {} must stay positive",
+                var.name, spec.from, spec.to, var.unit.name
+            ),
+        ));
+    }
+    let wanted: Vec<usize> = if spec.outputs.is_empty() {
+        (0..model.outputs().len()).collect()
+    } else {
+        spec.outputs
+            .iter()
+            .map(|name| {
+                model.output_index(name).ok_or_else(|| {
+                    let names: Vec<_> = model.outputs().iter().map(|o| o.name).collect();
+                    err(
+                        "--outputs",
+                        format!(
+                            "unknown output \"{name}\"; expected one of {}",
+                            names.join(", ")
+                        ),
+                    )
+                })
+            })
+            .collect::<Result<_, _>>()?
+    };
+    let values: Vec<f64> = (0..spec.steps)
+        .map(|i| spec.from + (spec.to - spec.from) * i as f64 / (spec.steps - 1) as f64)
+        .collect();
+    let mut curves = vec![Vec::with_capacity(values.len()); wanted.len()];
+    let mut x = base.to_vec();
+    let mut out = vec![0.0; wanted.len()];
+    for &v in &values {
+        x[var.parameter] = var.unit.to_si(v);
+        model.evaluate(&x, &wanted, &mut out);
+        for (curve, &y) in curves.iter_mut().zip(&out) {
+            curve.push(y.is_finite().then_some(y));
+        }
+    }
+    let infos = model.outputs();
+    Ok(Sweep {
+        problem: problem.name.clone(),
+        variable: var.name.clone(),
+        unit: var.unit.name.clone(),
+        values,
+        around: problem
+            .variables
+            .iter()
+            .zip(base)
+            .map(|(v, &b)| (v.name.clone(), v.unit.from_si(b)))
+            .collect(),
+        outputs: wanted
+            .iter()
+            .zip(curves)
+            .map(|(&k, c)| (infos[k].name.to_string(), c))
+            .collect(),
+        output_units: wanted
+            .iter()
+            .map(|&k| {
+                (
+                    infos[k].name.to_string(),
+                    infos[k].dimension.si_unit().to_string(),
+                )
+            })
+            .collect(),
+        order: wanted.iter().map(|&k| infos[k].name.to_string()).collect(),
+    })
+}
+
+impl Sweep {
+    /// Writes `<variable>.json` and `<variable>.png` into `dir`.
+    pub fn write(&self, dir: &Path) -> Result<(), WriteError> {
+        write_json(&dir.join(format!("{}.json", self.variable)), self)?;
+        let panels: Vec<Panel> = self
+            .order
+            .iter()
+            .map(|name| Panel {
+                title: name.clone(),
+                x_label: format!("{} ({})", self.variable, self.unit),
+                y_label: format!("{name} ({})", self.output_units[name]),
+                points: self
+                    .values
+                    .iter()
+                    .zip(&self.outputs[name])
+                    .map(|(&x, y)| (x, y.unwrap_or(f64::NAN)))
+                    .collect(),
+            })
+            .collect();
+        let columns = if panels.len() == 1 { 1 } else { 4 };
+        let cell = if panels.len() == 1 {
+            (720, 480)
+        } else {
+            (420, 300)
+        };
+        line_panels(
+            &dir.join(format!("{}.png", self.variable)),
+            &format!("{}: outputs against {}", self.problem, self.variable),
+            &panels,
+            columns,
+            cell,
+        )
+    }
+}

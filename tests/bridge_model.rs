@@ -1,0 +1,258 @@
+//! Properties of the general bridge model over Table 1's bounds: the paper's special
+//! closed forms, an independent linear-system formulation, reciprocity, signs, gradients.
+
+mod common;
+
+use common::*;
+use flexopt::model::bridge::{closed_forms, BridgeOutput, QuarterBridge, OUTPUTS, PARAMETERS};
+use flexopt::model::bridge_matrix;
+use flexopt::model::hinge::{Compliance, HingeKind};
+use flexopt::model::material::Material;
+use flexopt::model::Model;
+
+const W: f64 = 10.0 * MM;
+
+fn hinge(l: f64, t: f64) -> Compliance<f64> {
+    HingeKind::Strip.compliance(l, t, W, &Material::al7075_t6())
+}
+
+fn amplification(q: &QuarterBridge<f64>) -> f64 {
+    q.a21() / q.a11()
+}
+
+#[test]
+fn general_equations_reduce_to_the_parallel_closed_form_eq23() {
+    let mut r = rng(23);
+    let mut worst = 0.0f64;
+    for _ in 0..2000 {
+        let x = random_design(&mut r);
+        let (l, t, l3, d3) = (x[0], x[2], x[3], x[4]);
+        let h = hinge(l, t);
+        let q = QuarterBridge::from_compliances(h, h, 0.0, l3, d3, 0.0);
+        let expect = closed_forms::parallel(&h, l3, d3);
+        worst = worst.max(rel(amplification(&q), expect, 1e-300));
+    }
+    eprintln!("special closed form, worst relative difference: {worst:e}");
+    assert!(worst < 1e-12, "worst relative difference {worst:e}");
+}
+
+#[test]
+fn general_equations_reduce_to_the_aligned_closed_form_eq27() {
+    let mut r = rng(27);
+    let mut worst = 0.0f64;
+    for _ in 0..2000 {
+        let x = random_design(&mut r);
+        let (l, t, l3, d) = (x[0], x[2], x[3], x[4]);
+        let h = hinge(l, t);
+        let q = QuarterBridge::from_compliances(h, h, d, l3, d, d);
+        worst = worst.max(rel(
+            amplification(&q),
+            closed_forms::aligned(&h, l3, d),
+            1e-300,
+        ));
+    }
+    eprintln!("special closed form, worst relative difference: {worst:e}");
+    assert!(worst < 1e-12, "worst relative difference {worst:e}");
+}
+
+#[test]
+fn general_equations_reduce_to_the_rhombic_closed_form_eq25() {
+    let mut r = rng(25);
+    let (mut worst_printed, mut worst_general) = (0.0f64, 0.0f64);
+    let nothing = Compliance {
+        c11: 0.0,
+        c22: 0.0,
+        c23: 0.0,
+        c33: 0.0,
+    };
+    for _ in 0..2000 {
+        let x = random_design(&mut r);
+        let (l, t, d) = (x[5], x[7], x[6]);
+        // Eq. 25 as printed assumes Euler-Bernoulli hinges (no shear term in c22)
+        let mut bending_only = hinge(l, t);
+        bending_only.c22 = 4.0 * l.powi(3) / (72e9 * W * t.powi(3));
+        let q = QuarterBridge::from_compliances(nothing, bending_only, 0.0, 0.0, 0.0, d);
+        let expect = closed_forms::rhombic(&bending_only, d);
+        worst_printed = worst_printed.max(rel(amplification(&q), expect, 1e-300));
+        // and the shear-inclusive limit holds for the full strip hinge
+        let h = hinge(l, t);
+        let q = QuarterBridge::from_compliances(nothing, h, 0.0, 0.0, 0.0, d);
+        let expect = closed_forms::rhombic_general(&h, d);
+        worst_general = worst_general.max(rel(amplification(&q), expect, 1e-300));
+    }
+    assert!(worst_printed < 1e-12, "Eq. 25: {worst_printed:e}");
+    assert!(
+        worst_general < 1e-12,
+        "general rhombic limit: {worst_general:e}"
+    );
+}
+
+#[test]
+fn closed_form_agrees_with_the_linear_elastic_system() {
+    let settings = wei2017_settings();
+    let mut r = rng(10_000);
+    let mut worst = 0.0f64;
+    for _ in 0..20_000 {
+        let x = random_design(&mut r);
+        let g = geometry(x);
+        let q = QuarterBridge::new(&g, settings.hinge, settings.width, &settings.material);
+        let a = [[q.a11(), q.a12()], [q.a21(), q.a22()]];
+        let m = bridge_matrix::coefficients(&g, settings.hinge, settings.width, &settings.material);
+        // each coefficient relative to its own size; a12 and a21 may pass through zero, so
+        // they are measured against sqrt(a11 |a22|), their Cauchy-Schwarz bound
+        let cross = (a[0][0] * a[1][1].abs()).sqrt();
+        for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+            let scale = if i == j { m[(i, j)].abs() } else { cross };
+            worst = worst.max((a[i][j] - m[(i, j)]).abs() / scale);
+        }
+    }
+    eprintln!("closed form vs linear system, worst relative difference: {worst:e}");
+    assert!(worst < 1e-10, "worst relative difference {worst:e}");
+}
+
+#[test]
+fn maxwell_betti_reciprocity_and_signs_over_the_bounds_box() {
+    let settings = wei2017_settings();
+    let mut r = rng(42);
+    let corners = (0..256u32).map(|bits| {
+        let b = table1_bounds();
+        std::array::from_fn(|i| if bits >> i & 1 == 1 { b[i].1 } else { b[i].0 })
+    });
+    let randoms: Vec<[f64; 8]> = (0..10_000).map(|_| random_design(&mut r)).collect();
+    for x in corners.chain(randoms) {
+        let q = QuarterBridge::new(
+            &geometry(x),
+            settings.hinge,
+            settings.width,
+            &settings.material,
+        );
+        let (a12, a21) = (q.a12(), q.a21());
+        let cross = (q.a11() * q.a22().abs()).sqrt();
+        assert!(
+            (a12 + a21).abs() <= 1e-13 * cross,
+            "a12 = {a12:e}, a21 = {a21:e} at {x:?}"
+        );
+        assert!(q.a11() > 0.0, "a11 = {:e} at {x:?}", q.a11());
+        assert!(q.a22() < 0.0, "a22 = {:e} at {x:?}", q.a22());
+        // a positive-definite compliance: a11 |a22| > a12 a21
+        assert!(q.a11() * q.a22().abs() > a12 * a12);
+    }
+}
+
+#[test]
+fn exact_gradients_agree_with_finite_differences() {
+    let model = wei2017();
+    let all: Vec<usize> = (0..BridgeOutput::ALL.len()).collect();
+    let n = PARAMETERS.len();
+    let ranges = table1_bounds().map(|(lo, hi)| hi - lo);
+    let mut r = rng(7);
+    let mut worst = (0.0f64, "", "");
+    let (mut checks, mut kinks) = (0usize, 0usize);
+    for _ in 0..1000 {
+        let x = random_design(&mut r);
+        let mut value = vec![0.0; all.len()];
+        let mut jac = vec![0.0; all.len() * n];
+        model.evaluate_with_gradient(&x, &all, &mut value, &mut jac);
+        let mut plain = vec![0.0; all.len()];
+        Model::evaluate(&model, &x, &all, &mut plain);
+        for (v, p) in value.iter().zip(&plain) {
+            assert!(rel(*v, *p, 1e-300) < 1e-11, "dual {v:e} vs real {p:e}");
+        }
+        for j in 0..n {
+            let h = 1e-5 * ranges[j];
+            // the five-point stencil, fourth order in h
+            let at = |k: f64| {
+                let mut y = x;
+                y[j] += k * h;
+                let mut f = vec![0.0; all.len()];
+                Model::evaluate(&model, &y, &all, &mut f);
+                f
+            };
+            let (f2, f1, f0, fm1, fm2) = (at(2.0), at(1.0), at(0.0), at(-1.0), at(-2.0));
+            let (fh, fmh) = (at(0.5), at(-0.5));
+            for i in 0..all.len() {
+                // derivatives scaled by the bound ranges, measured against the largest
+                // scaled derivative of the same output
+                let scale = (0..n)
+                    .map(|k| (jac[i * n + k] * ranges[k]).abs())
+                    .fold(0.0, f64::max);
+                if scale == 0.0 {
+                    continue;
+                }
+                // the stresses take a max and absolute values: where a kink lies inside the
+                // stencil no derivative exists to compare. The jump between the one-sided
+                // slopes is h f'' for a smooth function, halving with h; at a kink it stays.
+                let jump = |r: f64, l: f64| ((r - f0[i]) - (f0[i] - l)).abs();
+                let (wide, narrow) = (jump(f1[i], fm1[i]) / h, jump(fh[i], fmh[i]) / (0.5 * h));
+                checks += 1;
+                if narrow > 0.75 * wide && wide * ranges[j] > 1e-9 * scale {
+                    kinks += 1;
+                    continue;
+                }
+                let fd_grad = (8.0 * (f1[i] - fm1[i]) - (f2[i] - fm2[i])) / (12.0 * h);
+                let err = (fd_grad - jac[i * n + j]).abs() * ranges[j] / scale;
+                if err > worst.0 {
+                    worst = (err, OUTPUTS[i].name, PARAMETERS[j].name);
+                }
+            }
+        }
+    }
+    eprintln!(
+        "gradients vs finite differences, worst {:e}: d {} / d {}; {kinks} of {checks} stencils straddled a kink",
+        worst.0, worst.1, worst.2
+    );
+    assert!(kinks * 1000 < checks, "{kinks} kinks in {checks} checks");
+    assert!(
+        worst.0 < 1e-6,
+        "worst {:e}: d {} / d {}",
+        worst.0,
+        worst.1,
+        worst.2
+    );
+}
+
+#[test]
+fn spans_match_the_node_coordinates() {
+    let mut r = rng(3);
+    for _ in 0..100 {
+        let g = geometry(random_design(&mut r));
+        let node5 = g.nodes()[3];
+        assert!((node5[0] - g.span_x()).abs() < 1e-15);
+        assert!((node5[1] - g.span_y()).abs() < 1e-15);
+    }
+}
+
+#[test]
+fn jet_and_num_dual_give_the_same_gradients() {
+    use flexopt::model::bridge::Geometry;
+    use flexopt::model::scalar::Jet;
+    use num_dual::DualSVec64;
+    let model = wei2017();
+    let all: Vec<usize> = (0..BridgeOutput::ALL.len()).collect();
+    let mut r = rng(11);
+    let mut worst = 0.0f64;
+    for _ in 0..1000 {
+        let x = random_design(&mut r);
+        let mut jet = vec![Jet::<8>::from(0.0); all.len()];
+        model.evaluate(&Geometry::seeded(&x), &all, &mut jet);
+        let xd: [DualSVec64<8>; 8] =
+            std::array::from_fn(|i| DualSVec64::from_re(x[i]).derivative(i));
+        let mut nd = vec![DualSVec64::<8>::from_re(0.0); all.len()];
+        model.evaluate(&Geometry::from_array(xd), &all, &mut nd);
+        for (j, d) in jet.iter().zip(&nd) {
+            // num-dual stores no gradient for a constant (stroke_in of a rigid actuator)
+            let g: Vec<f64> = d
+                .eps
+                .0
+                .as_ref()
+                .map_or(vec![0.0; 8], |g| g.iter().copied().collect());
+            let scale = g.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (a, b) in j.grad.iter().zip(&g) {
+                let diff = (a - b).abs();
+                worst = worst.max(if scale > 0.0 { diff / scale } else { diff });
+            }
+        }
+    }
+    eprintln!("Jet vs num-dual gradients, worst relative difference: {worst:e}");
+    assert!(worst < 1e-12, "{worst:e}");
+}

@@ -1,0 +1,320 @@
+//! Every rejection rule of the problem-file format: the message names the file, the key
+//! path and the bad value; the CLI exits with code 2.
+
+use std::path::Path;
+use std::process::Command;
+
+use flexopt::problem::design::parse_design;
+use flexopt::problem::{Problem, ProblemError};
+
+const FILE: &str = "problems/wei2017.toml";
+
+fn original() -> String {
+    std::fs::read_to_string(FILE).unwrap()
+}
+
+/// Parses the problem file with `from` replaced by `to` (which must occur).
+fn mutated(from: &str, to: &str) -> Result<Problem, ProblemError> {
+    let text = original();
+    assert!(text.contains(from), "fixture text {from:?} not in {FILE}");
+    Problem::parse(Path::new("mutated.toml"), &text.replacen(from, to, 1))
+}
+
+/// Asserts the error's key, and that its message contains each of `words`.
+fn rejects(result: Result<Problem, ProblemError>, key: &str, words: &[&str]) -> ProblemError {
+    let e = result.expect_err("the file must be rejected");
+    assert_eq!(e.key, key, "{e}");
+    let shown = e.to_string();
+    assert!(
+        shown.starts_with("mutated.toml:"),
+        "the file is named: {shown}"
+    );
+    assert!(
+        shown.contains(&format!("`{key}`")),
+        "the key is named: {shown}"
+    );
+    for w in words {
+        assert!(shown.contains(w), "{w:?} missing from: {shown}");
+    }
+    e
+}
+
+#[test]
+fn the_shipped_problem_is_accepted() {
+    let p = Problem::load(Path::new(FILE)).unwrap();
+    assert_eq!(p.variables.len(), 8);
+    assert_eq!(p.constraints.len(), 5);
+    assert_eq!(p.free_variables().count(), 8);
+}
+
+#[test]
+fn unknown_key() {
+    let e = rejects(
+        mutated("absolute = true", "absolute = true\nweight = 2"),
+        "objective.weight",
+        &["unknown field"],
+    );
+    assert!(e.position.is_some(), "TOML gives a line: {e}");
+}
+
+#[test]
+fn unknown_key_in_an_array_of_tables() {
+    rejects(
+        mutated("lower = 0.4\nupper = 2", "lower = 0.4\nuper = 2"),
+        "variables[2].uper",
+        &["unknown field"],
+    );
+}
+
+#[test]
+fn missing_key() {
+    rejects(
+        mutated("model = \"bridge\"", ""),
+        "model",
+        &["missing field"],
+    );
+    rejects(
+        mutated("unit = \"N/m\"\nlower = 7e6", "lower = 7e6"),
+        "constraints[3].unit",
+        &["missing field"],
+    );
+}
+
+#[test]
+fn missing_design_variable() {
+    let text = original();
+    let start = text.find("[[variables]]\nname = \"t4\"").unwrap();
+    let end = start + text[start..].find("\n\n").unwrap();
+    let cut = format!("{}{}", &text[..start], &text[end..]);
+    let e = Problem::parse(Path::new("mutated.toml"), &cut).unwrap_err();
+    assert_eq!(e.key, "variables");
+    assert!(e.message.contains("\"t4\""), "{e}");
+}
+
+#[test]
+fn lower_bound_above_upper_bound() {
+    let e = rejects(
+        mutated(
+            "name = \"l3\"\nunit = \"mm\"\nlower = 0.5",
+            "name = \"l3\"\nunit = \"mm\"\nlower = 25",
+        ),
+        "variables[3].lower",
+        &["25", "20"],
+    );
+    assert!(e.position.is_some(), "{e}");
+    rejects(
+        mutated("lower = 7.5\nupper = 12", "lower = 13\nupper = 12"),
+        "constraints[0].lower",
+        &["13", "12"],
+    );
+}
+
+#[test]
+fn non_positive_length_and_thickness() {
+    rejects(
+        mutated(
+            "name = \"l2\"\nunit = \"mm\"\nlower = 0.5",
+            "name = \"l2\"\nunit = \"mm\"\nlower = 0",
+        ),
+        "variables[0].lower",
+        &["positive", "0"],
+    );
+    rejects(
+        mutated(
+            "name = \"t2\"\nunit = \"mm\"\nlower = 0.4",
+            "name = \"t2\"\nunit = \"mm\"\nlower = -0.4",
+        ),
+        "variables[2].lower",
+        &["positive", "-0.4"],
+    );
+}
+
+#[test]
+fn non_positive_width() {
+    rejects(
+        mutated("width = \"10 mm\"", "width = \"0 mm\""),
+        "hinge.width",
+        &["positive", "\"0 mm\""],
+    );
+}
+
+#[test]
+fn non_positive_modulus() {
+    rejects(
+        mutated(
+            "preset = \"al7075-t6\"",
+            "preset = \"al7075-t6\"\nyoungs_modulus = \"-72 GPa\"",
+        ),
+        "material.youngs_modulus",
+        &["positive", "\"-72 GPa\""],
+    );
+}
+
+#[test]
+fn nan_and_infinite_numbers() {
+    rejects(
+        mutated("upper = 45", "upper = nan"),
+        "variables[1].upper",
+        &["NaN", "finite"],
+    );
+    rejects(
+        mutated("lower = 7e6", "lower = inf"),
+        "constraints[3].lower",
+        &["inf", "finite"],
+    );
+    rejects(
+        mutated("thresholds = [12.7", "thresholds = [-inf"),
+        "zones.thresholds[0]",
+        &["finite"],
+    );
+}
+
+#[test]
+fn unknown_output() {
+    rejects(
+        mutated(
+            "maximize = \"amplification\"",
+            "maximize = \"amplificaton\"",
+        ),
+        "objective.maximize",
+        &["\"amplificaton\"", "amplification"],
+    );
+    rejects(
+        mutated("output = \"k_out\"", "output = \"k_output\""),
+        "constraints[4].output",
+        &["\"k_output\""],
+    );
+}
+
+#[test]
+fn unknown_unit() {
+    rejects(
+        mutated(
+            "name = \"delta2\"\nunit = \"deg\"",
+            "name = \"delta2\"\nunit = \"degrees\"",
+        ),
+        "variables[1].unit",
+        &["\"degrees\"", "\"deg\""],
+    );
+    // a unit of the wrong dimension
+    rejects(
+        mutated("unit = \"N/m\"\nlower = 7e6", "unit = \"MPa\"\nlower = 7e6"),
+        "constraints[3].unit",
+        &["\"MPa\"", "\"N/m\""],
+    );
+    rejects(
+        mutated(
+            "nominal_stroke = \"17.4 um\"",
+            "nominal_stroke = \"17.4 uN\"",
+        ),
+        "actuator.nominal_stroke",
+        &["\"uN\""],
+    );
+}
+
+#[test]
+fn quantity_without_unit() {
+    rejects(
+        mutated("width = \"10 mm\"", "width = 10"),
+        "hinge.width",
+        &["no unit"],
+    );
+}
+
+#[test]
+fn unknown_material() {
+    rejects(
+        mutated("preset = \"al7075-t6\"", "preset = \"al6061\""),
+        "material.preset",
+        &["\"al6061\"", "al7075-t6"],
+    );
+}
+
+#[test]
+fn unknown_model_and_hinge_kind() {
+    rejects(
+        mutated("model = \"bridge\"", "model = \"lever\""),
+        "model",
+        &["\"lever\""],
+    );
+    rejects(
+        mutated("kind = \"strip\"", "kind = \"notch\""),
+        "hinge.kind",
+        &["\"notch\""],
+    );
+}
+
+#[test]
+fn ultimate_fraction_needs_a_strength() {
+    rejects(
+        mutated("preset = \"al7075-t6\"", "preset = \"65si2mn\""),
+        "constraints[2].unit",
+        &["ultimate strength"],
+    );
+}
+
+#[test]
+fn wrong_type() {
+    rejects(
+        mutated("starts = 300", "starts = \"many\""),
+        "search.starts",
+        &["invalid type"],
+    );
+}
+
+#[test]
+fn design_missing_a_variable_is_an_error() {
+    let p = Problem::load(Path::new(FILE)).unwrap();
+    let e = parse_design(
+        &p,
+        "l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07",
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("problems/wei2017.toml"), "{e}");
+    assert_eq!(e.key, "--design t4");
+    let e = parse_design(&p, "l2=1.96,delta2=x").unwrap_err();
+    assert_eq!(e.key, "--design delta2");
+    assert!(e.message.contains("\"x\""));
+    let e = parse_design(&p, "l9=1").unwrap_err();
+    assert_eq!(e.key, "--design l9");
+}
+
+#[test]
+fn design_outside_bounds_is_a_warning() {
+    let p = Problem::load(Path::new(FILE)).unwrap();
+    let d = parse_design(
+        &p,
+        "l2=25,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07,t4=0.4",
+    )
+    .unwrap();
+    assert_eq!(d.warnings.len(), 1);
+    assert!(
+        d.warnings[0].contains("l2 = 25 mm") && d.warnings[0].contains("[0.5, 20]"),
+        "{:?}",
+        d.warnings
+    );
+    assert!((d.x[0] - 0.025).abs() < 1e-15);
+}
+
+#[test]
+fn the_command_line_exits_2_and_names_file_and_key() {
+    let dir = std::env::temp_dir().join(format!("flexopt-errors-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, original().replacen("upper = 45", "upper = -50", 1)).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_flexopt"))
+        .args(["eval", bad.to_str().unwrap(), "--design", "l2=1"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad.toml:") && err.contains("`variables[1].lower`"),
+        "{err}"
+    );
+    assert!(
+        out.stdout.is_empty(),
+        "nothing on stdout for a rejected file"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
