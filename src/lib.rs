@@ -7,6 +7,8 @@
 //! - [`sweep`]: curves of every output against one design variable.
 
 pub mod model;
+pub mod optim;
 pub mod problem;
 pub mod report;
+pub mod study;
 pub mod sweep;

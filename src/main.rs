@@ -5,9 +5,13 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use std::io::IsTerminal;
+
 use flexopt::problem::design::parse_design;
-use flexopt::problem::Problem;
+use flexopt::problem::{Problem, Solver};
+use flexopt::report::study::write_all;
 use flexopt::report::DesignReport;
+use flexopt::study::{self, StudyOptions};
 use flexopt::sweep::{sweep, SweepSpec};
 
 /// Exit code for a rejected problem file, design or option.
@@ -62,11 +66,29 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Optimize: multistart local searches, zones, and the optimal design.
+    /// Optimize: local solves from many starts, optima sorted into zones, the optimal
+    /// design exported (optimum.json, starts.json/.csv, zones.json, zones.png,
+    /// configurations.png).
     Run {
         problem: PathBuf,
+        /// Folder to write into (default: results/<problem name>).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Number of starts (default: the problem file's search.starts).
+        #[arg(long)]
+        starts: Option<usize>,
+        /// Random seed (default: the problem file's search.seed).
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Worker threads, 0 for every core (default: the problem file's search.threads).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Local solver (default: the problem file's search.solver).
+        #[arg(long, value_parser = ["sqp", "nelder-mead"])]
+        solver: Option<String>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
     },
 }
 
@@ -93,20 +115,141 @@ fn main() -> ExitCode {
             };
             run_sweep(&problem, &spec, around.as_deref(), out)
         }
-        Command::Run { problem, out: _ } => {
+        Command::Run {
+            problem,
+            out,
+            starts,
+            seed,
+            threads,
+            solver,
+            quiet,
+        } => {
             let problem = match Problem::load(&problem) {
                 Ok(p) => p,
                 Err(e) => return bad_input(e),
             };
-            eprintln!("flexopt run: the multistart optimizer is not built yet; evaluating the middle of the bounds of {}", problem.name);
-            let mid: Vec<f64> = problem
-                .variables
-                .iter()
-                .map(|v| 0.5 * (v.lower + v.upper))
-                .collect();
-            print_json(&DesignReport::new(&problem, &mid))
+            let mut options = StudyOptions::from_problem(&problem);
+            if let Some(s) = starts {
+                if s == 0 {
+                    return bad_input("--starts must be at least 1");
+                }
+                options.starts = s;
+            }
+            options.seed = seed.unwrap_or(options.seed);
+            options.threads = threads.unwrap_or(options.threads);
+            if let Some(s) = solver {
+                options.solver = if s == "sqp" {
+                    Solver::Sqp
+                } else {
+                    Solver::NelderMead
+                };
+            }
+            options.progress = !quiet && std::io::stderr().is_terminal();
+            let dir = out.unwrap_or_else(|| problem.default_output_dir());
+            run_study(&problem, &options, &dir)
         }
     }
+}
+
+/// Exit code for a study in which no start ended feasible.
+const NO_FEASIBLE_DESIGN: u8 = 3;
+
+fn run_study(problem: &Problem, options: &StudyOptions, dir: &Path) -> ExitCode {
+    let study = study::run(problem, options);
+    let files = match write_all(dir, problem, &study) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(WRITE_FAILED);
+        }
+    };
+    let mut text = summary(problem, &study);
+    for f in files {
+        text.push_str(&format!("wrote {}\n", f.display()));
+    }
+    emit(&text);
+    if study.any_feasible {
+        ExitCode::SUCCESS
+    } else {
+        eprintln!(
+            "error: {}: no start ended at a feasible design; optimum.json holds the least violating one",
+            problem.file.display()
+        );
+        ExitCode::from(NO_FEASIBLE_DESIGN)
+    }
+}
+
+fn summary(problem: &Problem, study: &study::Study) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let best = &study.runs[study.best];
+    let solver = match study.options.solver {
+        Solver::Sqp => "SQP",
+        Solver::NelderMead => "Nelder-Mead",
+    };
+    let _ = writeln!(
+        s,
+        "{}: {} starts with {solver}, seed {}, in {:.1} ms; {} ended feasible",
+        problem.name,
+        study.runs.len(),
+        study.options.seed,
+        study.elapsed.as_secs_f64() * 1e3,
+        study.feasible_runs.len()
+    );
+    let label = if study.any_feasible {
+        "best"
+    } else {
+        "least violating (infeasible)"
+    };
+    let _ = writeln!(
+        s,
+        "{label} {} = {:.6} ({})",
+        problem.objective.output,
+        best.objective,
+        study::configuration(problem, &best.x_end)
+    );
+    let design: Vec<String> = problem
+        .variables
+        .iter()
+        .zip(&best.x_end)
+        .map(|(v, &x)| format!("{}={:.6}", v.name, v.unit.from_si(x)))
+        .collect();
+    let _ = writeln!(s, "  design {}", design.join(","));
+    let _ = writeln!(s, "zone  starts  optima  best        worst");
+    for z in &study.clustering.zones {
+        let f = |v: f64| {
+            if v.is_finite() {
+                format!("{v:<10.6}")
+            } else {
+                format!("{:<10}", "-")
+            }
+        };
+        let _ = writeln!(
+            s,
+            "{:<5} {:<7} {:<7} {}  {}",
+            z.rank,
+            z.count,
+            z.optima.len(),
+            f(z.best),
+            f(z.worst)
+        );
+    }
+    let missing = study.runs.len() - study.feasible_runs.len();
+    if missing > 0 {
+        let _ = writeln!(
+            s,
+            "{missing} starts ended infeasible or failed (see starts.json)"
+        );
+    }
+    s
+}
+
+/// Writes to stdout; a reader that has gone away (a closed pipe) is not an error worth a
+/// panic, and the command just stops printing.
+fn emit(text: &str) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
 }
 
 fn bad_input(e: impl std::fmt::Display) -> ExitCode {
@@ -117,7 +260,7 @@ fn bad_input(e: impl std::fmt::Display) -> ExitCode {
 fn print_json(value: &impl serde::Serialize) -> ExitCode {
     match serde_json::to_string_pretty(value) {
         Ok(s) => {
-            println!("{s}");
+            emit(&format!("{s}\n"));
             ExitCode::SUCCESS
         }
         Err(e) => {
@@ -178,14 +321,12 @@ fn run_sweep(
     let dir = out.unwrap_or_else(|| problem.default_output_dir().join("sweep"));
     match result.write(&dir) {
         Ok(()) => {
-            println!(
-                "wrote {}",
-                dir.join(format!("{}.json", spec.variable)).display()
-            );
-            println!(
-                "wrote {}",
-                dir.join(format!("{}.png", spec.variable)).display()
-            );
+            for ext in ["json", "png"] {
+                emit(&format!(
+                    "wrote {}\n",
+                    dir.join(format!("{}.{ext}", spec.variable)).display()
+                ));
+            }
             ExitCode::SUCCESS
         }
         Err(e) => {

@@ -74,7 +74,7 @@ fn missing_key() {
         &["missing field"],
     );
     rejects(
-        mutated("unit = \"N/m\"\nlower = 7e6", "lower = 7e6"),
+        mutated("unit = \"N/m\"\nupper = 7e6", "upper = 7e6"),
         "constraints[3].unit",
         &["missing field"],
     );
@@ -158,8 +158,8 @@ fn nan_and_infinite_numbers() {
         &["NaN", "finite"],
     );
     rejects(
-        mutated("lower = 7e6", "lower = inf"),
-        "constraints[3].lower",
+        mutated("upper = 7e6", "upper = inf"),
+        "constraints[3].upper",
         &["inf", "finite"],
     );
     rejects(
@@ -198,7 +198,7 @@ fn unknown_unit() {
     );
     // a unit of the wrong dimension
     rejects(
-        mutated("unit = \"N/m\"\nlower = 7e6", "unit = \"MPa\"\nlower = 7e6"),
+        mutated("unit = \"N/m\"\nupper = 7e6", "unit = \"MPa\"\nupper = 7e6"),
         "constraints[3].unit",
         &["\"MPa\"", "\"N/m\""],
     );

@@ -7,6 +7,7 @@
 pub mod bind;
 pub mod design;
 pub mod error;
+pub mod nlp;
 pub mod schema;
 pub mod units;
 

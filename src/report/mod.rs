@@ -4,6 +4,7 @@
 //! temporary name and renamed into place.
 
 pub mod plot;
+pub mod study;
 
 use indexmap::IndexMap;
 use std::io::Write;
@@ -129,7 +130,7 @@ impl ConstraintReport {
             unit: u.name.clone(),
             margin,
             relative_margin: relative,
-            satisfied: relative.is_some_and(|r| r >= -active_tol),
+            satisfied: relative.is_some_and(|r| r >= -FEASIBILITY_TOLERANCE),
             active: relative.is_some_and(|r| r.abs() <= active_tol),
         }
     }
@@ -151,7 +152,12 @@ pub struct DesignReport {
     pub outputs: IndexMap<String, Option<f64>>,
     /// Output -> SI unit.
     pub output_units: IndexMap<String, String>,
-    pub objective: ObjectiveReport,
+    /// The objective as the problem states it (absolute value taken if asked), SI;
+    /// `null` where the model gives no finite number.
+    pub objective: Option<f64>,
+    pub objective_output: String,
+    pub sense: crate::problem::Sense,
+    pub absolute: bool,
     pub constraints: Vec<ConstraintReport>,
     pub feasible: bool,
     /// The quarter bridge's nodes 2..5 in mm, origin at node 2 (bridge models only).
@@ -159,17 +165,11 @@ pub struct DesignReport {
     pub nodes_mm: Option<Vec<[f64; 2]>>,
 }
 
-#[derive(Debug, Clone, Serialize)]
-pub struct ObjectiveReport {
-    pub output: String,
-    pub sense: crate::problem::Sense,
-    pub absolute: bool,
-    /// The objective as the problem states it (absolute value taken if asked), SI.
-    pub value: Option<f64>,
-}
-
-/// Relative tolerance within which a constraint counts as active or met.
+/// Relative margin within which a constraint counts as active.
 pub const ACTIVE_TOLERANCE: f64 = 1e-6;
+
+/// Relative violation up to which a constraint counts as met.
+pub const FEASIBILITY_TOLERANCE: f64 = 1e-8;
 
 impl DesignReport {
     /// Evaluates every output of `problem`'s model at the full design `x` (SI).
@@ -189,18 +189,16 @@ impl DesignReport {
             design_si: IndexMap::new(),
             outputs: IndexMap::new(),
             output_units: IndexMap::new(),
-            objective: ObjectiveReport {
-                output: problem.objective.output.clone(),
-                sense: problem.objective.sense,
-                absolute: problem.objective.absolute,
-                value: finite(out[problem.objective.index]).map(|v| {
-                    if problem.objective.absolute {
-                        v.abs()
-                    } else {
-                        v
-                    }
-                }),
-            },
+            objective: finite(out[problem.objective.index]).map(|v| {
+                if problem.objective.absolute {
+                    v.abs()
+                } else {
+                    v
+                }
+            }),
+            objective_output: problem.objective.output.clone(),
+            sense: problem.objective.sense,
+            absolute: problem.objective.absolute,
             constraints: problem
                 .constraints
                 .iter()
@@ -223,7 +221,7 @@ impl DesignReport {
                 .insert(info.name.into(), info.dimension.si_unit().into());
         }
         report.feasible =
-            report.objective.value.is_some() && report.constraints.iter().all(|c| c.satisfied);
+            report.objective.is_some() && report.constraints.iter().all(|c| c.satisfied);
         report.nodes_mm = match &problem.model {
             ModelSpec::Bridge(_) => {
                 let g = Geometry::from_array(<[f64; 8]>::try_from(x).expect("8 bridge parameters"));

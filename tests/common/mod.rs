@@ -1,6 +1,8 @@
 //! Shared fixtures of the integration tests.
 #![allow(dead_code)]
 
+pub mod hs;
+
 use flexopt::model::bridge::{Actuator, Bridge, BridgeSettings, Geometry};
 use flexopt::model::hinge::HingeKind;
 use flexopt::model::material::Material;

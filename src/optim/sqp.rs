@@ -1,0 +1,563 @@
+//! A dense sequential quadratic programming (SQP) solver.
+//!
+//! Each iteration solves the quadratic model
+//!
+//! ```text
+//! minimize    1/2 d^T B d + grad f(x)^T d
+//! subject to  c_i(x) + grad c_i(x)^T d  = 0   (equalities)
+//!             c_i(x) + grad c_i(x)^T d >= 0   (inequalities)
+//!             lower - x <= d <= upper - x
+//! ```
+//!
+//! exactly with the dual active-set method of [`super::qp`], and steps along `d` with a
+//! backtracking line search on the l1 exact-penalty merit function
+//! `phi(x) = f(x) + mu sum_i viol_i(x)`. `B` is a BFGS approximation of the Hessian of the
+//! Lagrangian with Powell's damping, which keeps it positive definite. Where the
+//! linearised constraints have no common point, the step comes from the elastic QP, which
+//! adds one slack `s >= 0` to every constraint and `rho s` to the objective (l-infinity
+//! elastic mode). A full step the merit function rejects gets one second-order correction
+//! (against the Maratos effect) before backtracking. Iterates never leave the bounds: the
+//! QP keeps `x + d` inside, and the line search moves between two points inside.
+//! A trial point where the problem cannot be evaluated is a failed step.
+//!
+//! The solve stops when the KKT residual, the largest of the scaled stationarity,
+//! complementarity and feasibility errors, falls below the tolerance.
+//!
+//! References: J. Nocedal and S. J. Wright, Numerical Optimization, 2nd ed., Springer 2006,
+//! Ch. 18 (SQP, merit functions, second-order correction, damped BFGS, Procedure 18.2);
+//! M. J. D. Powell, "A fast algorithm for nonlinearly constrained optimization
+//! calculations", Lecture Notes in Mathematics 630 (1978).
+
+use super::problem::{clamp_into, max_violation, Problem, Solution, Status};
+use super::qp::{self, QpStatus, QpWorkspace};
+
+/// Settings of the SQP solver.
+#[derive(Debug, Clone)]
+pub struct SqpSettings {
+    /// Stop when the KKT residual is below this.
+    pub tolerance: f64,
+    pub max_iterations: usize,
+}
+
+impl Default for SqpSettings {
+    fn default() -> Self {
+        SqpSettings {
+            tolerance: 1e-10,
+            max_iterations: 500,
+        }
+    }
+}
+
+/// Solves `problem` from `x0` (moved into the bounds first).
+pub fn solve(problem: &dyn Problem, x0: &[f64], settings: &SqpSettings) -> Solution {
+    let mut w = Work::new(problem, x0);
+    w.run(problem, settings)
+}
+
+/// The state and work arrays of one solve, sized once.
+struct Work<'p> {
+    n: usize,
+    m: usize,
+    meq: usize,
+    lower: &'p [f64],
+    upper: &'p [f64],
+    x: Vec<f64>,
+    f: f64,
+    c: Vec<f64>,
+    g: Vec<f64>,
+    jac: Vec<f64>,
+    /// BFGS approximation of the Hessian of the Lagrangian, row-major.
+    hess: Vec<f64>,
+    xt: Vec<f64>,
+    ft: f64,
+    ct: Vec<f64>,
+    gt: Vec<f64>,
+    jact: Vec<f64>,
+    d: Vec<f64>,
+    d_saved: Vec<f64>,
+    lambda: Vec<f64>,
+    lambda_saved: Vec<f64>,
+    /// Bound multipliers: positive at a lower bound, negative at an upper one.
+    nu: Vec<f64>,
+    rhs: Vec<f64>,
+    /// The rows of the plain QP active at its last solve.
+    active_hint: Vec<usize>,
+    qp: QpData,
+    ws: QpWorkspace,
+    ws_elastic: QpWorkspace,
+    evaluations: usize,
+}
+
+/// The arrays of one QP subproblem.
+#[derive(Default)]
+struct QpData {
+    g: Vec<f64>,
+    a: Vec<f64>,
+    c: Vec<f64>,
+    b: Vec<f64>,
+    x: Vec<f64>,
+    l: Vec<f64>,
+}
+
+impl<'p> Work<'p> {
+    fn new(problem: &'p dyn Problem, x0: &[f64]) -> Self {
+        let n = problem.dimension();
+        let m = problem.constraint_count();
+        let (lower, upper) = problem.bounds();
+        Work {
+            n,
+            m,
+            meq: problem.equality_count(),
+            lower,
+            upper,
+            x: x0.to_vec(),
+            f: f64::NAN,
+            c: vec![0.0; m],
+            g: vec![0.0; n],
+            jac: vec![0.0; m * n],
+            hess: identity(n),
+            xt: vec![0.0; n],
+            ft: f64::NAN,
+            ct: vec![0.0; m],
+            gt: vec![0.0; n],
+            jact: vec![0.0; m * n],
+            d: vec![0.0; n],
+            d_saved: vec![0.0; n],
+            lambda: vec![0.0; m],
+            lambda_saved: vec![0.0; m],
+            nu: vec![0.0; n],
+            rhs: vec![0.0; m],
+            active_hint: Vec::new(),
+            qp: QpData::default(),
+            ws: QpWorkspace::new(n),
+            ws_elastic: QpWorkspace::new(n + 1),
+            evaluations: 0,
+        }
+    }
+
+    fn run(&mut self, problem: &dyn Problem, settings: &SqpSettings) -> Solution {
+        clamp_into(&mut self.x, self.lower, self.upper);
+        self.f = problem.evaluate_with_gradient(&self.x, &mut self.c, &mut self.g, &mut self.jac);
+        self.evaluations += 1;
+        if !finite(self.f, &self.c, &self.g, &self.jac) {
+            return self.finish(
+                Status::Failed("the problem cannot be evaluated at the start point".into()),
+                0,
+                None,
+            );
+        }
+        // Powell's penalty weights, one per constraint: they follow the multipliers down as
+        // well as up, so that the large multipliers of an elastic phase do not leave the
+        // merit function all violation
+        let mut mu = vec![0.0; self.m];
+        let mut elastic_streak = 0;
+        let mut kkt = f64::INFINITY;
+        let (mut best_kkt, mut stalled) = (f64::INFINITY, 0);
+        for iteration in 0..settings.max_iterations {
+            self.rhs.copy_from_slice(&self.c);
+            let Some(elastic) = self.solve_qp() else {
+                return self.finish(
+                    Status::Failed("the QP subproblem could not be solved".into()),
+                    iteration,
+                    None,
+                );
+            };
+            elastic_streak = if elastic { elastic_streak + 1 } else { 0 };
+            kkt = self.kkt_residual();
+            if kkt <= settings.tolerance {
+                return self.finish(Status::Converged, iteration, Some(kkt));
+            }
+            let step = inf_norm(&self.d);
+            if kkt < 0.9 * best_kkt {
+                best_kkt = kkt;
+                stalled = 0;
+            } else {
+                stalled += 1;
+            }
+            if stalled >= 10 && !is_identity(&self.hess, self.n) {
+                // no progress towards a KKT point for ten iterations: B has lost its scale
+                // (an elastic phase or a run of tiny steps can do that); start it afresh
+                self.reset_hessian();
+                stalled = 0;
+                continue;
+            }
+            if elastic_streak > 3 && step <= settings.tolerance * (1.0 + inf_norm(&self.x)) {
+                // the linearised constraints stay inconsistent and the step has vanished:
+                // a local minimizer of the violation
+                return self.finish(Status::Infeasible, iteration, Some(kkt));
+            }
+            for (mi, li) in mu.iter_mut().zip(&self.lambda) {
+                *mi = (1.01 * li.abs()).max(0.5 * (*mi + li.abs()));
+            }
+            if !self.line_search(problem, &mu) {
+                if is_identity(&self.hess, self.n) {
+                    return self.finish(
+                        Status::Failed("the line search found no decrease".into()),
+                        iteration + 1,
+                        Some(kkt),
+                    );
+                }
+                // restart the curvature model and try again from the same point
+                self.reset_hessian();
+            }
+        }
+        self.rhs.copy_from_slice(&self.c);
+        if self.solve_qp().is_some() {
+            kkt = self.kkt_residual();
+        }
+        self.finish(Status::IterationLimit, settings.max_iterations, Some(kkt))
+    }
+
+    /// Backtracks along `d` on the l1 merit function; on success the trial point becomes the
+    /// iterate and the Hessian is updated.
+    fn line_search(&mut self, problem: &dyn Problem, mu: &[f64]) -> bool {
+        let viol = weighted_violation(&self.c, self.meq, mu);
+        let phi = self.f + viol;
+        let slope = (dot(&self.g, &self.d) - viol).min(0.0);
+        // Armijo, with room for the rounding of phi itself: near a solution the predicted
+        // decrease falls below what phi can resolve, and the full steps of the local
+        // (superlinear) convergence must not be cut on noise
+        let noise = 100.0 * f64::EPSILON * phi.abs().max(1.0);
+        let accept_at = |phit: f64, alpha: f64| phit <= phi + 1e-4 * alpha * slope + noise;
+        let mut alpha = 1.0;
+        for k in 0..40 {
+            self.set_trial(alpha);
+            if !self.evaluate_trial(problem) {
+                alpha *= 0.25;
+                continue;
+            }
+            let phit = self.ft + weighted_violation(&self.ct, self.meq, mu);
+            if accept_at(phit, alpha) {
+                self.accept();
+                return true;
+            }
+            if k == 0 && self.second_order_correction(problem) {
+                let phis = self.ft + weighted_violation(&self.ct, self.meq, mu);
+                if accept_at(phis, 1.0) {
+                    self.accept();
+                    return true;
+                }
+                self.d.copy_from_slice(&self.d_saved);
+                self.lambda.copy_from_slice(&self.lambda_saved);
+            }
+            // minimizer of the quadratic through phi(0), phi'(0) and phi(alpha), safeguarded
+            let curvature = 2.0 * (phit - phi - slope * alpha);
+            let next = if curvature > 0.0 {
+                -slope * alpha * alpha / curvature
+            } else {
+                0.5 * alpha
+            };
+            alpha = next.clamp(0.1 * alpha, 0.5 * alpha);
+        }
+        false
+    }
+
+    /// Replaces the rejected full step `d` by the solution of the QP whose constraints are
+    /// shifted by the curvature seen at `x + d`: `c(x+d) - J d + J d' >= 0`. Leaves the
+    /// corrected trial point evaluated; false if the correction failed.
+    fn second_order_correction(&mut self, problem: &dyn Problem) -> bool {
+        if violation_l1(&self.ct, self.meq) <= 0.5 * violation_l1(&self.c, self.meq) {
+            return false;
+        }
+        self.d_saved.copy_from_slice(&self.d);
+        self.lambda_saved.copy_from_slice(&self.lambda);
+        let n = self.n;
+        for i in 0..self.m {
+            self.rhs[i] = self.ct[i] - dot(&self.jac[i * n..(i + 1) * n], &self.d_saved);
+        }
+        if self.solve_qp() != Some(false) {
+            self.d.copy_from_slice(&self.d_saved);
+            self.lambda.copy_from_slice(&self.lambda_saved);
+            return false;
+        }
+        self.set_trial(1.0);
+        if self.evaluate_trial(problem) {
+            return true;
+        }
+        self.d.copy_from_slice(&self.d_saved);
+        self.lambda.copy_from_slice(&self.lambda_saved);
+        false
+    }
+
+    fn reset_hessian(&mut self) {
+        self.hess = identity(self.n);
+    }
+
+    fn set_trial(&mut self, alpha: f64) {
+        for j in 0..self.n {
+            self.xt[j] = (self.x[j] + alpha * self.d[j]).clamp(self.lower[j], self.upper[j]);
+        }
+    }
+
+    fn evaluate_trial(&mut self, problem: &dyn Problem) -> bool {
+        self.ft =
+            problem.evaluate_with_gradient(&self.xt, &mut self.ct, &mut self.gt, &mut self.jact);
+        self.evaluations += 1;
+        finite(self.ft, &self.ct, &self.gt, &self.jact)
+    }
+
+    /// Moves to the trial point, updating the BFGS Hessian with Powell's damping.
+    fn accept(&mut self) {
+        let n = self.n;
+        let mut s = vec![0.0; n];
+        let mut y = vec![0.0; n];
+        for j in 0..n {
+            s[j] = self.xt[j] - self.x[j];
+            // y = grad L(xt) - grad L(x), L = f - lambda^T c
+            let mut yj = self.gt[j] - self.g[j];
+            for i in 0..self.m {
+                yj -= self.lambda[i] * (self.jact[i * n + j] - self.jac[i * n + j]);
+            }
+            y[j] = yj;
+        }
+        let bs: Vec<f64> = (0..n)
+            .map(|i| dot(&self.hess[i * n..(i + 1) * n], &s))
+            .collect();
+        let sbs = dot(&s, &bs);
+        let sy = dot(&s, &y);
+        if sbs > 1e-300 && s.iter().any(|&v| v != 0.0) {
+            if sy < 0.2 * sbs {
+                let theta = 0.8 * sbs / (sbs - sy);
+                for j in 0..n {
+                    y[j] = theta * y[j] + (1.0 - theta) * bs[j];
+                }
+            }
+            let sy = dot(&s, &y);
+            if sy > 0.0 {
+                for i in 0..n {
+                    for j in 0..n {
+                        self.hess[i * n + j] += y[i] * y[j] / sy - bs[i] * bs[j] / sbs;
+                    }
+                }
+            }
+        }
+        std::mem::swap(&mut self.x, &mut self.xt);
+        std::mem::swap(&mut self.c, &mut self.ct);
+        std::mem::swap(&mut self.g, &mut self.gt);
+        std::mem::swap(&mut self.jac, &mut self.jact);
+        self.f = self.ft;
+    }
+
+    /// Solves the QP at `x` with constraint values `rhs`, into `d` and `lambda`.
+    /// `Some(true)` when it took elastic mode, `None` when even that failed.
+    fn solve_qp(&mut self) -> Option<bool> {
+        for elastic in [false, true] {
+            self.build_qp(elastic);
+            let nv = self.n + usize::from(elastic);
+            let meq = if elastic { 0 } else { self.meq };
+            self.qp.x.resize(nv, 0.0);
+            self.qp.l.resize(self.qp.b.len(), 0.0);
+            let ws = if elastic {
+                &mut self.ws_elastic
+            } else {
+                &mut self.ws
+            };
+            let q = &mut self.qp;
+            // the rows of the plain QP keep their meaning between iterations: start from the
+            // last active set
+            let hint: &[usize] = if elastic { &[] } else { &self.active_hint };
+            let status =
+                qp::solve_with_hint(&q.g, &q.a, &q.c, &q.b, meq, hint, &mut q.x, &mut q.l, ws);
+            if status == QpStatus::Optimal && !elastic {
+                self.active_hint.clear();
+                self.active_hint
+                    .extend_from_slice(qp::active_rows(&self.ws));
+            }
+            match status {
+                QpStatus::Optimal => {
+                    self.read_qp(elastic);
+                    return Some(elastic);
+                }
+                QpStatus::NotConvex if !is_identity(&self.hess, self.n) => {
+                    // rounding in the BFGS updates cost B its definiteness: start it afresh
+                    self.reset_hessian();
+                    return self.solve_qp();
+                }
+                _ => {}
+            }
+        }
+        None
+    }
+
+    /// QP variables: `d` (and the slack in elastic mode). Rows: the linearised constraints
+    /// (both sides of each equality in elastic mode), then the finite bounds on `d`
+    /// (and `s >= 0`).
+    fn build_qp(&mut self, elastic: bool) {
+        let (n, m, meq) = (self.n, self.m, self.meq);
+        let nv = n + usize::from(elastic);
+        let q = &mut self.qp;
+        q.g.clear();
+        q.g.resize(nv * nv, 0.0);
+        for i in 0..n {
+            q.g[i * nv..i * nv + n].copy_from_slice(&self.hess[i * n..(i + 1) * n]);
+        }
+        // B inherits the near-zero curvature of the Lagrangian along the constraint
+        // normals; the dual QP method inverts it through L^-T and would lose as many digits
+        // as its condition number has. A floor of 1e-6 of the largest curvature bounds that
+        // loss and barely moves the step in the directions that matter.
+        let floor = 1e-6 * (0..n).map(|i| self.hess[i * n + i]).fold(0.0, f64::max);
+        for i in 0..n {
+            q.g[i * nv + i] += floor;
+        }
+        q.a.clear();
+        q.a.extend_from_slice(&self.g);
+        q.c.clear();
+        q.b.clear();
+        if elastic {
+            // a large linear price on the slack, and a curvature of the size of B's so that
+            // G stays well conditioned
+            // priced from the gradient alone: the multipliers of an elastic QP are bounded
+            // by this price, and feeding them back would make it grow without end
+            let scale = inf_norm(&self.g).max(1.0);
+            let diag = (0..n).map(|i| self.hess[i * n + i]).sum::<f64>() / n as f64;
+            q.g[n * nv + n] = diag.max(1e-8);
+            q.a.push(1e4 * scale);
+        }
+        let slack = if elastic { Some(1.0) } else { None };
+        for i in 0..m {
+            let row = &self.jac[i * n..(i + 1) * n];
+            push_row(q, row, 1.0, slack, -self.rhs[i]);
+            if elastic && i < meq {
+                push_row(q, row, -1.0, slack, self.rhs[i]);
+            }
+        }
+        for j in 0..n {
+            if self.lower[j].is_finite() {
+                push_unit(q, nv, j, 1.0, self.lower[j] - self.x[j]);
+            }
+            if self.upper[j].is_finite() {
+                push_unit(q, nv, j, -1.0, self.x[j] - self.upper[j]);
+            }
+        }
+        if elastic {
+            push_unit(q, nv, n, 1.0, 0.0);
+        }
+    }
+
+    fn read_qp(&mut self, elastic: bool) {
+        self.d.copy_from_slice(&self.qp.x[..self.n]);
+        let mut row = 0;
+        for i in 0..self.m {
+            self.lambda[i] = self.qp.l[row];
+            row += 1;
+            if elastic && i < self.meq {
+                self.lambda[i] -= self.qp.l[row];
+                row += 1;
+            }
+        }
+        // the bound rows follow, lower before upper, for finite bounds only
+        for j in 0..self.n {
+            self.nu[j] = 0.0;
+            if self.lower[j].is_finite() {
+                self.nu[j] += self.qp.l[row];
+                row += 1;
+            }
+            if self.upper[j].is_finite() {
+                self.nu[j] -= self.qp.l[row];
+                row += 1;
+            }
+        }
+    }
+
+    /// The largest of: stationarity `|grad f - J^T lambda - nu|` scaled by
+    /// `max(1, |grad f|)`; complementarity of the constraints and the bounds scaled by
+    /// `max(1, |multipliers|)`; and the constraint violation. The multipliers are the QP's
+    /// at `x`, so that the measure needs no guess of which bounds are active.
+    fn kkt_residual(&self) -> f64 {
+        let n = self.n;
+        let mut stat: f64 = 0.0;
+        for j in 0..n {
+            let mut r = self.g[j] - self.nu[j];
+            for i in 0..self.m {
+                r -= self.lambda[i] * self.jac[i * n + j];
+            }
+            stat = stat.max(r.abs());
+        }
+        let stat = stat / inf_norm(&self.g).max(1.0);
+        let mscale = inf_norm(&self.lambda).max(inf_norm(&self.nu)).max(1.0);
+        let mut compl: f64 = (self.meq..self.m)
+            .map(|i| (self.lambda[i] * self.c[i]).abs())
+            .fold(0.0, f64::max);
+        for j in 0..n {
+            let gap = if self.nu[j] > 0.0 {
+                self.x[j] - self.lower[j]
+            } else {
+                self.upper[j] - self.x[j]
+            };
+            if self.nu[j] != 0.0 {
+                compl = compl.max(self.nu[j].abs() * gap);
+            }
+        }
+        stat.max(compl / mscale)
+            .max(max_violation(&self.c, self.meq))
+    }
+
+    fn finish(&self, status: Status, iterations: usize, kkt: Option<f64>) -> Solution {
+        Solution {
+            status,
+            x: self.x.clone(),
+            objective: self.f,
+            constraints: self.c.clone(),
+            max_violation: max_violation(&self.c, self.meq),
+            kkt_residual: kkt,
+            iterations,
+            evaluations: self.evaluations,
+        }
+    }
+}
+
+fn push_row(q: &mut QpData, row: &[f64], sign: f64, slack: Option<f64>, b: f64) {
+    q.c.extend(row.iter().map(|v| sign * v));
+    if let Some(s) = slack {
+        q.c.push(s);
+    }
+    q.b.push(b);
+}
+
+fn push_unit(q: &mut QpData, nv: usize, j: usize, sign: f64, b: f64) {
+    let start = q.c.len();
+    q.c.resize(start + nv, 0.0);
+    q.c[start + j] = sign;
+    q.b.push(b);
+}
+
+fn identity(n: usize) -> Vec<f64> {
+    let mut h = vec![0.0; n * n];
+    for i in 0..n {
+        h[i * n + i] = 1.0;
+    }
+    h
+}
+
+fn is_identity(h: &[f64], n: usize) -> bool {
+    (0..n * n).all(|k| h[k] == if k / n == k % n { 1.0 } else { 0.0 })
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+fn inf_norm(a: &[f64]) -> f64 {
+    a.iter().fold(0.0, |m: f64, v| m.max(v.abs()))
+}
+
+fn finite(f: f64, c: &[f64], g: &[f64], jac: &[f64]) -> bool {
+    f.is_finite() && c.iter().chain(g).chain(jac).all(|v| v.is_finite())
+}
+
+/// `sum mu_i viol_i`: the penalty term of the merit function.
+fn weighted_violation(c: &[f64], meq: usize, mu: &[f64]) -> f64 {
+    c.iter()
+        .zip(mu)
+        .enumerate()
+        .map(|(i, (&v, &w))| w * if i < meq { v.abs() } else { (-v).max(0.0) })
+        .sum()
+}
+
+/// `sum |c_eq| + sum max(0, -c_ineq)`.
+fn violation_l1(c: &[f64], meq: usize) -> f64 {
+    c.iter()
+        .enumerate()
+        .map(|(i, &v)| if i < meq { v.abs() } else { (-v).max(0.0) })
+        .sum()
+}

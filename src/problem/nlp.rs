@@ -1,0 +1,216 @@
+//! A design problem as the solvers see it.
+//!
+//! - Variables: the free design variables scaled to `[0, 1]` by their bounds.
+//! - Objective: the objective output, negated for a maximization, its absolute value if
+//!   the problem asks for it.
+//! - Constraints: one inequality per limit, `(value - lower) / |lower| >= 0` or
+//!   `(upper - value) / |upper| >= 0` (divided by 1 SI unit where the limit is 0), so that
+//!   a constraint's value is its relative margin.
+//!
+//! Gradients are the model's exact ones, through the chain rule of the scaling.
+
+use super::bind::{merit, Evaluator};
+use super::{Problem as DesignProblem, Sense};
+use crate::model::{Dimension, MAX_WANTED};
+use crate::optim::Problem;
+
+/// One inequality: `sign * (value - limit) / scale >= 0`.
+#[derive(Debug, Clone, Copy)]
+struct Row {
+    constraint: usize,
+    sign: f64,
+    limit: f64,
+    scale: f64,
+}
+
+/// The design problem in the solvers' form.
+pub struct DesignNlp<'p> {
+    pub problem: &'p DesignProblem,
+    evaluator: Evaluator<'p>,
+    offset: Vec<f64>,
+    range: Vec<f64>,
+    zeros: Vec<f64>,
+    ones: Vec<f64>,
+    rows: Vec<Row>,
+}
+
+impl<'p> DesignNlp<'p> {
+    pub fn new(problem: &'p DesignProblem) -> Self {
+        let free: Vec<_> = problem.free_variables().collect();
+        let mut rows = Vec::new();
+        for (i, c) in problem.constraints.iter().enumerate() {
+            let scale = |l: f64| if l == 0.0 { 1.0 } else { l.abs() };
+            if let Some(lo) = c.lower {
+                rows.push(Row {
+                    constraint: i,
+                    sign: 1.0,
+                    limit: lo,
+                    scale: scale(lo),
+                });
+            }
+            if let Some(hi) = c.upper {
+                rows.push(Row {
+                    constraint: i,
+                    sign: -1.0,
+                    limit: hi,
+                    scale: scale(hi),
+                });
+            }
+        }
+        DesignNlp {
+            problem,
+            evaluator: Evaluator::new(problem),
+            offset: free.iter().map(|v| v.lower).collect(),
+            range: free.iter().map(|v| v.upper - v.lower).collect(),
+            zeros: vec![0.0; free.len()],
+            ones: vec![1.0; free.len()],
+            rows,
+        }
+    }
+
+    /// The free variables (SI) of a scaled design.
+    pub fn unscale(&self, u: &[f64]) -> Vec<f64> {
+        u.iter()
+            .zip(&self.offset)
+            .zip(&self.range)
+            .map(|((u, o), r)| o + r * u)
+            .collect()
+    }
+
+    /// The scaled design of free variables given in SI.
+    pub fn scale(&self, x: &[f64]) -> Vec<f64> {
+        x.iter()
+            .zip(&self.offset)
+            .zip(&self.range)
+            .map(|((x, o), r)| (x - o) / r)
+            .collect()
+    }
+
+    /// The full model design (SI) of a scaled design.
+    pub fn full_design(&self, u: &[f64]) -> Vec<f64> {
+        self.evaluator.full_design(&self.unscale(u))
+    }
+
+    /// The objective as the problem states it (absolute value taken if asked) from the
+    /// solver's objective.
+    pub fn stated_objective(&self, solver_objective: f64) -> f64 {
+        match self.problem.objective.sense {
+            Sense::Maximize => -solver_objective,
+            Sense::Minimize => solver_objective,
+        }
+    }
+
+    /// The mirror image of a scaled design (every angle negated), if it lies within the
+    /// bounds; `None` for models without that symmetry.
+    pub fn mirror(&self, u: &[f64]) -> Option<Vec<f64>> {
+        let params = self.problem.model().parameters();
+        let free: Vec<_> = self.problem.free_variables().collect();
+        if !free
+            .iter()
+            .any(|v| params[v.parameter].dimension == Dimension::Angle)
+        {
+            return None;
+        }
+        let x = self.unscale(u);
+        let mirrored: Vec<f64> = x
+            .iter()
+            .zip(&free)
+            .map(|(&xi, v)| {
+                if params[v.parameter].dimension == Dimension::Angle {
+                    -xi
+                } else {
+                    xi
+                }
+            })
+            .collect();
+        let m = self.scale(&mirrored);
+        m.iter()
+            .all(|v| (-1e-12..=1.0 + 1e-12).contains(v))
+            .then_some(m)
+    }
+
+    fn constraint_values(&self, values: &[f64], c: &mut [f64]) {
+        for (ci, r) in c.iter_mut().zip(&self.rows) {
+            *ci = r.sign * (values[r.constraint] - r.limit) / r.scale;
+        }
+    }
+}
+
+impl Problem for DesignNlp<'_> {
+    fn dimension(&self) -> usize {
+        self.range.len()
+    }
+
+    fn bounds(&self) -> (&[f64], &[f64]) {
+        (&self.zeros, &self.ones)
+    }
+
+    fn equality_count(&self) -> usize {
+        0
+    }
+
+    fn constraint_count(&self) -> usize {
+        self.rows.len()
+    }
+
+    fn evaluate(&self, u: &[f64], c: &mut [f64]) -> f64 {
+        let mut x = [0.0; MAX_WANTED];
+        let x = &mut x[..u.len()];
+        for j in 0..u.len() {
+            x[j] = self.offset[j] + self.range[j] * u[j];
+        }
+        let mut values = [0.0; MAX_WANTED];
+        let values = &mut values[..self.problem.constraints.len()];
+        let mut f = 0.0;
+        self.evaluator.evaluate(x, &mut f, values);
+        self.constraint_values(values, c);
+        merit(
+            self.problem.objective.sense,
+            self.problem.objective.absolute,
+            f,
+        )
+    }
+
+    fn evaluate_with_gradient(
+        &self,
+        u: &[f64],
+        c: &mut [f64],
+        gradient: &mut [f64],
+        jacobian: &mut [f64],
+    ) -> f64 {
+        let n = u.len();
+        let nc = self.problem.constraints.len();
+        let mut x = [0.0; MAX_WANTED];
+        let x = &mut x[..n];
+        for j in 0..n {
+            x[j] = self.offset[j] + self.range[j] * u[j];
+        }
+        let mut values = [0.0; MAX_WANTED];
+        let values = &mut values[..nc];
+        let mut value_grad = vec![0.0; nc * n];
+        let mut f = 0.0;
+        self.evaluator
+            .evaluate_with_gradient(x, &mut f, gradient, values, &mut value_grad);
+        let o = &self.problem.objective;
+        // d merit / d value: -1 or +1, times sign(value) for an absolute value
+        let mut df = if o.sense == Sense::Maximize {
+            -1.0
+        } else {
+            1.0
+        };
+        if o.absolute && f < 0.0 {
+            df = -df;
+        }
+        for (gj, rj) in gradient.iter_mut().zip(&self.range) {
+            *gj *= df * rj;
+        }
+        self.constraint_values(values, c);
+        for (i, r) in self.rows.iter().enumerate() {
+            for j in 0..n {
+                jacobian[i * n + j] =
+                    r.sign * value_grad[r.constraint * n + j] * self.range[j] / r.scale;
+            }
+        }
+        merit(o.sense, o.absolute, f)
+    }
+}

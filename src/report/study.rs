@@ -1,0 +1,393 @@
+//! The files a multistart study writes: `optimum.json`, `starts.json`, `starts.csv`,
+//! `zones.json`, `zones.png` and `configurations.png`.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use indexmap::IndexMap;
+use plotters::prelude::*;
+use serde::Serialize;
+
+use super::plot::{format_tick, range, register_font};
+use super::{write_atomic, write_json, write_with, DesignReport, WriteError};
+use crate::model::bridge::Geometry;
+use crate::optim::Status;
+use crate::problem::{ModelSpec, Problem, Solver};
+use crate::study::{configuration, Run, Study};
+
+/// `optimum.json`: the optimal design with every output and how it was found.
+#[derive(Debug, Clone, Serialize)]
+pub struct OptimumReport {
+    #[serde(flatten)]
+    pub design: DesignReport,
+    pub configuration: &'static str,
+    pub solver: Solver,
+    pub seed: u64,
+    pub starts: usize,
+    /// The start that found it, its zone, and its solve.
+    pub start: usize,
+    pub zone: Option<usize>,
+    pub status: Status,
+    pub kkt_residual: Option<f64>,
+    pub iterations: usize,
+}
+
+/// One line of `starts.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct StartRecord {
+    pub start: usize,
+    pub zone: Option<usize>,
+    pub optimum: Option<usize>,
+    /// The objective as the problem states it.
+    pub objective: Option<f64>,
+    pub feasible: bool,
+    pub status: Status,
+    pub iterations: usize,
+    pub evaluations: usize,
+    pub max_violation: f64,
+    pub kkt_residual: Option<f64>,
+    pub configuration: &'static str,
+    /// Start and end designs in the problem file's units.
+    pub x_start: IndexMap<String, f64>,
+    pub x_end: IndexMap<String, f64>,
+}
+
+/// A distinct optimum in `zones.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct OptimumEntry {
+    pub objective: f64,
+    pub configuration: &'static str,
+    /// Number of starts that reached it, and which.
+    pub count: usize,
+    pub starts: Vec<usize>,
+    pub design: IndexMap<String, f64>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct ZoneEntry {
+    pub rank: usize,
+    pub low: Option<f64>,
+    pub high: Option<f64>,
+    pub count: usize,
+    pub best: Option<f64>,
+    pub worst: Option<f64>,
+    pub optima: Vec<OptimumEntry>,
+}
+
+/// `zones.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ZonesReport {
+    pub objective_output: String,
+    pub thresholds: Vec<f64>,
+    pub zones: Vec<ZoneEntry>,
+    /// Starts that did not end at a feasible point.
+    pub not_feasible: usize,
+    pub configuration_rule: &'static str,
+}
+
+/// The rule of [`crate::study::bridge_configuration`], for readers of `zones.json`.
+pub const CONFIGURATION_RULE: &str = "rhombic: middle link shorter than a quarter of l2 + l3 + l4; \
+parallel: |delta2|, |delta4| <= 1 deg; aligned: delta2, delta3, delta4 within 1 deg of each other; general: otherwise (first match)";
+
+fn in_file_units(problem: &Problem, x: &[f64]) -> IndexMap<String, f64> {
+    problem
+        .variables
+        .iter()
+        .zip(x)
+        .map(|(v, &xi)| (v.name.clone(), v.unit.from_si(xi)))
+        .collect()
+}
+
+fn finite(v: f64) -> Option<f64> {
+    v.is_finite().then_some(v)
+}
+
+pub fn optimum_report(problem: &Problem, study: &Study) -> OptimumReport {
+    let run = &study.runs[study.best];
+    OptimumReport {
+        design: DesignReport::new(problem, &run.x_end),
+        configuration: configuration(problem, &run.x_end),
+        solver: study.options.solver,
+        seed: study.options.seed,
+        starts: study.runs.len(),
+        start: run.start,
+        zone: run.zone,
+        status: run.solution.status.clone(),
+        kkt_residual: run.solution.kkt_residual,
+        iterations: run.solution.iterations,
+    }
+}
+
+pub fn start_records(problem: &Problem, study: &Study) -> Vec<StartRecord> {
+    study
+        .runs
+        .iter()
+        .map(|r: &Run| StartRecord {
+            start: r.start,
+            zone: r.zone,
+            optimum: r.optimum,
+            objective: finite(r.objective),
+            feasible: r.feasible,
+            status: r.solution.status.clone(),
+            iterations: r.solution.iterations,
+            evaluations: r.solution.evaluations,
+            max_violation: r.solution.max_violation,
+            kkt_residual: r.solution.kkt_residual,
+            configuration: configuration(problem, &r.x_end),
+            x_start: in_file_units(problem, &r.x_start),
+            x_end: in_file_units(problem, &r.x_end),
+        })
+        .collect()
+}
+
+pub fn zones_report(problem: &Problem, study: &Study) -> ZonesReport {
+    let c = &study.clustering;
+    let run_of = |k: usize| &study.runs[study.feasible_runs[k]];
+    ZonesReport {
+        objective_output: problem.objective.output.clone(),
+        thresholds: problem.zones.thresholds.clone(),
+        zones: c
+            .zones
+            .iter()
+            .map(|z| ZoneEntry {
+                rank: z.rank,
+                low: z.low,
+                high: z.high,
+                count: z.count,
+                best: finite(z.best),
+                worst: finite(z.worst),
+                optima: z
+                    .optima
+                    .iter()
+                    .map(|&k| {
+                        let o = &c.optima[k];
+                        let rep = run_of(o.representative);
+                        OptimumEntry {
+                            objective: o.objective,
+                            configuration: configuration(problem, &rep.x_end),
+                            count: o.members.len(),
+                            starts: o.members.iter().map(|&m| run_of(m).start).collect(),
+                            design: in_file_units(problem, &rep.x_end),
+                        }
+                    })
+                    .collect(),
+            })
+            .collect(),
+        not_feasible: study.runs.len() - study.feasible_runs.len(),
+        configuration_rule: CONFIGURATION_RULE,
+    }
+}
+
+fn csv(problem: &Problem, records: &[StartRecord]) -> String {
+    let mut s = String::from("start,zone,optimum,objective,feasible,status,iterations,evaluations,max_violation,kkt_residual,configuration");
+    for prefix in ["start", "end"] {
+        for v in &problem.variables {
+            let _ = write!(s, ",{prefix}_{}_{}", v.name, v.unit.name);
+        }
+    }
+    s.push('\n');
+    let opt = |v: Option<f64>| v.map(|v| format!("{v:e}")).unwrap_or_default();
+    let idx = |v: Option<usize>| v.map(|v| v.to_string()).unwrap_or_default();
+    for r in records {
+        let status = match &r.status {
+            Status::Converged => "converged",
+            Status::IterationLimit => "iteration_limit",
+            Status::Infeasible => "infeasible",
+            Status::Failed(_) => "failed",
+        };
+        let _ = write!(
+            s,
+            "{},{},{},{},{},{},{},{},{:e},{},{}",
+            r.start,
+            idx(r.zone),
+            idx(r.optimum),
+            opt(r.objective),
+            r.feasible,
+            status,
+            r.iterations,
+            r.evaluations,
+            r.max_violation,
+            opt(r.kkt_residual),
+            r.configuration
+        );
+        for v in r.x_start.values().chain(r.x_end.values()) {
+            let _ = write!(s, ",{v}");
+        }
+        s.push('\n');
+    }
+    s
+}
+
+const ZONE_COLOURS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+];
+
+fn colour(rank: usize) -> RGBColor {
+    ZONE_COLOURS[(rank - 1) % ZONE_COLOURS.len()]
+}
+
+/// Fig. 4 analogue: every feasible start's optimum, sorted, coloured by zone, with the
+/// zone thresholds.
+fn zones_png(path: &Path, problem: &Problem, study: &Study) -> Result<(), WriteError> {
+    register_font();
+    let mut pts: Vec<(f64, usize)> = study
+        .runs
+        .iter()
+        .filter_map(|r| r.zone.map(|z| (r.objective, z)))
+        .collect();
+    pts.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let thresholds = problem.zones.thresholds.clone();
+    let title = format!(
+        "{}: optima of {} starts, sorted",
+        problem.name,
+        study.runs.len()
+    );
+    let ylabel = if problem.objective.absolute {
+        format!("|{}|", problem.objective.output)
+    } else {
+        problem.objective.output.clone()
+    };
+    write_with(path, |tmp| {
+        (|| -> Result<(), Box<dyn std::error::Error>> {
+            let root = BitMapBackend::new(tmp, (900, 560)).into_drawing_area();
+            root.fill(&WHITE)?;
+            let yr = range(pts.iter().map(|p| p.0).chain(thresholds.iter().copied()));
+            let mut chart = ChartBuilder::on(&root)
+                .caption(&title, ("sans-serif", 20))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(64)
+                .build_cartesian_2d(0f64..(pts.len().max(1) as f64), yr.0..yr.1)?;
+            chart
+                .configure_mesh()
+                .x_desc("start, sorted by its optimum")
+                .y_desc(&ylabel)
+                .label_style(("sans-serif", 13))
+                .y_label_formatter(&|v| format_tick(*v))
+                .draw()?;
+            for &t in &thresholds {
+                chart.draw_series(LineSeries::new(
+                    [(0.0, t), (pts.len() as f64, t)],
+                    BLACK.mix(0.4).stroke_width(1),
+                ))?;
+            }
+            for rank in 1..=study.clustering.zones.len() {
+                let series: Vec<(f64, f64)> = pts
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, p)| p.1 == rank)
+                    .map(|(i, p)| (i as f64 + 0.5, p.0))
+                    .collect();
+                if series.is_empty() {
+                    continue;
+                }
+                let n = series.len();
+                chart
+                    .draw_series(
+                        series
+                            .into_iter()
+                            .map(|p| Circle::new(p, 3, colour(rank).filled())),
+                    )?
+                    .label(format!("zone {rank}: {n}"))
+                    .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour(rank).filled()));
+            }
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .label_font(("sans-serif", 13))
+                .draw()?;
+            root.present()?;
+            Ok(())
+        })()
+        .map_err(|e| std::io::Error::other(e.to_string()))
+    })
+}
+
+/// Fig. 5 analogue: the centre lines of hinge b, the middle link and hinge d of every
+/// feasible start's optimum, one panel per zone, origin at node 2 (mm).
+fn configurations_png(path: &Path, problem: &Problem, study: &Study) -> Result<(), WriteError> {
+    register_font();
+    let zones = study.clustering.zones.len();
+    let lines: Vec<(usize, Vec<(f64, f64)>)> = study
+        .runs
+        .iter()
+        .filter_map(|r| {
+            let zone = r.zone?;
+            let x = <[f64; 8]>::try_from(r.x_end.as_slice()).ok()?;
+            let nodes = Geometry::from_array(x).nodes();
+            Some((
+                zone,
+                nodes.iter().map(|p| (p[0] * 1e3, p[1] * 1e3)).collect(),
+            ))
+        })
+        .collect();
+    let xr = range(lines.iter().flat_map(|l| l.1.iter().map(|p| p.0)));
+    let yr = range(lines.iter().flat_map(|l| l.1.iter().map(|p| p.1)));
+    let title = format!(
+        "{}: configurations by zone (centre lines, origin at node 2)",
+        problem.name
+    );
+    let columns = zones.clamp(1, 4);
+    write_with(path, |tmp| {
+        (|| -> Result<(), Box<dyn std::error::Error>> {
+            let root = BitMapBackend::new(tmp, (360 * columns as u32, 400)).into_drawing_area();
+            root.fill(&WHITE)?;
+            let root = root.titled(&title, ("sans-serif", 18))?;
+            let panels = root.split_evenly((zones.div_ceil(columns).max(1), columns));
+            for (k, area) in panels.iter().enumerate().take(zones) {
+                let rank = k + 1;
+                let count = lines.iter().filter(|l| l.0 == rank).count();
+                let mut chart = ChartBuilder::on(area)
+                    .caption(format!("zone {rank}: {count} starts"), ("sans-serif", 15))
+                    .margin(8)
+                    .x_label_area_size(32)
+                    .y_label_area_size(44)
+                    .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
+                chart
+                    .configure_mesh()
+                    .x_desc("x (mm)")
+                    .y_desc("y (mm)")
+                    .label_style(("sans-serif", 12))
+                    .draw()?;
+                for (_, pts) in lines.iter().filter(|l| l.0 == rank) {
+                    chart.draw_series(LineSeries::new(
+                        pts.iter().copied(),
+                        colour(rank).mix(0.5).stroke_width(1),
+                    ))?;
+                }
+            }
+            root.present()?;
+            Ok(())
+        })()
+        .map_err(|e| std::io::Error::other(e.to_string()))
+    })
+}
+
+/// Writes every file of the study into `dir`, each whole or not at all; returns their paths.
+pub fn write_all(dir: &Path, problem: &Problem, study: &Study) -> Result<Vec<PathBuf>, WriteError> {
+    let records = start_records(problem, study);
+    let files = [
+        "optimum.json",
+        "starts.json",
+        "starts.csv",
+        "zones.json",
+        "zones.png",
+        "configurations.png",
+    ];
+    let path = |name: &str| dir.join(name);
+    write_json(&path(files[0]), &optimum_report(problem, study))?;
+    write_json(&path(files[1]), &records)?;
+    write_atomic(&path(files[2]), csv(problem, &records).as_bytes())?;
+    write_json(&path(files[3]), &zones_report(problem, study))?;
+    zones_png(&path(files[4]), problem, study)?;
+    match problem.model {
+        ModelSpec::Bridge(_) => configurations_png(&path(files[5]), problem, study)?,
+    }
+    Ok(files.iter().map(|f| path(f)).collect())
+}

@@ -1,0 +1,223 @@
+//! The multistart study of a design problem: local solves from many starts, every result
+//! kept, optima merged and sorted into zones, the best feasible design picked.
+
+use std::time::{Duration, Instant};
+
+use serde::Serialize;
+
+use crate::model::bridge::Geometry;
+use crate::optim::cluster::{cluster, ClusterSettings, Clustering, EndPoint};
+use crate::optim::multistart::{self, Sampling as StartSampling};
+use crate::optim::nelder_mead::{self, NelderMeadSettings};
+use crate::optim::sqp::{self, SqpSettings};
+use crate::optim::{Problem as _, Solution, Status};
+use crate::problem::nlp::DesignNlp;
+use crate::problem::{ModelSpec, Problem, Sampling, Sense, Solver};
+
+pub use crate::report::FEASIBILITY_TOLERANCE;
+
+/// What a study runs with; the problem file's `[search]` gives the defaults.
+#[derive(Debug, Clone)]
+pub struct StudyOptions {
+    pub starts: usize,
+    pub seed: u64,
+    pub solver: Solver,
+    pub threads: usize,
+    pub progress: bool,
+}
+
+impl StudyOptions {
+    pub fn from_problem(problem: &Problem) -> Self {
+        let s = &problem.search;
+        StudyOptions {
+            starts: s.starts,
+            seed: s.seed,
+            solver: s.solver,
+            threads: s.threads,
+            progress: false,
+        }
+    }
+}
+
+/// One local solve of the study.
+#[derive(Debug, Clone, Serialize)]
+pub struct Run {
+    pub start: usize,
+    /// Start and end designs, full model parameter vectors in SI.
+    pub x_start: Vec<f64>,
+    pub x_end: Vec<f64>,
+    /// The objective as the problem states it.
+    pub objective: f64,
+    pub feasible: bool,
+    pub solution: Solution,
+    /// The distinct optimum and zone rank this run reached (feasible runs only).
+    pub optimum: Option<usize>,
+    pub zone: Option<usize>,
+}
+
+/// The result of a study.
+#[derive(Debug, Clone)]
+pub struct Study {
+    pub runs: Vec<Run>,
+    /// Clustering of the feasible runs; indices there refer to `feasible_runs`.
+    pub clustering: Clustering,
+    pub feasible_runs: Vec<usize>,
+    /// The best feasible run, or the least violating one when none is feasible.
+    pub best: usize,
+    pub any_feasible: bool,
+    pub elapsed: Duration,
+    pub options: StudyOptions,
+}
+
+/// Runs the study of `problem`.
+pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
+    let nlp = DesignNlp::new(problem);
+    let n = nlp.dimension();
+    let sampling = match problem.search.sampling {
+        Sampling::Uniform => StartSampling::Uniform,
+        Sampling::LatinHypercube => StartSampling::LatinHypercube,
+    };
+    let starts = multistart::start_points(
+        &vec![0.0; n],
+        &vec![1.0; n],
+        options.starts,
+        options.seed,
+        sampling,
+    );
+    let tolerance = problem.search.tolerance;
+    let max_iterations = problem.search.max_iterations;
+    let begin = Instant::now();
+    let solutions = match options.solver {
+        Solver::Sqp => {
+            let settings = SqpSettings {
+                tolerance,
+                max_iterations,
+            };
+            multistart::run(
+                &nlp,
+                &starts,
+                |p, x0| sqp::solve(p, x0, &settings),
+                options.threads,
+                options.progress,
+            )
+        }
+        Solver::NelderMead => {
+            let settings = NelderMeadSettings {
+                tolerance,
+                max_iterations: max_iterations.min(60),
+                ..NelderMeadSettings::default()
+            };
+            multistart::run(
+                &nlp,
+                &starts,
+                |p, x0| nelder_mead::solve(p, x0, &settings),
+                options.threads,
+                options.progress,
+            )
+        }
+    };
+    let elapsed = begin.elapsed();
+    let mut runs: Vec<Run> = solutions
+        .into_iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let feasible = s.objective.is_finite()
+                && s.max_violation <= FEASIBILITY_TOLERANCE
+                && !matches!(s.status, Status::Failed(_) | Status::Infeasible);
+            Run {
+                start: i,
+                x_start: nlp.full_design(&starts[i]),
+                x_end: nlp.full_design(&s.x),
+                objective: nlp.stated_objective(s.objective),
+                feasible,
+                solution: s,
+                optimum: None,
+                zone: None,
+            }
+        })
+        .collect();
+    let feasible_runs: Vec<usize> = (0..runs.len()).filter(|&i| runs[i].feasible).collect();
+    let points: Vec<EndPoint> = feasible_runs
+        .iter()
+        .map(|&i| EndPoint {
+            x: runs[i].solution.x.clone(),
+            objective: runs[i].objective,
+        })
+        .collect();
+    let z = &problem.zones;
+    let settings = ClusterSettings {
+        x_tolerance: z.x_tolerance,
+        objective_tolerance: z.objective_tolerance,
+        maximize: problem.objective.sense == Sense::Maximize,
+        thresholds: z.thresholds.clone(),
+    };
+    let mirror = |u: &[f64]| {
+        if z.merge_mirror_images {
+            nlp.mirror(u)
+        } else {
+            None
+        }
+    };
+    let clustering = cluster(&points, &settings, &mirror);
+    for (k, &i) in feasible_runs.iter().enumerate() {
+        runs[i].optimum = Some(clustering.optimum_of[k]);
+        runs[i].zone = Some(clustering.zone_of[k]);
+    }
+    let any_feasible = !feasible_runs.is_empty();
+    let best = if any_feasible {
+        feasible_runs[clustering.optima[0].representative]
+    } else {
+        // the least violating run that could be evaluated
+        (0..runs.len())
+            .filter(|&i| runs[i].objective.is_finite())
+            .min_by(|&a, &b| {
+                runs[a]
+                    .solution
+                    .max_violation
+                    .total_cmp(&runs[b].solution.max_violation)
+                    .then(a.cmp(&b))
+            })
+            .unwrap_or(0)
+    };
+    Study {
+        runs,
+        clustering,
+        feasible_runs,
+        best,
+        any_feasible,
+        elapsed,
+        options: options.clone(),
+    }
+}
+
+/// The kind of a bridge configuration, by this rule (first match wins), with angle
+/// tolerance 1 deg:
+/// - `rhombic`: the rigid middle link shorter than a quarter of the chain `l2 + l3 + l4`,
+///   so that the flexible hinges make most of the arm, as in the rhombic type of paper
+///   004 (Fig. 2c, Eq. 24: one flexible beam from input to output);
+/// - `parallel`: both hinges horizontal (`delta2 = delta4 = 0`, Eq. 22);
+/// - `aligned`: hinges and middle link in one line (`delta2 = delta3 = delta4`, Eq. 26);
+/// - `general`: anything else.
+pub fn bridge_configuration(x: &[f64]) -> &'static str {
+    let Ok(x) = <[f64; 8]>::try_from(x) else {
+        return "general";
+    };
+    let g = Geometry::from_array(x);
+    let tol = 1f64.to_radians();
+    if g.l3 < 0.25 * (g.l2 + g.l3 + g.l4) {
+        "rhombic"
+    } else if g.delta2.abs() <= tol && g.delta4.abs() <= tol {
+        "parallel"
+    } else if (g.delta2 - g.delta3).abs() <= tol && (g.delta4 - g.delta3).abs() <= tol {
+        "aligned"
+    } else {
+        "general"
+    }
+}
+
+/// The configuration kind of a design of `problem`'s model.
+pub fn configuration(problem: &Problem, x: &[f64]) -> &'static str {
+    match problem.model {
+        ModelSpec::Bridge(_) => bridge_configuration(x),
+    }
+}
