@@ -7,7 +7,9 @@
 //!             c_i^T x >= b_i   (meq <= i < m)
 //! ```
 //!
-//! with `G` symmetric positive definite. The method starts from the unconstrained minimum
+//! with `G` symmetric positive definite, and optionally simple bounds `lower <= x <= upper`,
+//! which are handled as implicit rows (row `m + 2j` is `x_j >= lower_j`, row `m + 2j + 1` is
+//! `-x_j >= -upper_j`) without building them. The method starts from the unconstrained minimum
 //! and adds violated constraints one at a time, keeping the iterate dual feasible; each step
 //! either makes the new constraint active (a full step) or drops an active constraint whose
 //! multiplier would turn negative (a partial step). It keeps `J = L^-T Q` (with `G = L L^T`)
@@ -51,11 +53,8 @@ pub struct QpWorkspace {
     flipped: Vec<bool>,
     /// The Cholesky factor, row-major lower triangle.
     l: Vec<f64>,
-    /// Per row: the reciprocal of its size, for comparing violations.
+    /// Per general row: the reciprocal of its size, for comparing violations.
     inv_scale: Vec<f64>,
-    /// Per row: `Some((j, sign))` when the row is `sign * e_j` (a bound), for which the
-    /// products with it are a single entry.
-    unit: Vec<Option<(usize, f64)>>,
 }
 
 impl QpWorkspace {
@@ -74,7 +73,6 @@ impl QpWorkspace {
             flipped: Vec::new(),
             l: vec![0.0; n * n],
             inv_scale: Vec::new(),
-            unit: Vec::new(),
         }
     }
 }
@@ -93,7 +91,7 @@ pub fn solve(
     lambda: &mut [f64],
     ws: &mut QpWorkspace,
 ) -> QpStatus {
-    solve_with_hint(g, a, c, b, meq, &[], x, lambda, ws)
+    solve_with_hint(g, a, c, b, meq, &[], &[], &[], x, lambda, ws)
 }
 
 /// The rows active at the last solve, after [`solve`] or [`solve_with_hint`].
@@ -101,9 +99,11 @@ pub fn active_rows(ws: &QpWorkspace) -> &[usize] {
     &ws.active
 }
 
-/// As [`solve`], trying the inequalities of `hint` first (in its order) while they are
-/// violated: the dual method is correct whichever violated constraint it adds next, and
-/// a good guess of the active set, such as the previous SQP iteration's, spares it the
+/// As [`solve`], with simple bounds (`lower`, `upper`: empty for none, infinite entries
+/// for free sides) whose multipliers follow the general rows in `lambda` (length
+/// `m + 2n` then), and trying the inequalities of `hint` first (in its order) while they
+/// are violated: the dual method is correct whichever violated constraint it adds next,
+/// and a good guess of the active set, such as the previous SQP iteration's, spares it the
 /// constraints it would add and drop again.
 #[allow(clippy::too_many_arguments)]
 pub fn solve_with_hint(
@@ -112,14 +112,28 @@ pub fn solve_with_hint(
     c: &[f64],
     b: &[f64],
     meq: usize,
+    lower: &[f64],
+    upper: &[f64],
     hint: &[usize],
     x: &mut [f64],
     lambda: &mut [f64],
     ws: &mut QpWorkspace,
 ) -> QpStatus {
     let n = a.len();
-    let m = b.len();
-    assert!(ws.n == n && g.len() == n * n && c.len() == m * n && x.len() == n && lambda.len() == m);
+    let mg = b.len();
+    let rows = Rows {
+        c,
+        b,
+        n,
+        mg,
+        lower,
+        upper,
+    };
+    let m = rows.count();
+    assert!(
+        ws.n == n && g.len() == n * n && c.len() == mg * n && x.len() == n && lambda.len() == m
+    );
+    assert!(lower.is_empty() || (lower.len() == n && upper.len() == n));
     lambda.fill(0.0);
     if !factor(g, n, &mut ws.l, &mut ws.j) {
         return QpStatus::NotConvex;
@@ -138,16 +152,8 @@ pub fn solve_with_hint(
     ws.flipped.clear();
     ws.flipped.resize(m, false);
     ws.inv_scale.clear();
-    ws.unit.clear();
-    for i in 0..m {
-        let row = &c[i * n..(i + 1) * n];
-        ws.inv_scale.push(1.0 / (1.0 + b[i].abs() + norm(row)));
-        let mut nonzero = row.iter().enumerate().filter(|(_, v)| **v != 0.0);
-        ws.unit.push(match (nonzero.next(), nonzero.next()) {
-            (Some((j, &v)), None) if v.abs() == 1.0 => Some((j, v)),
-            _ => None,
-        });
-    }
+    ws.inv_scale
+        .extend((0..mg).map(|i| 1.0 / (1.0 + b[i].abs() + norm(&c[i * n..(i + 1) * n]))));
     let max_changes = 10 * (n + m) + 20;
     let mut changes = 0;
     let mut next_eq = 0;
@@ -159,7 +165,7 @@ pub fn solve_with_hint(
         if next_eq < meq {
             p = next_eq;
             next_eq += 1;
-            if slack(c, b, n, p, x) > 0.0 {
+            if rows.slack(p, x) > 0.0 {
                 // approach the equality from above: add it as -c^T x >= -b
                 sign = -1.0;
                 ws.flipped[p] = true;
@@ -171,7 +177,7 @@ pub fn solve_with_hint(
                 if i >= meq
                     && i < m
                     && !ws.in_active[i]
-                    && row_slack(ws, c, b, n, i, x) * ws.inv_scale[i] < -1e-14
+                    && rows.scaled_slack(i, x, &ws.inv_scale) < -1e-14
                 {
                     p = i;
                     break;
@@ -186,7 +192,7 @@ pub fn solve_with_hint(
                 }
                 // violations relative to the constraint's size, so that scaling a row
                 // does not change which is the worst
-                let s = row_slack(ws, c, b, n, i, x) * ws.inv_scale[i];
+                let s = rows.scaled_slack(i, x, &ws.inv_scale);
                 if s < worst {
                     worst = s;
                     p = i;
@@ -196,8 +202,17 @@ pub fn solve_with_hint(
                 break;
             }
         }
-        for (k, v) in ws.np.iter_mut().enumerate() {
-            *v = sign * c[p * n + k];
+        let unit = rows.unit(p);
+        match unit {
+            Some(_) => ws.np.fill(0.0),
+            None => {
+                for (k, v) in ws.np.iter_mut().enumerate() {
+                    *v = sign * c[p * n + k];
+                }
+            }
+        }
+        if let Some((j, v)) = unit {
+            ws.np[j] = sign * v;
         }
         let mut up = 0.0;
         // add p, dropping active constraints on the way as needed
@@ -207,7 +222,7 @@ pub fn solve_with_hint(
                 return QpStatus::IterationLimit;
             }
             let q = ws.active.len();
-            match ws.unit[p] {
+            match unit {
                 // d = J^T (sign' e_j): row j of J
                 Some((j, v)) => {
                     for k in 0..n {
@@ -249,7 +264,7 @@ pub fn solve_with_hint(
             }
             // full step: the step that makes p active
             let zn = dot(&ws.z, &ws.np);
-            let sp = sign * row_slack(ws, c, b, n, p, x);
+            let sp = sign * rows.slack(p, x);
             let dnorm = norm(&ws.d);
             let t2 = if zn.abs() <= 1e-14 * dnorm * dnorm.max(1.0) {
                 f64::INFINITY
@@ -282,14 +297,61 @@ pub fn solve_with_hint(
     QpStatus::Optimal
 }
 
-fn slack(c: &[f64], b: &[f64], n: usize, i: usize, x: &[f64]) -> f64 {
-    dot(&c[i * n..(i + 1) * n], x) - b[i]
+/// The constraints: `mg` general rows, then (with bounds) two implicit rows per variable.
+struct Rows<'a> {
+    c: &'a [f64],
+    b: &'a [f64],
+    n: usize,
+    mg: usize,
+    lower: &'a [f64],
+    upper: &'a [f64],
 }
 
-fn row_slack(ws: &QpWorkspace, c: &[f64], b: &[f64], n: usize, i: usize, x: &[f64]) -> f64 {
-    match ws.unit[i] {
-        Some((j, v)) => v * x[j] - b[i],
-        None => slack(c, b, n, i, x),
+impl Rows<'_> {
+    fn count(&self) -> usize {
+        self.mg + if self.lower.is_empty() { 0 } else { 2 * self.n }
+    }
+
+    /// `Some((j, sign))` for a bound row `sign * x_j >= ...`.
+    fn unit(&self, i: usize) -> Option<(usize, f64)> {
+        (i >= self.mg).then(|| {
+            let k = i - self.mg;
+            (k / 2, if k.is_multiple_of(2) { 1.0 } else { -1.0 })
+        })
+    }
+
+    /// `c_i^T x - b_i`; `+inf` for an infinite bound.
+    fn slack(&self, i: usize, x: &[f64]) -> f64 {
+        match self.unit(i) {
+            None => dot(&self.c[i * self.n..(i + 1) * self.n], x) - self.b[i],
+            Some((j, v)) => {
+                let bound = if v > 0.0 {
+                    self.lower[j]
+                } else {
+                    self.upper[j]
+                };
+                if bound.is_finite() {
+                    v * (x[j] - bound)
+                } else {
+                    f64::INFINITY
+                }
+            }
+        }
+    }
+
+    /// The slack relative to the row's size.
+    fn scaled_slack(&self, i: usize, x: &[f64], inv_scale: &[f64]) -> f64 {
+        match self.unit(i) {
+            None => self.slack(i, x) * inv_scale[i],
+            Some((j, v)) => {
+                let bound = if v > 0.0 {
+                    self.lower[j]
+                } else {
+                    self.upper[j]
+                };
+                self.slack(i, x) / (2.0 + bound.abs())
+            }
+        }
     }
 }
 
@@ -307,35 +369,28 @@ fn norm(a: &[f64]) -> f64 {
 
 /// `J = L^-T` with `G = L L^T`, column-major; false if `G` is not positive definite.
 fn factor(g: &[f64], n: usize, l: &mut [f64], j: &mut [f64]) -> bool {
-    // Cholesky into a row-major lower triangle l
+    // Cholesky into a row-major lower triangle; the diagonal holds the reciprocal pivots,
+    // which is all the solves below need
     for i in 0..n {
         for k in 0..=i {
-            let mut s = g[i * n + k];
-            for p in 0..k {
-                s -= l[i * n + p] * l[k * n + p];
-            }
+            let s = g[i * n + k] - dot(&l[i * n..i * n + k], &l[k * n..k * n + k]);
             if i == k {
                 if s <= 0.0 || !s.is_finite() {
                     return false;
                 }
-                l[i * n + i] = s.sqrt();
+                l[i * n + i] = 1.0 / s.sqrt();
             } else {
-                l[i * n + k] = s / l[k * n + k];
+                l[i * n + k] = s * l[k * n + k];
             }
         }
     }
-    // J = L^-T: column k of J is row k of L^-1; solve L^T J = I column by column
-    for i in 0..n {
-        // keep 1/L_ii in the (unused) upper triangle's diagonal slot of a scratch row
-        l[i * n + i] = 1.0 / l[i * n + i];
-    }
+    // J = L^-T: column k solves L^T y = e_k (L^T upper triangular)
     j.fill(0.0);
     for k in 0..n {
-        // column k of J solves L^T y = e_k (upper triangular L^T)
         let y = &mut j[k * n..(k + 1) * n];
-        for i in (0..n).rev() {
+        for i in (0..=k).rev() {
             let mut s = if i == k { 1.0 } else { 0.0 };
-            for p in i + 1..n {
+            for p in i + 1..=k {
                 s -= l[p * n + i] * y[p];
             }
             y[i] = s * l[i * n + i];
@@ -354,7 +409,8 @@ fn add_constraint(ws: &mut QpWorkspace, n: usize, p: usize, up: f64) {
             continue;
         }
         let h = (a * a + b * b).sqrt();
-        let (cs, sn) = (a / h, b / h);
+        let inv = 1.0 / h;
+        let (cs, sn) = (a * inv, b * inv);
         ws.d[i - 1] = h;
         ws.d[i] = 0.0;
         rotate_columns(&mut ws.j, n, i - 1, cs, sn);
@@ -386,7 +442,8 @@ fn drop_constraint(ws: &mut QpWorkspace, n: usize, k: usize) {
             continue;
         }
         let h = (a * a + b * b).sqrt();
-        let (cs, sn) = (a / h, b / h);
+        let inv = 1.0 / h;
+        let (cs, sn) = (a * inv, b * inv);
         for colm in i..q - 1 {
             let (x, y) = (ws.r[colm * n + i], ws.r[colm * n + i + 1]);
             ws.r[colm * n + i] = cs * x + sn * y;

@@ -82,6 +82,9 @@ struct Work<'p> {
     rhs: Vec<f64>,
     /// The rows of the plain QP active at its last solve.
     active_hint: Vec<usize>,
+    bfgs_s: Vec<f64>,
+    bfgs_y: Vec<f64>,
+    bfgs_bs: Vec<f64>,
     qp: QpData,
     ws: QpWorkspace,
     ws_elastic: QpWorkspace,
@@ -95,6 +98,8 @@ struct QpData {
     a: Vec<f64>,
     c: Vec<f64>,
     b: Vec<f64>,
+    lo: Vec<f64>,
+    hi: Vec<f64>,
     x: Vec<f64>,
     l: Vec<f64>,
 }
@@ -128,6 +133,9 @@ impl<'p> Work<'p> {
             nu: vec![0.0; n],
             rhs: vec![0.0; m],
             active_hint: Vec::new(),
+            bfgs_s: vec![0.0; n],
+            bfgs_y: vec![0.0; n],
+            bfgs_bs: vec![0.0; n],
             qp: QpData::default(),
             ws: QpWorkspace::new(n),
             ws_elastic: QpWorkspace::new(n + 1),
@@ -299,8 +307,7 @@ impl<'p> Work<'p> {
     /// Moves to the trial point, updating the BFGS Hessian with Powell's damping.
     fn accept(&mut self) {
         let n = self.n;
-        let mut s = vec![0.0; n];
-        let mut y = vec![0.0; n];
+        let (s, y, bs) = (&mut self.bfgs_s, &mut self.bfgs_y, &mut self.bfgs_bs);
         for j in 0..n {
             s[j] = self.xt[j] - self.x[j];
             // y = grad L(xt) - grad L(x), L = f - lambda^T c
@@ -310,23 +317,25 @@ impl<'p> Work<'p> {
             }
             y[j] = yj;
         }
-        let bs: Vec<f64> = (0..n)
-            .map(|i| dot(&self.hess[i * n..(i + 1) * n], &s))
-            .collect();
-        let sbs = dot(&s, &bs);
-        let sy = dot(&s, &y);
+        for (bi, row) in bs.iter_mut().zip(self.hess.chunks_exact(n)) {
+            *bi = dot(row, s);
+        }
+        let sbs = dot(s, bs);
+        let sy = dot(s, y);
         if sbs > 1e-300 && s.iter().any(|&v| v != 0.0) {
+            // Powell's damping keeps B positive definite
             if sy < 0.2 * sbs {
                 let theta = 0.8 * sbs / (sbs - sy);
                 for j in 0..n {
                     y[j] = theta * y[j] + (1.0 - theta) * bs[j];
                 }
             }
-            let sy = dot(&s, &y);
+            let sy = dot(s, y);
             if sy > 0.0 {
+                let (isy, isbs) = (1.0 / sy, 1.0 / sbs);
                 for i in 0..n {
                     for j in 0..n {
-                        self.hess[i * n + j] += y[i] * y[j] / sy - bs[i] * bs[j] / sbs;
+                        self.hess[i * n + j] += y[i] * y[j] * isy - bs[i] * bs[j] * isbs;
                     }
                 }
             }
@@ -346,7 +355,7 @@ impl<'p> Work<'p> {
             let nv = self.n + usize::from(elastic);
             let meq = if elastic { 0 } else { self.meq };
             self.qp.x.resize(nv, 0.0);
-            self.qp.l.resize(self.qp.b.len(), 0.0);
+            self.qp.l.resize(self.qp.b.len() + 2 * nv, 0.0);
             let ws = if elastic {
                 &mut self.ws_elastic
             } else {
@@ -356,8 +365,9 @@ impl<'p> Work<'p> {
             // the rows of the plain QP keep their meaning between iterations: start from the
             // last active set
             let hint: &[usize] = if elastic { &[] } else { &self.active_hint };
-            let status =
-                qp::solve_with_hint(&q.g, &q.a, &q.c, &q.b, meq, hint, &mut q.x, &mut q.l, ws);
+            let status = qp::solve_with_hint(
+                &q.g, &q.a, &q.c, &q.b, meq, &q.lo, &q.hi, hint, &mut q.x, &mut q.l, ws,
+            );
             if status == QpStatus::Optimal && !elastic {
                 self.active_hint.clear();
                 self.active_hint
@@ -379,9 +389,9 @@ impl<'p> Work<'p> {
         None
     }
 
-    /// QP variables: `d` (and the slack in elastic mode). Rows: the linearised constraints
-    /// (both sides of each equality in elastic mode), then the finite bounds on `d`
-    /// (and `s >= 0`).
+    /// QP variables: `d` (and the slack in elastic mode), bounded by `lower - x <= d <=
+    /// upper - x` (and `s >= 0`). Rows: the linearised constraints, both sides of each
+    /// equality in elastic mode.
     fn build_qp(&mut self, elastic: bool) {
         let (n, m, meq) = (self.n, self.m, self.meq);
         let nv = n + usize::from(elastic);
@@ -403,15 +413,21 @@ impl<'p> Work<'p> {
         q.a.extend_from_slice(&self.g);
         q.c.clear();
         q.b.clear();
+        q.lo.clear();
+        q.hi.clear();
+        q.lo.extend(self.lower.iter().zip(&self.x).map(|(l, x)| l - x));
+        q.hi.extend(self.upper.iter().zip(&self.x).map(|(u, x)| u - x));
         if elastic {
             // a large linear price on the slack, and a curvature of the size of B's so that
-            // G stays well conditioned
-            // priced from the gradient alone: the multipliers of an elastic QP are bounded
-            // by this price, and feeding them back would make it grow without end
+            // G stays well conditioned; priced from the gradient alone: the multipliers of
+            // an elastic QP are bounded by this price, and feeding them back would make it
+            // grow without end
             let scale = inf_norm(&self.g).max(1.0);
             let diag = (0..n).map(|i| self.hess[i * n + i]).sum::<f64>() / n as f64;
             q.g[n * nv + n] = diag.max(1e-8);
             q.a.push(1e4 * scale);
+            q.lo.push(0.0);
+            q.hi.push(f64::INFINITY);
         }
         let slack = if elastic { Some(1.0) } else { None };
         for i in 0..m {
@@ -420,17 +436,6 @@ impl<'p> Work<'p> {
             if elastic && i < meq {
                 push_row(q, row, -1.0, slack, self.rhs[i]);
             }
-        }
-        for j in 0..n {
-            if self.lower[j].is_finite() {
-                push_unit(q, nv, j, 1.0, self.lower[j] - self.x[j]);
-            }
-            if self.upper[j].is_finite() {
-                push_unit(q, nv, j, -1.0, self.x[j] - self.upper[j]);
-            }
-        }
-        if elastic {
-            push_unit(q, nv, n, 1.0, 0.0);
         }
     }
 
@@ -445,17 +450,9 @@ impl<'p> Work<'p> {
                 row += 1;
             }
         }
-        // the bound rows follow, lower before upper, for finite bounds only
+        // the bound rows follow: lower then upper for each variable
         for j in 0..self.n {
-            self.nu[j] = 0.0;
-            if self.lower[j].is_finite() {
-                self.nu[j] += self.qp.l[row];
-                row += 1;
-            }
-            if self.upper[j].is_finite() {
-                self.nu[j] -= self.qp.l[row];
-                row += 1;
-            }
+            self.nu[j] = self.qp.l[row + 2 * j] - self.qp.l[row + 2 * j + 1];
         }
     }
 
@@ -511,13 +508,6 @@ fn push_row(q: &mut QpData, row: &[f64], sign: f64, slack: Option<f64>, b: f64) 
     if let Some(s) = slack {
         q.c.push(s);
     }
-    q.b.push(b);
-}
-
-fn push_unit(q: &mut QpData, nv: usize, j: usize, sign: f64, b: f64) {
-    let start = q.c.len();
-    q.c.resize(start + nv, 0.0);
-    q.c[start + j] = sign;
     q.b.push(b);
 }
 

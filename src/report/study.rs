@@ -330,7 +330,7 @@ fn configurations_png(path: &Path, problem: &Problem, study: &Study) -> Result<(
     let xr = range(lines.iter().flat_map(|l| l.1.iter().map(|p| p.0)));
     let yr = range(lines.iter().flat_map(|l| l.1.iter().map(|p| p.1)));
     let title = format!(
-        "{}: configurations by zone (centre lines, origin at node 2)",
+        "{}: configurations by zone (hinges in colour, middle link grey, origin at node 2)",
         problem.name
     );
     let columns = zones.clamp(1, 4);
@@ -355,11 +355,16 @@ fn configurations_png(path: &Path, problem: &Problem, study: &Study) -> Result<(
                     .y_desc("y (mm)")
                     .label_style(("sans-serif", 12))
                     .draw()?;
+                // hinges b and d in the zone's colour, the rigid middle link in grey
                 for (_, pts) in lines.iter().filter(|l| l.0 == rank) {
-                    chart.draw_series(LineSeries::new(
-                        pts.iter().copied(),
-                        colour(rank).mix(0.5).stroke_width(1),
-                    ))?;
+                    for (k, seg) in pts.windows(2).enumerate() {
+                        let style = if k == 1 {
+                            BLACK.mix(0.35).stroke_width(1)
+                        } else {
+                            colour(rank).mix(0.7).stroke_width(3)
+                        };
+                        chart.draw_series(LineSeries::new(seg.iter().copied(), style))?;
+                    }
                 }
             }
             root.present()?;
