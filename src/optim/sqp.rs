@@ -230,18 +230,22 @@ impl<'p> Work<'p> {
         let mut alpha = 1.0;
         for k in 0..40 {
             self.set_trial(alpha);
-            if !self.evaluate_trial(problem) {
+            if !self.evaluate_trial_values(problem) {
                 alpha *= 0.25;
                 continue;
             }
             let phit = self.ft + weighted_violation(&self.ct, self.meq, mu);
             if accept_at(phit, alpha) {
+                if !self.evaluate_trial(problem) {
+                    alpha *= 0.25;
+                    continue;
+                }
                 self.accept();
                 return true;
             }
             if k == 0 && self.second_order_correction(problem) {
                 let phis = self.ft + weighted_violation(&self.ct, self.meq, mu);
-                if accept_at(phis, 1.0) {
+                if accept_at(phis, 1.0) && self.evaluate_trial(problem) {
                     self.accept();
                     return true;
                 }
@@ -279,7 +283,7 @@ impl<'p> Work<'p> {
             return false;
         }
         self.set_trial(1.0);
-        if self.evaluate_trial(problem) {
+        if self.evaluate_trial_values(problem) {
             return true;
         }
         self.d.copy_from_slice(&self.d_saved);
@@ -297,6 +301,15 @@ impl<'p> Work<'p> {
         }
     }
 
+    /// The objective and constraints at the trial point, without gradients: most trial
+    /// points of a line search are rejected.
+    fn evaluate_trial_values(&mut self, problem: &dyn Problem) -> bool {
+        self.ft = problem.evaluate(&self.xt, &mut self.ct);
+        self.evaluations += 1;
+        self.ft.is_finite() && self.ct.iter().all(|v| v.is_finite())
+    }
+
+    /// The trial point with gradients, once it is accepted.
     fn evaluate_trial(&mut self, problem: &dyn Problem) -> bool {
         self.ft =
             problem.evaluate_with_gradient(&self.xt, &mut self.ct, &mut self.gt, &mut self.jact);

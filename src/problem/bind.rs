@@ -130,7 +130,7 @@ impl<'p> Evaluator<'p> {
 
 /// A work buffer of `len` numbers: on the stack when `small` holds them, which spares
 /// the zeroing of a large array on every evaluation.
-fn scratch<'a, const N: usize>(
+pub(crate) fn scratch<'a, const N: usize>(
     small: &'a mut [f64; N],
     large: &'a mut Vec<f64>,
     len: usize,

@@ -9,7 +9,7 @@
 //!
 //! Gradients are the model's exact ones, through the chain rule of the scaling.
 
-use super::bind::{merit, Evaluator};
+use super::bind::{merit, scratch, Evaluator};
 use super::{Problem as DesignProblem, Sense};
 use crate::model::{Dimension, MAX_WANTED};
 use crate::optim::Problem;
@@ -187,10 +187,11 @@ impl Problem for DesignNlp<'_> {
         }
         let mut values = [0.0; MAX_WANTED];
         let values = &mut values[..nc];
-        let mut value_grad = vec![0.0; nc * n];
+        let (mut small, mut large) = ([0.0; 96], Vec::new());
+        let value_grad = scratch(&mut small, &mut large, nc * n);
         let mut f = 0.0;
         self.evaluator
-            .evaluate_with_gradient(x, &mut f, gradient, values, &mut value_grad);
+            .evaluate_with_gradient(x, &mut f, gradient, values, value_grad);
         let o = &self.problem.objective;
         // d merit / d value: -1 or +1, times sign(value) for an absolute value
         let mut df = if o.sense == Sense::Maximize {
