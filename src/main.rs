@@ -130,10 +130,19 @@ fn main() -> ExitCode {
             };
             let mut options = StudyOptions::from_problem(&problem);
             if let Some(s) = starts {
-                if s == 0 {
-                    return bad_input("--starts must be at least 1");
+                if !(1..=1_000_000).contains(&s) {
+                    return bad_input(format!(
+                        "{}: key `--starts`: must lie between 1 and 1000000, got {s}",
+                        problem.file.display()
+                    ));
                 }
                 options.starts = s;
+            }
+            if threads.is_some_and(|t| t > 1024) {
+                return bad_input(format!(
+                    "{}: key `--threads`: must lie between 0 and 1024",
+                    problem.file.display()
+                ));
             }
             options.seed = seed.unwrap_or(options.seed);
             options.threads = threads.unwrap_or(options.threads);

@@ -318,3 +318,17 @@ fn the_command_line_exits_2_and_names_file_and_key() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn counts_out_of_range() {
+    rejects(
+        mutated("starts = 300", "starts = 9223372036854775807"),
+        "search.starts",
+        &["between"],
+    );
+    rejects(
+        mutated("threads = 0", "threads = -1"),
+        "search.threads",
+        &["between", "-1"],
+    );
+}

@@ -161,6 +161,7 @@ impl<'p> Work<'p> {
         let mut elastic_streak = 0;
         let mut kkt = f64::INFINITY;
         let (mut best_kkt, mut stalled) = (f64::INFINITY, 0);
+        let mut stationary_violation = 0;
         for iteration in 0..settings.max_iterations {
             self.rhs.copy_from_slice(&self.c);
             let Some(elastic) = self.solve_qp() else {
@@ -174,6 +175,24 @@ impl<'p> Work<'p> {
             kkt = self.kkt_residual();
             if kkt <= settings.tolerance {
                 return self.finish(Status::Converged, iteration, Some(kkt));
+            }
+            // in elastic mode the slack is the least largest violation the linearised
+            // constraints allow; when it is hardly below the violation now (the objective's
+            // pull on a finite slack price moves it a little), no step reduces the violation
+            // to first order: a stationary point of the violation
+            if elastic {
+                let violation = max_violation(&self.c, self.meq);
+                let slack = self.qp.x[self.n];
+                stationary_violation = if slack >= violation * (1.0 - 1e-4) - 1e-14 {
+                    stationary_violation + 1
+                } else {
+                    0
+                };
+                if stationary_violation >= 3 {
+                    return self.finish(Status::Infeasible, iteration, Some(kkt));
+                }
+            } else {
+                stationary_violation = 0;
             }
             let step = inf_norm(&self.d);
             if kkt < 0.9 * best_kkt {

@@ -180,8 +180,10 @@ impl Problem {
 }
 
 fn deserialize(loc: &Locator, text: &str) -> Result<RawProblem, ProblemError> {
-    let de = toml::Deserializer::parse(text)
-        .map_err(|e| loc.error_at(String::new(), e.span(), e.message().trim().to_string()))?;
+    let de = toml::Deserializer::parse(text).map_err(|e| {
+        let key = e.span().map(|s| key_at(text, s.start)).unwrap_or_default();
+        loc.error_at(key, e.span(), e.message().trim().to_string())
+    })?;
     serde_path_to_error::deserialize(de).map_err(|e| {
         let mut key = e.path().to_string();
         if key == "." {
@@ -214,6 +216,40 @@ fn deserialize(loc: &Locator, text: &str) -> Result<RawProblem, ProblemError> {
         };
         loc.error_at(key, inner.span(), message)
     })
+}
+
+/// The key a syntax error at `offset` belongs to, read from the text: the last table
+/// header before it and the key of its line (or the header itself, or `(top level)`).
+fn key_at(text: &str, offset: usize) -> String {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let before = &text[..offset];
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let line_end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
+    let line = text[line_start..line_end].trim();
+    let strip = |l: &str| l.trim_matches(|c| c == '[' || c == ']').trim().to_string();
+    if line.starts_with('[') {
+        return strip(line);
+    }
+    let header = before[..line_start]
+        .lines()
+        .rev()
+        .map(str::trim)
+        .find(|l| l.starts_with('['))
+        .map(strip);
+    let key = line
+        .split('=')
+        .next()
+        .map(str::trim)
+        .filter(|k| !k.is_empty() && !k.starts_with('#'));
+    match (header, key) {
+        (Some(h), Some(k)) => format!("{h}.{k}"),
+        (None, Some(k)) => k.to_string(),
+        (Some(h), None) => h,
+        (None, None) => "(top level)".to_string(),
+    }
 }
 
 /// Key paths are built from these.
@@ -632,11 +668,14 @@ impl Validator<'_, '_> {
 
     fn search(&self, s: &schema::RawSearch) -> Res<SearchSettings> {
         let path = |key: &str| [k("search"), k(key)];
-        let count = |key: &str, v: Option<i64>, default: usize, min: i64| -> Res<usize> {
+        let count = |key: &str, v: Option<i64>, default: usize, min: i64, max: i64| -> Res<usize> {
             match v {
                 None => Ok(default),
-                Some(n) if n >= min => Ok(n as usize),
-                Some(n) => Err(self.err(&path(key), format!("must be at least {min}, got {n}"))),
+                Some(n) if (min..=max).contains(&n) => Ok(n as usize),
+                Some(n) => Err(self.err(
+                    &path(key),
+                    format!("must lie between {min} and {max}, got {n}"),
+                )),
             }
         };
         let solver = match s.solver.as_deref() {
@@ -679,13 +718,13 @@ impl Validator<'_, '_> {
             }
         };
         Ok(SearchSettings {
-            starts: count("starts", s.starts, 300, 1)?,
+            starts: count("starts", s.starts, 300, 1, 1_000_000)?,
             seed,
             solver,
             sampling,
             tolerance,
-            max_iterations: count("max_iterations", s.max_iterations, 500, 1)?,
-            threads: count("threads", s.threads, 0, 0)?,
+            max_iterations: count("max_iterations", s.max_iterations, 500, 1, 1_000_000)?,
+            threads: count("threads", s.threads, 0, 0, 1024)?,
         })
     }
 
