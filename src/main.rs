@@ -303,6 +303,12 @@ fn eval(path: &Path, design: &str) -> ExitCode {
         Ok(v) => v,
         Err(code) => return code,
     };
+    if let Some(why) = problem.model().domain_error(&x) {
+        return bad_input(format!(
+            "{}: key `--design`: outside the model's domain: {why}",
+            path.display()
+        ));
+    }
     let report = DesignReport::new(&problem, &x);
     for name in report.non_finite_outputs() {
         eprintln!(

@@ -117,7 +117,12 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
     let mut out = vec![0.0; wanted.len()];
     for &v in &values {
         x[var.parameter] = var.unit.to_si(v);
-        model.evaluate(&x, &wanted, &mut out);
+        if model.domain_error(&x).is_some() {
+            // outside the model's domain: a gap in the curve, never a number
+            out.fill(f64::NAN);
+        } else {
+            model.evaluate(&x, &wanted, &mut out);
+        }
         for (curve, &y) in curves.iter_mut().zip(&out) {
             curve.push(y.is_finite().then_some(y));
         }

@@ -332,3 +332,12 @@ fn counts_out_of_range() {
         &["between", "-1"],
     );
 }
+
+#[test]
+fn angle_bounds_at_or_beyond_a_right_angle() {
+    rejects(
+        mutated("upper = 45", "upper = 90"),
+        "variables[1].upper",
+        &["strictly between -90 and 90", "90"],
+    );
+}

@@ -183,6 +183,54 @@ pub struct Geometry<D> {
     pub t4: D,
 }
 
+impl Geometry<f64> {
+    /// Why this design lies outside the model's domain, if it does: every value finite,
+    /// lengths not negative, thicknesses positive, at least one hinge (`l2 + l4 > 0`, else
+    /// `c33b + c33d = 0` and nothing bends), angles strictly between -90 and 90 deg.
+    pub fn domain_error(&self) -> Option<String> {
+        let all = [
+            self.l2,
+            self.delta2,
+            self.t2,
+            self.l3,
+            self.delta3,
+            self.l4,
+            self.delta4,
+            self.t4,
+        ];
+        if let Some((i, v)) = all.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Some(format!("{} = {v} is not finite", PARAMETERS[i].name));
+        }
+        for (name, l) in [("l2", self.l2), ("l3", self.l3), ("l4", self.l4)] {
+            if l < 0.0 {
+                return Some(format!("{name} = {l} m is negative"));
+            }
+        }
+        for (name, t) in [("t2", self.t2), ("t4", self.t4)] {
+            if t <= 0.0 {
+                return Some(format!("{name} = {t} m is not positive"));
+            }
+        }
+        if self.l2 + self.l4 == 0.0 {
+            return Some("l2 = l4 = 0: a bridge without hinges does not deform".into());
+        }
+        let right = std::f64::consts::FRAC_PI_2;
+        for (name, a) in [
+            ("delta2", self.delta2),
+            ("delta3", self.delta3),
+            ("delta4", self.delta4),
+        ] {
+            if a.abs() >= right {
+                return Some(format!(
+                    "{name} = {} deg is not strictly between -90 and 90 deg",
+                    a.to_degrees()
+                ));
+            }
+        }
+        None
+    }
+}
+
 impl<const N: usize> Geometry<Jet<N>> {
     /// The design `x` (order of [`PARAMETERS`]), each parameter an independent variable of
     /// the gradient.

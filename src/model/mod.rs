@@ -105,6 +105,12 @@ pub trait Model: Send + Sync {
         jacobian: &mut [f64],
     );
 
+    /// Why the design `x` (SI) lies outside the model's domain, if it does; the model's
+    /// outputs are finite everywhere else.
+    fn domain_error(&self, _x: &[f64]) -> Option<String> {
+        None
+    }
+
     /// Index of the output called `name`.
     fn output_index(&self, name: &str) -> Option<usize> {
         self.outputs().iter().position(|o| o.name == name)
@@ -132,6 +138,13 @@ impl Model for bridge::Bridge {
 
     fn outputs(&self) -> &[OutputInfo] {
         &bridge::OUTPUTS
+    }
+
+    fn domain_error(&self, x: &[f64]) -> Option<String> {
+        match <[f64; 8]>::try_from(x) {
+            Ok(x) => bridge::Geometry::from_array(x).domain_error(),
+            Err(_) => Some(format!("a bridge design has 8 parameters, got {}", x.len())),
+        }
     }
 
     fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {

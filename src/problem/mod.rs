@@ -485,6 +485,12 @@ impl Validator<'_, '_> {
             let must_be_positive = dim == Dimension::Length;
             let check = |key: &str, n: Number| -> Res<f64> {
                 let x = self.finite(&path(key), n)?;
+                if dim == Dimension::Angle && unit.to_si(x).abs() >= std::f64::consts::FRAC_PI_2 {
+                    return Err(self.err(
+                        &path(key),
+                        format!("{} is an angle: it must lie strictly between -90 and 90 deg, got {x} {}", v.name, unit.name),
+                    ));
+                }
                 if must_be_positive && x <= 0.0 {
                     return Err(self.err(
                         &path(key),

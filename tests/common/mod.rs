@@ -1,6 +1,7 @@
 //! Shared fixtures of the integration tests.
 #![allow(dead_code)]
 
+pub mod exact;
 pub mod hs;
 
 use flexopt::model::bridge::{Actuator, Bridge, BridgeSettings, Geometry};
