@@ -369,12 +369,15 @@ impl<D: Scalar> QuarterBridge<D> {
     fn from_parts(b: Compliance<D>, d: Compliance<D>, l3: D, trig: &Trig<D>) -> Self {
         let Trig { s, c } = *trig;
         // index 0: the sine projections (load FX), index 1: the cosine ones (load FY)
-        let sum33 = b.c33 + d.c33;
+        let (l3_b, l3_d, c23d_c33b) = (b.c33 * l3, d.c33 * l3, d.c23 * b.c33);
         let proj = |t: &[D; 3]| {
-            let pb = d.c23 * t[2] - b.c23 * t[0] + d.c33 * l3 * t[1];
-            let pd = b.c23 * t[0] - d.c23 * t[2] + b.c33 * l3 * t[1];
-            // C = c32b c33d t2 + c32d c33b t4 + c33b c33d l3 t3 = c33b Pb + c32b t2 S
-            let cc = b.c33 * pb + b.c23 * t[0] * sum33;
+            let pb = d.c23 * t[2] - b.c23 * t[0] + l3_d * t[1];
+            let pd = b.c23 * t[0] - d.c23 * t[2] + l3_b * t[1];
+            // C = c32b c33d t2 + c32d c33b t4 + c33b c33d l3 t3, as the paper writes it
+            // (factored over c33d, which adds no cancellation): the shorter
+            // c33b Pb + c32b t2 S is the same number, but when hinge b dominates
+            // (c33b >> c33d) its two parts cancel to eight digits (tests/model_stability.rs)
+            let cc = d.c33 * (b.c23 * t[0] + l3_b * t[1]) + c23d_c33b * t[2];
             (pb, pd, cc)
         };
         let (pb_s, pd_s, cc_s) = proj(&s);
@@ -385,7 +388,7 @@ impl<D: Scalar> QuarterBridge<D> {
             l3,
             s,
             c,
-            inv_sum33: sum33.recip(),
+            inv_sum33: (b.c33 + d.c33).recip(),
             pb: [pb_s, pb_c],
             pd: [pd_s, pd_c],
             cc: [cc_s, cc_c],

@@ -99,16 +99,27 @@ impl<'p> Evaluator<'p> {
         let np = x.len();
         let (mut small_out, mut large_out) = ([0.0; 8], Vec::new());
         let out = scratch(&mut small_out, &mut large_out, self.wanted.len());
-        let (mut small_jac, mut large_jac) = ([0.0; 96], Vec::new());
+        let (mut small_jac, mut large_jac) = ([0.0; 64], Vec::new());
         let jac = scratch(&mut small_jac, &mut large_jac, self.wanted.len() * np);
         self.model.evaluate_with_gradient(x, &self.wanted, out, jac);
         let n = self.free.len();
         *objective = out[0];
+        for (i, &slot) in self.constraint_slot.iter().enumerate() {
+            constraints[i] = out[slot];
+        }
+        if self.all_free {
+            // the free variables are the parameters: whole rows copy over
+            objective_grad.copy_from_slice(&jac[..np]);
+            for (i, &slot) in self.constraint_slot.iter().enumerate() {
+                constraint_grad[i * n..(i + 1) * n]
+                    .copy_from_slice(&jac[slot * np..(slot + 1) * np]);
+            }
+            return;
+        }
         for (j, &p) in self.free.iter().enumerate() {
             objective_grad[j] = jac[p];
         }
         for (i, &slot) in self.constraint_slot.iter().enumerate() {
-            constraints[i] = out[slot];
             for (j, &p) in self.free.iter().enumerate() {
                 constraint_grad[i * n + j] = jac[slot * np + p];
             }
