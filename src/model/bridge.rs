@@ -107,11 +107,15 @@ pub enum BridgeOutput {
     A12,
     A21,
     A22,
+    StressNode2,
+    StressNode3,
+    StressNode4,
+    StressNode5,
 }
 
 impl BridgeOutput {
     /// Every output, in the order of [`OUTPUTS`].
-    pub const ALL: [BridgeOutput; 15] = [
+    pub const ALL: [BridgeOutput; 19] = [
         BridgeOutput::Amplification,
         BridgeOutput::KIn,
         BridgeOutput::KOut,
@@ -127,11 +131,15 @@ impl BridgeOutput {
         BridgeOutput::A12,
         BridgeOutput::A21,
         BridgeOutput::A22,
+        BridgeOutput::StressNode2,
+        BridgeOutput::StressNode3,
+        BridgeOutput::StressNode4,
+        BridgeOutput::StressNode5,
     ];
 }
 
 /// Names, dimensions and meanings of the outputs, indexed like [`BridgeOutput::ALL`].
-pub const OUTPUTS: [OutputInfo; 15] = [
+pub const OUTPUTS: [OutputInfo; 19] = [
     OutputInfo::new("amplification", Dimension::Ratio, "displacement amplification da = a21/a11 (Eq. 9)"),
     OutputInfo::new("k_in", Dimension::Stiffness, "input stiffness 1/a11 (Eq. 10)"),
     OutputInfo::new("k_out", Dimension::Stiffness, "output stiffness -1/a22 (Eq. 11)"),
@@ -147,6 +155,10 @@ pub const OUTPUTS: [OutputInfo; 15] = [
     OutputInfo::new("a12", Dimension::Compliance, "input displacement per output force (Eq. 8, Appendix A)"),
     OutputInfo::new("a21", Dimension::Compliance, "output displacement per input force (Eq. 8, Appendix A)"),
     OutputInfo::new("a22", Dimension::Compliance, "output compliance, negative by the paper's sign convention (Eq. 8, Appendix A)"),
+    OutputInfo::new("stress_node2", Dimension::Stress, "largest stress at node 2, the input-link end of hinge b (Eq. 15-16)"),
+    OutputInfo::new("stress_node3", Dimension::Stress, "largest stress at node 3, the middle-link end of hinge b (Eq. 15-16)"),
+    OutputInfo::new("stress_node4", Dimension::Stress, "largest stress at node 4, the middle-link end of hinge d (Eq. 17)"),
+    OutputInfo::new("stress_node5", Dimension::Stress, "largest stress at node 5, the output-link end of hinge d (Eq. 17)"),
 ];
 
 /// The piezo actuator that drives the bridge (paper 004, Eq. 12-14).
@@ -558,7 +570,7 @@ struct Evaluation<'a, D> {
     quarter: Option<&'a QuarterBridge<D>>,
     /// `(a11, a21, k_in = 1/a11)`, present with the quarter.
     input: Option<(D, D, D)>,
-    stresses: Option<(D, D)>,
+    stresses: Option<[D; 4]>,
 }
 
 impl<D: Scalar> Evaluation<'_, D> {
@@ -595,16 +607,19 @@ impl<D: Scalar> Evaluation<'_, D> {
     }
 
     /// Eq. 15-17 for hinges b and d, each quarter carrying half the actuator force.
-    fn stresses(&mut self) -> (D, D) {
+    /// Eq. 15-17: the stresses at nodes 2, 3 (hinge b) and 4, 5 (hinge d), each quarter
+    /// carrying half the actuator force.
+    fn stresses(&mut self) -> [D; 4] {
         if let Some(v) = self.stresses {
             return v;
         }
         let fx = self.force_in_max() * 0.5;
         let (g, s) = (self.g, self.s);
         let (lb, ld) = self.quarter().hinge_loads_input(fx);
-        let sb = s.hinge.max_stress(g.l2, g.t2, s.width, &lb);
-        let sd = s.hinge.max_stress(g.l4, g.t4, s.width, &ld);
-        *self.stresses.insert((sb, sd))
+        // the loads act at nodes 3 and 4; nodes 2 and 5 are the far (clamped) ends
+        let (n3, n2) = s.hinge.end_stresses(g.l2, g.t2, s.width, &lb);
+        let (n4, n5) = s.hinge.end_stresses(g.l4, g.t4, s.width, &ld);
+        *self.stresses.insert([n2, n3, n4, n5])
     }
 
     fn output(&mut self, o: BridgeOutput) -> D {
@@ -617,11 +632,21 @@ impl<D: Scalar> Evaluation<'_, D> {
             KIn => self.input().2,
             KOut => -self.quarter().a22().recip(),
             StressMax => {
-                let (b, d) = self.stresses();
-                max(b, d)
+                let [n2, n3, n4, n5] = self.stresses();
+                max(max(n2, n3), max(n4, n5))
             }
-            StressB => self.stresses().0,
-            StressD => self.stresses().1,
+            StressB => {
+                let [n2, n3, _, _] = self.stresses();
+                max(n2, n3)
+            }
+            StressD => {
+                let [_, _, n4, n5] = self.stresses();
+                max(n4, n5)
+            }
+            StressNode2 => self.stresses()[0],
+            StressNode3 => self.stresses()[1],
+            StressNode4 => self.stresses()[2],
+            StressNode5 => self.stresses()[3],
             ForceInMax => self.force_in_max(),
             SpanX => self.g.span_x_with(self.trig),
             SpanY => self.g.span_y_with(self.trig),

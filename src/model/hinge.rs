@@ -88,12 +88,35 @@ impl HingeKind {
         }
     }
 
-    /// Largest normal stress in the hinge (Pa) under the end loads that hold its free
-    /// end: axial force `axial`, transverse force `shear` and moment `moment` there.
+    /// The largest normal stress (Pa) at the two ends of the hinge, `(loaded end, clamped
+    /// end)`, under the end loads that hold its free end: axial force `axial`, transverse
+    /// force `shear` and moment `moment` there.
     ///
     /// Strip hinge, paper 004 Eq. 15-16: the moment varies linearly along the hinge,
     /// `M(x) = M + V x` for `x` in `[0, l]` measured from the loaded end, so the extreme
     /// fibre stress `6 |M(x)| / (w t^2) + |N| / (w t)` is largest at one of the two ends.
+    pub fn end_stresses<D: Scalar>(
+        self,
+        length: D,
+        thickness: D,
+        width: f64,
+        loads: &HingeLoads<D>,
+    ) -> (D, D) {
+        match self {
+            HingeKind::Strip => {
+                let moment_far = loads.moment + loads.shear * length;
+                let inv_wt = (thickness * width).recip();
+                let bending = inv_wt * (6.0 * width);
+                let axial = loads.axial.abs();
+                (
+                    (loads.moment.abs() * bending + axial) * inv_wt,
+                    (moment_far.abs() * bending + axial) * inv_wt,
+                )
+            }
+        }
+    }
+
+    /// The largest normal stress in the hinge (Pa): the larger of [`HingeKind::end_stresses`].
     pub fn max_stress<D: Scalar>(
         self,
         length: D,
@@ -101,15 +124,8 @@ impl HingeKind {
         width: f64,
         loads: &HingeLoads<D>,
     ) -> D {
-        match self {
-            HingeKind::Strip => {
-                let moment_far = loads.moment + loads.shear * length;
-                let moment = max(loads.moment.abs(), moment_far.abs());
-                let inv_wt = (thickness * width).recip();
-                // 6 |M| / (w t^2) + |N| / (w t)
-                (moment * (inv_wt * (6.0 * width)) + loads.axial.abs()) * inv_wt
-            }
-        }
+        let (near, far) = self.end_stresses(length, thickness, width, loads);
+        max(near, far)
     }
 }
 

@@ -111,6 +111,13 @@ pub trait Model: Send + Sync {
         None
     }
 
+    /// The outputs whose maximum this output is, when it is defined so (a largest stress
+    /// over several places, say). A max is not differentiable where its arguments cross, so
+    /// an optimizer given `max <= limit` does better with `part <= limit` for every part.
+    fn max_of(&self, _output: usize) -> Option<&[usize]> {
+        None
+    }
+
     /// Index of the output called `name`.
     fn output_index(&self, name: &str) -> Option<usize> {
         self.outputs().iter().position(|o| o.name == name)
@@ -138,6 +145,18 @@ impl Model for bridge::Bridge {
 
     fn outputs(&self) -> &[OutputInfo] {
         &bridge::OUTPUTS
+    }
+
+    fn max_of(&self, output: usize) -> Option<&[usize]> {
+        // the stresses at nodes 2, 3, 4, 5 (indices into BridgeOutput::ALL)
+        const ALL_NODES: [usize; 4] = [15, 16, 17, 18];
+        use bridge::BridgeOutput::*;
+        match bridge::BridgeOutput::ALL[output] {
+            StressMax => Some(&ALL_NODES),
+            StressB => Some(&ALL_NODES[..2]),
+            StressD => Some(&ALL_NODES[2..]),
+            _ => None,
+        }
     }
 
     fn domain_error(&self, x: &[f64]) -> Option<String> {

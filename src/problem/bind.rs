@@ -23,17 +23,22 @@ pub struct Evaluator<'p> {
 }
 
 impl<'p> Evaluator<'p> {
+    /// The objective and the outputs the problem's constraints name.
     pub fn new(problem: &'p Problem) -> Self {
+        let outputs: Vec<usize> = problem.constraints.iter().map(|c| c.index).collect();
+        Self::for_outputs(problem, &outputs)
+    }
+
+    /// The objective and the model outputs `outputs`, which then play the part of the
+    /// constraint values in [`Evaluator::evaluate`].
+    pub fn for_outputs(problem: &'p Problem, outputs: &[usize]) -> Self {
         let mut wanted = vec![problem.objective.index];
         let mut constraint_slot = Vec::new();
-        for c in &problem.constraints {
-            let slot = wanted
-                .iter()
-                .position(|&w| w == c.index)
-                .unwrap_or_else(|| {
-                    wanted.push(c.index);
-                    wanted.len() - 1
-                });
+        for &index in outputs {
+            let slot = wanted.iter().position(|&w| w == index).unwrap_or_else(|| {
+                wanted.push(index);
+                wanted.len() - 1
+            });
             constraint_slot.push(slot);
         }
         assert!(

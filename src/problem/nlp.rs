@@ -5,7 +5,9 @@
 //!   the problem asks for it.
 //! - Constraints: one inequality per limit, `(value - lower) / |lower| >= 0` or
 //!   `(upper - value) / |upper| >= 0` (divided by 1 SI unit where the limit is 0), so that
-//!   a constraint's value is its relative margin.
+//!   a constraint's value is its relative margin. An upper limit on an output the model
+//!   defines as a maximum (`Model::max_of`) becomes one such row per part: the same
+//!   feasible set, without the kinks of the max.
 //!
 //! Gradients are the model's exact ones, through the chain rule of the scaling.
 
@@ -14,10 +16,11 @@ use super::{Problem as DesignProblem, Sense};
 use crate::model::{Dimension, MAX_WANTED};
 use crate::optim::Problem;
 
-/// One inequality: `sign * (value - limit) / scale >= 0`.
+/// One inequality: `sign * (value - limit) / scale >= 0`, `value` the evaluator's
+/// `value`-th output.
 #[derive(Debug, Clone, Copy)]
 struct Row {
-    constraint: usize,
+    value: usize,
     sign: f64,
     limit: f64,
     scale: f64,
@@ -27,6 +30,8 @@ struct Row {
 pub struct DesignNlp<'p> {
     pub problem: &'p DesignProblem,
     evaluator: Evaluator<'p>,
+    /// Number of outputs the evaluator gives besides the objective.
+    values: usize,
     offset: Vec<f64>,
     range: Vec<f64>,
     zeros: Vec<f64>,
@@ -37,29 +42,44 @@ pub struct DesignNlp<'p> {
 impl<'p> DesignNlp<'p> {
     pub fn new(problem: &'p DesignProblem) -> Self {
         let free: Vec<_> = problem.free_variables().collect();
+        let model = problem.model();
         let mut rows = Vec::new();
-        for (i, c) in problem.constraints.iter().enumerate() {
+        let mut outputs: Vec<usize> = Vec::new();
+        let mut value_of = |index: usize| {
+            outputs.iter().position(|&o| o == index).unwrap_or_else(|| {
+                outputs.push(index);
+                outputs.len() - 1
+            })
+        };
+        for c in &problem.constraints {
             let scale = |l: f64| if l == 0.0 { 1.0 } else { l.abs() };
             if let Some(lo) = c.lower {
                 rows.push(Row {
-                    constraint: i,
+                    value: value_of(c.index),
                     sign: 1.0,
                     limit: lo,
                     scale: scale(lo),
                 });
             }
             if let Some(hi) = c.upper {
-                rows.push(Row {
-                    constraint: i,
-                    sign: -1.0,
-                    limit: hi,
-                    scale: scale(hi),
-                });
+                let parts = model
+                    .max_of(c.index)
+                    .map(<[usize]>::to_vec)
+                    .unwrap_or_else(|| vec![c.index]);
+                for part in parts {
+                    rows.push(Row {
+                        value: value_of(part),
+                        sign: -1.0,
+                        limit: hi,
+                        scale: scale(hi),
+                    });
+                }
             }
         }
         DesignNlp {
             problem,
-            evaluator: Evaluator::new(problem),
+            evaluator: Evaluator::for_outputs(problem, &outputs),
+            values: outputs.len(),
             offset: free.iter().map(|v| v.lower).collect(),
             range: free.iter().map(|v| v.upper - v.lower).collect(),
             zeros: vec![0.0; free.len()],
@@ -131,7 +151,7 @@ impl<'p> DesignNlp<'p> {
 
     fn constraint_values(&self, values: &[f64], c: &mut [f64]) {
         for (ci, r) in c.iter_mut().zip(&self.rows) {
-            *ci = r.sign * (values[r.constraint] - r.limit) / r.scale;
+            *ci = r.sign * (values[r.value] - r.limit) / r.scale;
         }
     }
 }
@@ -160,7 +180,7 @@ impl Problem for DesignNlp<'_> {
             x[j] = self.offset[j] + self.range[j] * u[j];
         }
         let mut values = [0.0; MAX_WANTED];
-        let values = &mut values[..self.problem.constraints.len()];
+        let values = &mut values[..self.values];
         let mut f = 0.0;
         self.evaluator.evaluate(x, &mut f, values);
         self.constraint_values(values, c);
@@ -179,7 +199,7 @@ impl Problem for DesignNlp<'_> {
         jacobian: &mut [f64],
     ) -> f64 {
         let n = u.len();
-        let nc = self.problem.constraints.len();
+        let nc = self.values;
         let mut x = [0.0; MAX_WANTED];
         let x = &mut x[..n];
         for j in 0..n {
@@ -209,7 +229,7 @@ impl Problem for DesignNlp<'_> {
         for (i, r) in self.rows.iter().enumerate() {
             for j in 0..n {
                 jacobian[i * n + j] =
-                    r.sign * value_grad[r.constraint * n + j] * self.range[j] / r.scale;
+                    r.sign * value_grad[r.value * n + j] * self.range[j] / r.scale;
             }
         }
         merit(o.sense, o.absolute, f)
