@@ -228,16 +228,33 @@ fn a_stress_limited_variant_converges_from_every_start() {
     // another active set: the stress limit binds at all four hinge ends of a parallel bridge
     let p = Problem::load(Path::new("problems/bridge_stress.toml")).unwrap();
     let s = study::run(&p, &options(&p, Solver::Sqp));
-    let converged = s.runs.iter().filter(|r| r.solution.status == Status::Converged).count();
+    let converged = s
+        .runs
+        .iter()
+        .filter(|r| r.solution.status == Status::Converged)
+        .count();
     assert_eq!(converged, 300);
     let best = &s.runs[s.best];
-    assert!((best.objective - 14.1574).abs() < 1e-3, "{}", best.objective);
+    assert!(
+        (best.objective - 14.1574).abs() < 1e-3,
+        "{}",
+        best.objective
+    );
     assert_eq!(bridge_configuration(&best.x_end), "parallel");
     let report = flexopt::report::DesignReport::new(&p, &best.x_end);
-    let stress = report.constraints.iter().find(|c| c.output == "stress_max").unwrap();
+    let stress = report
+        .constraints
+        .iter()
+        .find(|c| c.output == "stress_max")
+        .unwrap();
     assert!(stress.active && stress.satisfied, "{stress:?}");
     // the parts the optimizer saw: every hinge end at the limit
-    for node in ["stress_node2", "stress_node3", "stress_node4", "stress_node5"] {
+    for node in [
+        "stress_node2",
+        "stress_node3",
+        "stress_node4",
+        "stress_node5",
+    ] {
         let v = report.outputs[node].unwrap();
         assert!((v / 100e6 - 1.0).abs() < 1e-8, "{node} = {v}");
     }
