@@ -25,21 +25,31 @@ fn pool() -> rayon::ThreadPool {
         .unwrap()
 }
 
-fn bench(c: &mut Criterion) {
-    let problem = Problem::load(Path::new("problems/wei2017.toml")).unwrap();
-    let nlp = DesignNlp::new(&problem);
+/// The study's 300 starts, as `flexopt run` draws them.
+fn study_starts(problem: &Problem, nlp: &DesignNlp) -> Vec<Vec<f64>> {
     let n = nlp.dimension();
-    let starts = multistart::start_points(
+    multistart::start_points(
         &vec![0.0; n],
         &vec![1.0; n],
         300,
         problem.search.seed,
         Sampling::Uniform,
-    );
-    let settings = SqpSettings {
+    )
+}
+
+/// The SQP settings of the problem file.
+fn sqp_settings(problem: &Problem) -> SqpSettings {
+    SqpSettings {
         tolerance: problem.search.tolerance,
         max_iterations: problem.search.max_iterations,
-    };
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    let problem = Problem::load(Path::new("problems/wei2017.toml")).unwrap();
+    let nlp = DesignNlp::new(&problem);
+    let starts = study_starts(&problem, &nlp);
+    let settings = sqp_settings(&problem);
     let pool = pool();
     let flexopt_study = || {
         pool.install(|| {
@@ -95,18 +105,8 @@ fn bench(c: &mut Criterion) {
 fn pieces(c: &mut Criterion) {
     let problem = Problem::load(Path::new("problems/wei2017.toml")).unwrap();
     let nlp = DesignNlp::new(&problem);
-    let n = nlp.dimension();
-    let starts = multistart::start_points(
-        &vec![0.0; n],
-        &vec![1.0; n],
-        300,
-        problem.search.seed,
-        Sampling::Uniform,
-    );
-    let sqp_settings = SqpSettings {
-        tolerance: problem.search.tolerance,
-        max_iterations: problem.search.max_iterations,
-    };
+    let starts = study_starts(&problem, &nlp);
+    let sqp_settings = sqp_settings(&problem);
     let nm_settings = NelderMeadSettings {
         tolerance: problem.search.tolerance,
         ..NelderMeadSettings::default()
