@@ -8,6 +8,7 @@ pub mod bridge;
 pub mod bridge_matrix;
 pub mod hinge;
 pub mod material;
+pub mod prr3;
 pub mod scalar;
 
 use serde::Serialize;
