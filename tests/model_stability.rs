@@ -406,7 +406,12 @@ mod properties {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+        #![proptest_config(ProptestConfig {
+        cases: 2000,
+        // a fixed seed: CI runs the same cases every time
+        rng_seed: proptest::test_runner::RngSeed::Fixed(2017),
+        ..ProptestConfig::default()
+    })]
 
         #[test]
         fn finite_reciprocal_and_agreeing_with_the_linear_system(x in design()) {

@@ -341,3 +341,9 @@ fn angle_bounds_at_or_beyond_a_right_angle() {
         &["strictly between -90 and 90", "90"],
     );
 }
+
+#[test]
+fn a_lone_table_bracket_names_a_key() {
+    let e = Problem::parse(Path::new("mutated.toml"), "[").unwrap_err();
+    assert!(!e.key.is_empty(), "{e}");
+}

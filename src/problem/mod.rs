@@ -231,14 +231,20 @@ fn key_at(text: &str, offset: usize) -> String {
     let line = text[line_start..line_end].trim();
     let strip = |l: &str| l.trim_matches(|c| c == '[' || c == ']').trim().to_string();
     if line.starts_with('[') {
-        return strip(line);
+        let header = strip(line);
+        return if header.is_empty() {
+            "(table header)".to_string()
+        } else {
+            header
+        };
     }
     let header = before[..line_start]
         .lines()
         .rev()
         .map(str::trim)
         .find(|l| l.starts_with('['))
-        .map(strip);
+        .map(strip)
+        .filter(|h| !h.is_empty());
     let key = line
         .split('=')
         .next()
