@@ -47,7 +47,9 @@ fn bench(c: &mut Criterion) {
 /// `DualSVec64<8>`.
 fn gradient_backends(c: &mut Criterion) {
     let problem = Problem::load(Path::new("problems/wei2017.toml")).unwrap();
-    let ModelSpec::Bridge(bridge) = &problem.model;
+    let ModelSpec::Bridge(bridge) = &problem.model else {
+        unreachable!("wei2017 is a bridge problem")
+    };
     let ev = Evaluator::new(&problem);
     let wanted = ev.wanted().to_vec();
     let deg = std::f64::consts::PI / 180.0;

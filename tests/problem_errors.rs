@@ -347,3 +347,22 @@ fn a_lone_table_bracket_names_a_key() {
     let e = Problem::parse(Path::new("mutated.toml"), "[").unwrap_err();
     assert!(!e.key.is_empty(), "{e}");
 }
+
+#[test]
+fn sections_a_model_does_not_take_or_needs() {
+    let prr3 = std::fs::read_to_string("problems/prr3_frequency.toml").unwrap();
+    let with_hinge = prr3.replacen(
+        "model = \"prr3\"",
+        "model = \"prr3\"\n[hinge]\nkind = \"strip\"\nwidth = \"10 mm\"",
+        1,
+    );
+    let e = Problem::parse(Path::new("mutated.toml"), &with_hinge).unwrap_err();
+    assert_eq!(e.key, "hinge", "{e}");
+    let e = mutated(
+        "[hinge]\nkind = \"strip\"              # leaf hinges, compliances of Eq. 2\nwidth = \"10 mm\"             # Sec. 3: \"The width of the mechanism was fixed at w = 10 mm\"",
+        "",
+    )
+    .unwrap_err();
+    assert_eq!(e.key, "hinge", "{e}");
+    assert!(e.message.contains("bridge"), "{e}");
+}

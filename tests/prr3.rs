@@ -177,3 +177,71 @@ fn gradients_of_the_frequencies_agree_with_differences() {
         }
     }
 }
+
+#[test]
+fn maximizing_f1_from_the_problem_file_finds_a_checked_optimum() {
+    use flexopt::problem::{Problem, Solver};
+    use flexopt::study::{self, StudyOptions};
+    let p = Problem::load(std::path::Path::new("problems/prr3_frequency.toml")).unwrap();
+    let s = study::run(
+        &p,
+        &StudyOptions {
+            solver: Solver::Sqp,
+            ..StudyOptions::from_problem(&p)
+        },
+    );
+    let best = &s.runs[s.best];
+    assert!(s.any_feasible && best.feasible);
+    assert!(
+        best.solution.kkt_residual.unwrap() < 1e-8,
+        "{:?}",
+        best.solution
+    );
+    // an independent evaluation: the eigenvalues of M^-1 K by the general (non-symmetric)
+    // solver instead of the Cholesky-reduced symmetric one
+    let q = Prr3::from_slice(&best.x_end);
+    let (m, k) = mass_and_stiffness(&q);
+    let (m, k) = (
+        Matrix3::from_fn(|r, c| m[r][c]),
+        Matrix3::from_fn(|r, c| k[r][c]),
+    );
+    let mut w2: Vec<f64> = (m.try_inverse().unwrap() * k)
+        .complex_eigenvalues()
+        .iter()
+        .map(|z| z.re)
+        .collect();
+    w2.sort_by(f64::total_cmp);
+    let f1 = w2[0].sqrt() / (2.0 * std::f64::consts::PI);
+    let f3 = w2[2].sqrt() / (2.0 * std::f64::consts::PI);
+    assert!(
+        (f1 / best.objective - 1.0).abs() < 1e-9,
+        "{f1} vs {}",
+        best.objective
+    );
+    assert!(f3 <= 1600.0 * (1.0 + 1e-8), "f3 = {f3}");
+    // and no design of a grid over the bounds that meets the f3 limit does better
+    let mut grid_best = 0.0f64;
+    for i in 0..=20 {
+        for j in 0..=20 {
+            for kk in 0..=20 {
+                let mut x = best.x_end.clone();
+                x[1] = 0.020 + 0.020 * i as f64 / 20.0;
+                x[2] = 0.010 + 0.020 * j as f64 / 20.0;
+                x[8] = 20.0 + 30.0 * kk as f64 / 20.0;
+                let f = freqs(&Prr3::from_slice(&x));
+                if f[2] <= 1600.0 {
+                    grid_best = grid_best.max(f[0]);
+                }
+            }
+        }
+    }
+    eprintln!(
+        "3-PRR maximum f1 {} Hz at {:?}; best of the grid {grid_best} Hz",
+        best.objective, best.x_end
+    );
+    assert!(
+        best.objective >= grid_best - 1e-6,
+        "{} < {grid_best}",
+        best.objective
+    );
+}

@@ -34,6 +34,12 @@ pub enum Dimension {
     Stiffness,
     /// m/N
     Compliance,
+    /// kg
+    Mass,
+    /// N m/rad
+    RotationalStiffness,
+    /// Hz
+    Frequency,
 }
 
 impl Dimension {
@@ -47,6 +53,9 @@ impl Dimension {
             Dimension::Stress => "Pa",
             Dimension::Stiffness => "N/m",
             Dimension::Compliance => "m/N",
+            Dimension::Mass => "kg",
+            Dimension::RotationalStiffness => "N m/rad",
+            Dimension::Frequency => "Hz",
         }
     }
 }

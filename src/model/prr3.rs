@@ -48,7 +48,8 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::scalar::Scalar;
+use super::scalar::{Jet, Scalar};
+use super::{Dimension, Model, OutputInfo, ParameterInfo, MAX_WANTED};
 
 /// Parameters of the 3-PRR mechanism, SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -206,4 +207,134 @@ pub fn frequencies<D: Scalar>(p: &Prr3<D>) -> Option<[D; 3]> {
         out[slot] = w2.sqrt() * (1.0 / (2.0 * std::f64::consts::PI));
     }
     Some(out)
+}
+
+/// The design parameters of the 3-PRR model, in model order.
+pub const PARAMETERS: [ParameterInfo; 10] = [
+    ParameterInfo::new("ra", Dimension::Length, "base radius"),
+    ParameterInfo::new("rb", Dimension::Length, "platform radius"),
+    ParameterInfo::new("l", Dimension::Length, "passive link length"),
+    ParameterInfo::new(
+        "alpha1",
+        Dimension::Angle,
+        "position angle of A1 on the base",
+    ),
+    ParameterInfo::new(
+        "beta1",
+        Dimension::Angle,
+        "position angle of C1 on the platform",
+    ),
+    ParameterInfo::new("theta1", Dimension::Angle, "rest angle of link 1"),
+    ParameterInfo::new("mp", Dimension::Mass, "platform mass"),
+    ParameterInfo::new("mg", Dimension::Mass, "passive link mass"),
+    ParameterInfo::new(
+        "k",
+        Dimension::RotationalStiffness,
+        "rotational stiffness of each flexure hinge",
+    ),
+    ParameterInfo::new("k1", Dimension::Stiffness, "stiffness of each drive"),
+];
+
+/// The outputs of the 3-PRR model.
+pub const OUTPUTS: [OutputInfo; 3] = [
+    OutputInfo::new(
+        "f1",
+        Dimension::Frequency,
+        "first natural frequency (Eq. 12)",
+    ),
+    OutputInfo::new(
+        "f2",
+        Dimension::Frequency,
+        "second natural frequency (Eq. 12)",
+    ),
+    OutputInfo::new(
+        "f3",
+        Dimension::Frequency,
+        "third natural frequency (Eq. 12)",
+    ),
+];
+
+impl<D: Scalar> Prr3<D> {
+    /// From the parameters in the order of [`PARAMETERS`].
+    pub fn from_slice(x: &[D]) -> Self {
+        Prr3 {
+            base_radius: x[0],
+            platform_radius: x[1],
+            link_length: x[2],
+            alpha1: x[3],
+            beta1: x[4],
+            theta1: x[5],
+            platform_mass: x[6],
+            link_mass: x[7],
+            hinge_stiffness: x[8],
+            drive_stiffness: x[9],
+        }
+    }
+}
+
+/// The 3-PRR model as problem files use it: every parameter is a design variable.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Prr3Model;
+
+impl Model for Prr3Model {
+    fn parameters(&self) -> &[ParameterInfo] {
+        &PARAMETERS
+    }
+
+    fn outputs(&self) -> &[OutputInfo] {
+        &OUTPUTS
+    }
+
+    fn domain_error(&self, x: &[f64]) -> Option<String> {
+        if x.len() != PARAMETERS.len() {
+            return Some(format!(
+                "a 3-PRR design has {} parameters, got {}",
+                PARAMETERS.len(),
+                x.len()
+            ));
+        }
+        if let Some((i, v)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Some(format!("{} = {v} is not finite", PARAMETERS[i].name));
+        }
+        for i in [0, 1, 2, 6, 7, 8, 9] {
+            if x[i] <= 0.0 {
+                return Some(format!(
+                    "{} = {} must be positive",
+                    PARAMETERS[i].name, x[i]
+                ));
+            }
+        }
+        None
+    }
+
+    fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {
+        let f = frequencies(&Prr3::from_slice(x)).unwrap_or([f64::NAN; 3]);
+        for (slot, &k) in out.iter_mut().zip(wanted) {
+            *slot = f[k];
+        }
+    }
+
+    fn evaluate_with_gradient(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        let seeded: Vec<Jet<10>> = x
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| Jet::variable(v, i))
+            .collect();
+        let nan = Jet {
+            re: f64::NAN,
+            grad: [f64::NAN; 10],
+        };
+        let f = frequencies(&Prr3::from_slice(&seeded)).unwrap_or([nan; 3]);
+        debug_assert!(wanted.len() <= MAX_WANTED);
+        for (row, &k) in wanted.iter().enumerate() {
+            out[row] = f[k].re;
+            jacobian[row * 10..(row + 1) * 10].copy_from_slice(&f[k].grad);
+        }
+    }
 }

@@ -18,6 +18,7 @@ use serde::Serialize;
 use crate::model::bridge::{Actuator, Bridge, BridgeSettings};
 use crate::model::hinge::HingeKind;
 use crate::model::material::Material;
+use crate::model::prr3::Prr3Model;
 use crate::model::{Dimension, Model};
 pub use error::ProblemError;
 use error::{Locator, Segment};
@@ -29,14 +30,24 @@ use units::{parse_quantity, Unit};
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum ModelSpec {
     Bridge(Bridge),
+    Prr3(Prr3Model),
 }
 
 impl ModelSpec {
-    pub const NAMES: &'static [&'static str] = &["bridge"];
+    pub const NAMES: &'static [&'static str] = &["bridge", "prr3"];
 
     pub fn as_model(&self) -> &dyn Model {
         match self {
             ModelSpec::Bridge(b) => b,
+            ModelSpec::Prr3(p) => p,
+        }
+    }
+
+    /// The name a problem file gives the model.
+    pub fn name(&self) -> &'static str {
+        match self {
+            ModelSpec::Bridge(_) => "bridge",
+            ModelSpec::Prr3(_) => "prr3",
         }
     }
 }
@@ -136,7 +147,8 @@ pub struct Problem {
     pub name: String,
     pub description: String,
     pub model: ModelSpec,
-    pub material: Material,
+    /// The bridge's material; models without one have `None`.
+    pub material: Option<Material>,
     /// One per model parameter, in model order.
     pub variables: Vec<Variable>,
     pub objective: Objective,
@@ -331,18 +343,49 @@ impl Validator<'_, '_> {
                 ),
             ));
         }
-        let material = self.material(&raw.material)?;
-        let model = match raw.model.as_str() {
-            "bridge" => ModelSpec::Bridge(Bridge::new(BridgeSettings {
-                hinge: self.hinge_kind(&raw.hinge.kind)?,
-                width: self.positive(
-                    &[k("hinge"), k("width")],
-                    &raw.hinge.width,
-                    Dimension::Length,
-                )?,
-                material: material.clone(),
-                actuator: self.actuator(&raw.actuator)?,
-            })),
+        let required = |present: bool, key: &str| -> Res<()> {
+            if present {
+                Ok(())
+            } else {
+                Err(self.err(
+                    &[k(key)],
+                    format!("missing field `{key}`: the {} model needs it", raw.model),
+                ))
+            }
+        };
+        let refused = |present: bool, key: &str| -> Res<()> {
+            if present {
+                Err(self.err(
+                    &[k(key)],
+                    format!("the {} model takes no `{key}` section", raw.model),
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        let (material, model) = match raw.model.as_str() {
+            "bridge" => {
+                required(raw.material.is_some(), "material")?;
+                required(raw.hinge.is_some(), "hinge")?;
+                required(raw.actuator.is_some(), "actuator")?;
+                let (Some(m), Some(h), Some(a)) = (&raw.material, &raw.hinge, &raw.actuator) else {
+                    unreachable!("checked just above")
+                };
+                let material = self.material(m)?;
+                let model = ModelSpec::Bridge(Bridge::new(BridgeSettings {
+                    hinge: self.hinge_kind(&h.kind)?,
+                    width: self.positive(&[k("hinge"), k("width")], &h.width, Dimension::Length)?,
+                    material: material.clone(),
+                    actuator: self.actuator(a)?,
+                }));
+                (Some(material), model)
+            }
+            "prr3" => {
+                refused(raw.material.is_some(), "material")?;
+                refused(raw.hinge.is_some(), "hinge")?;
+                refused(raw.actuator.is_some(), "actuator")?;
+                (None, ModelSpec::Prr3(Prr3Model))
+            }
             other => {
                 return Err(self.err(
                     &[k("model")],
@@ -353,13 +396,15 @@ impl Validator<'_, '_> {
                 ))
             }
         };
-        let variables = self.variables(model.as_model(), &raw.variables)?;
+        // the bridge's angles must stay within a right angle (Geometry::domain_error)
+        let right_angle_limit = matches!(model, ModelSpec::Bridge(_));
+        let variables = self.variables(model.as_model(), right_angle_limit, &raw.variables)?;
         let objective = self.objective(model.as_model(), &raw.objective)?;
         let constraints = raw
             .constraints
             .iter()
             .enumerate()
-            .map(|(i, c)| self.constraint(model.as_model(), &material, i, c))
+            .map(|(i, c)| self.constraint(model.as_model(), material.as_ref(), i, c))
             .collect::<Res<Vec<_>>>()?;
         Ok(Problem {
             file: self.loc.file().to_path_buf(),
@@ -465,7 +510,12 @@ impl Validator<'_, '_> {
         })
     }
 
-    fn variables(&self, model: &dyn Model, raw: &[schema::RawVariable]) -> Res<Vec<Variable>> {
+    fn variables(
+        &self,
+        model: &dyn Model,
+        right_angle_limit: bool,
+        raw: &[schema::RawVariable],
+    ) -> Res<Vec<Variable>> {
         let params = model.parameters();
         let mut found: Vec<Option<Variable>> = vec![None; params.len()];
         for (i, v) in raw.iter().enumerate() {
@@ -488,10 +538,19 @@ impl Validator<'_, '_> {
             }
             let dim = params[p].dimension;
             let unit = Unit::parse(&v.unit, dim).map_err(|m| self.err(&path("unit"), m))?;
-            let must_be_positive = dim == Dimension::Length;
+            let must_be_positive = matches!(
+                dim,
+                Dimension::Length
+                    | Dimension::Mass
+                    | Dimension::Stiffness
+                    | Dimension::RotationalStiffness
+            );
             let check = |key: &str, n: Number| -> Res<f64> {
                 let x = self.finite(&path(key), n)?;
-                if dim == Dimension::Angle && unit.to_si(x).abs() >= std::f64::consts::FRAC_PI_2 {
+                if right_angle_limit
+                    && dim == Dimension::Angle
+                    && unit.to_si(x).abs() >= std::f64::consts::FRAC_PI_2
+                {
                     return Err(self.err(
                         &path(key),
                         format!("{} is an angle: it must lie strictly between -90 and 90 deg, got {x} {}", v.name, unit.name),
@@ -619,7 +678,7 @@ impl Validator<'_, '_> {
     fn constraint(
         &self,
         model: &dyn Model,
-        mat: &Material,
+        mat: Option<&Material>,
         i: usize,
         c: &schema::RawConstraint,
     ) -> Res<Constraint> {
@@ -633,13 +692,16 @@ impl Validator<'_, '_> {
                     format!("\"ultimate\" (a fraction of the ultimate strength) only fits stress outputs, not \"{}\"", c.output),
                 ));
             }
-            let su = mat.ultimate_strength.ok_or_else(|| {
+            let su = mat.and_then(|m| m.ultimate_strength).ok_or_else(|| {
                 self.err(
                     &path("unit"),
-                    format!(
-                        "material \"{}\" has no ultimate strength: set material.ultimate_strength",
-                        mat.name
-                    ),
+                    match mat {
+                        Some(m) => format!(
+                            "material \"{}\" has no ultimate strength: set material.ultimate_strength",
+                            m.name
+                        ),
+                        None => "this model has no material, so no ultimate strength".to_string(),
+                    },
                 )
             })?;
             Unit {

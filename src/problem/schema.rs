@@ -35,9 +35,10 @@ pub struct RawProblem {
     #[serde(default)]
     pub description: String,
     pub model: String,
-    pub material: RawMaterial,
-    pub hinge: RawHinge,
-    pub actuator: RawActuator,
+    /// Required by the bridge; the 3-PRR model takes none.
+    pub material: Option<RawMaterial>,
+    pub hinge: Option<RawHinge>,
+    pub actuator: Option<RawActuator>,
     pub variables: Vec<RawVariable>,
     pub objective: RawObjective,
     #[serde(default)]

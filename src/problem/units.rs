@@ -36,6 +36,17 @@ const UNITS: &[(Dimension, &[(&str, f64)])] = &[
         Dimension::Compliance,
         &[("m/N", 1.0), ("mm/N", 1e-3), ("um/N", 1e-6), ("nm/N", 1e-9)],
     ),
+    (Dimension::Mass, &[("kg", 1.0), ("g", 1e-3), ("mg", 1e-6)]),
+    (
+        Dimension::RotationalStiffness,
+        &[
+            ("N m/rad", 1.0),
+            ("N*m/rad", 1.0),
+            ("N mm/rad", 1e-3),
+            ("N*mm/rad", 1e-3),
+        ],
+    ),
+    (Dimension::Frequency, &[("Hz", 1.0), ("kHz", 1e3)]),
 ];
 
 /// A unit of measure: its name as written and its factor to SI.
@@ -110,6 +121,9 @@ pub fn dimension_word(dimension: Dimension) -> &'static str {
         Dimension::Stress => "stress",
         Dimension::Stiffness => "stiffness",
         Dimension::Compliance => "compliance",
+        Dimension::Mass => "mass",
+        Dimension::RotationalStiffness => "rotational stiffness",
+        Dimension::Frequency => "frequency",
     }
 }
 
@@ -141,6 +155,9 @@ fn example(dimension: Dimension) -> &'static str {
         Dimension::Stress => "505 MPa",
         Dimension::Stiffness => "7e6 N/m",
         Dimension::Compliance => "1.4 um/N",
+        Dimension::Mass => "60 g",
+        Dimension::RotationalStiffness => "34.53 N m/rad",
+        Dimension::Frequency => "1200 Hz",
     }
 }
 

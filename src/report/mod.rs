@@ -163,6 +163,19 @@ pub struct DesignReport {
     /// The quarter bridge's nodes 2..5 in mm, origin at node 2 (bridge models only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub nodes_mm: Option<Vec<[f64; 2]>>,
+    /// The natural modes, mass-normalised, in (x, y, gamma) of the platform (3-PRR only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mode_shapes: Option<Vec<ModeShape>>,
+}
+
+/// A natural mode of a parallel mechanism: its frequency (Hz) and its shape in the
+/// platform coordinates (m, m, rad), normalised so that `v^T M v = 1`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ModeShape {
+    pub frequency: f64,
+    pub x: f64,
+    pub y: f64,
+    pub gamma: f64,
 }
 
 /// Relative margin within which a constraint counts as active.
@@ -181,9 +194,7 @@ impl DesignReport {
         let finite = |v: f64| v.is_finite().then_some(v);
         let mut report = DesignReport {
             problem: problem.name.clone(),
-            model: match &problem.model {
-                ModelSpec::Bridge(_) => "bridge".into(),
-            },
+            model: problem.model.name().into(),
             design: IndexMap::new(),
             design_units: IndexMap::new(),
             design_si: IndexMap::new(),
@@ -206,6 +217,7 @@ impl DesignReport {
                 .collect(),
             feasible: false,
             nodes_mm: None,
+            mode_shapes: None,
         };
         for (v, &xi) in problem.variables.iter().zip(x) {
             report.design.insert(v.name.clone(), v.unit.from_si(xi));
@@ -222,12 +234,27 @@ impl DesignReport {
         }
         report.feasible =
             report.objective.is_some() && report.constraints.iter().all(|c| c.satisfied);
-        report.nodes_mm = match &problem.model {
+        match &problem.model {
             ModelSpec::Bridge(_) => {
                 let g = Geometry::from_array(<[f64; 8]>::try_from(x).expect("8 bridge parameters"));
-                Some(g.nodes().iter().map(|p| [p[0] * 1e3, p[1] * 1e3]).collect())
+                report.nodes_mm =
+                    Some(g.nodes().iter().map(|p| [p[0] * 1e3, p[1] * 1e3]).collect());
             }
-        };
+            ModelSpec::Prr3(_) => {
+                let p = crate::model::prr3::Prr3::from_slice(x);
+                let (m, k) = crate::model::prr3::mass_and_stiffness(&p);
+                report.mode_shapes = crate::model::prr3::modes(&m, &k).map(|(f, v)| {
+                    (0..3)
+                        .map(|i| ModeShape {
+                            frequency: f[i],
+                            x: v[(0, i)],
+                            y: v[(1, i)],
+                            gamma: v[(2, i)],
+                        })
+                        .collect()
+                });
+            }
+        }
         report
     }
 

@@ -391,8 +391,13 @@ pub fn write_all(dir: &Path, problem: &Problem, study: &Study) -> Result<Vec<Pat
     write_atomic(&path(files[2]), csv(problem, &records).as_bytes())?;
     write_json(&path(files[3]), &zones_report(problem, study))?;
     zones_png(&path(files[4]), problem, study)?;
-    match problem.model {
-        ModelSpec::Bridge(_) => configurations_png(&path(files[5]), problem, study)?,
-    }
-    Ok(files.iter().map(|f| path(f)).collect())
+    // the drawing of configurations is the bridge's; other models write the first five
+    let written = match problem.model {
+        ModelSpec::Bridge(_) => {
+            configurations_png(&path(files[5]), problem, study)?;
+            &files[..]
+        }
+        ModelSpec::Prr3(_) => &files[..5],
+    };
+    Ok(written.iter().map(|f| path(f)).collect())
 }
