@@ -6,6 +6,7 @@
 //! - [`report`]: JSON export and plots.
 //! - [`sweep`]: curves of every output against one design variable.
 
+pub mod dynamics;
 pub mod model;
 pub mod optim;
 pub mod problem;
