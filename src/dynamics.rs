@@ -197,3 +197,17 @@ pub fn exact_step(osc: &Oscillator, force: f64, t: f64) -> f64 {
         xf * (1.0 + (s2 * (s1 * t).exp() - s1 * (s2 * t).exp()) / (s1 - s2))
     }
 }
+
+/// The largest error of the RK4 response with step `h` against [`exact_step`] over
+/// `[0, t_end]`, relative to the final displacement.
+pub fn max_relative_error(osc: &Oscillator, force: f64, h: f64, t_end: f64) -> f64 {
+    let n = (t_end / h).ceil() as usize;
+    let xf = force / osc.stiffness;
+    let mut state = (0.0, 0.0);
+    let mut worst = 0.0f64;
+    for i in 1..=n {
+        state = osc.rk4_step(force, state, h);
+        worst = worst.max((state.0 - exact_step(osc, force, i as f64 * h)).abs());
+    }
+    worst / xf.abs()
+}
