@@ -8,20 +8,11 @@ use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;
 
-use flexopt::dynamics::{max_relative_error, step_response, Oscillator};
-use flexopt::report::plot::register_font;
-use flexopt::report::{write_json, write_with};
+use flexopt::dynamics::{max_relative_error, step_response, Oscillator, PAPER001_TABLE4};
+use flexopt::report::plot::{draw_legend, render_png};
+use flexopt::report::write_json;
 use plotters::prelude::*;
 use serde::Serialize;
-
-const TABLE4: [(f64, f64); 6] = [
-    (46.637, 0.28),
-    (52.421, 0.73),
-    (52.420, 0.86),
-    (79.246, 0.16),
-    (88.598, 0.79),
-    (88.598, 0.34),
-];
 
 #[derive(Serialize)]
 struct Record {
@@ -35,7 +26,7 @@ struct Record {
 
 fn main() {
     let mut records = Vec::new();
-    for &(f, zeta) in &TABLE4 {
+    for &(f, zeta) in &PAPER001_TABLE4 {
         let osc = Oscillator::from_frequency(f, zeta);
         for k in 2..=12 {
             let tol = 10f64.powi(-k);
@@ -67,58 +58,46 @@ fn main() {
 }
 
 fn plot(path: &Path, records: &[Record]) -> Result<(), flexopt::report::WriteError> {
-    register_font();
-    write_with(path, |tmp| {
-        (|| -> Result<(), Box<dyn std::error::Error>> {
-            let root = BitMapBackend::new(tmp, (900, 600)).into_drawing_area();
-            root.fill(&WHITE)?;
-            let tmin = records
+    render_png(path, (900, 600), |root| {
+        let tmin = records
+            .iter()
+            .map(|r| r.median_us)
+            .fold(f64::INFINITY, f64::min)
+            / 2.0;
+        let tmax = records.iter().map(|r| r.median_us).fold(0.0, f64::max) * 2.0;
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                "RK4 step response: run time against error (Table 4 of paper 001)",
+                ("sans-serif", 18),
+            )
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d((tmin..tmax).log_scale(), (1e-16f64..1.0).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("median time of one step response (us)")
+            .y_desc("largest error relative to Sp")
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style(("sans-serif", 12))
+            .draw()?;
+        let colours = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
+        for (k, &(f, zeta)) in PAPER001_TABLE4.iter().enumerate() {
+            let pts: Vec<(f64, f64)> = records
                 .iter()
-                .map(|r| r.median_us)
-                .fold(f64::INFINITY, f64::min)
-                / 2.0;
-            let tmax = records.iter().map(|r| r.median_us).fold(0.0, f64::max) * 2.0;
-            let mut chart = ChartBuilder::on(&root)
-                .caption(
-                    "RK4 step response: run time against error (Table 4 of paper 001)",
-                    ("sans-serif", 18),
-                )
-                .margin(12)
-                .x_label_area_size(40)
-                .y_label_area_size(60)
-                .build_cartesian_2d((tmin..tmax).log_scale(), (1e-16f64..1.0).log_scale())?;
+                .filter(|r| r.frequency == f && r.zeta == zeta)
+                .map(|r| (r.median_us, r.max_relative_error.max(1e-16)))
+                .collect();
+            let c = colours[k];
             chart
-                .configure_mesh()
-                .x_desc("median time of one step response (us)")
-                .y_desc("largest error relative to Sp")
-                .y_label_formatter(&|v| format!("{v:.0e}"))
-                .label_style(("sans-serif", 12))
-                .draw()?;
-            let colours = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
-            for (k, &(f, zeta)) in TABLE4.iter().enumerate() {
-                let pts: Vec<(f64, f64)> = records
-                    .iter()
-                    .filter(|r| r.frequency == f && r.zeta == zeta)
-                    .map(|r| (r.median_us, r.max_relative_error.max(1e-16)))
-                    .collect();
-                let c = colours[k];
-                chart
-                    .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))?
-                    .label(format!("{f} Hz, zeta {zeta}"))
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
-                    });
-                chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, c.filled())))?;
-            }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 12))
-                .draw()?;
-            root.present()?;
-            Ok(())
-        })()
-        .map_err(|e| std::io::Error::other(e.to_string()))
+                .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))?
+                .label(format!("{f} Hz, zeta {zeta}"))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
+                });
+            chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, c.filled())))?;
+        }
+        draw_legend(&mut chart, 12)?;
+        Ok(())
     })
 }

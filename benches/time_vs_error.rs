@@ -23,8 +23,8 @@ use flexopt::optim::sqp::{self, SqpSettings};
 use flexopt::optim::{Problem, Status};
 use flexopt::problem::nlp::DesignNlp;
 use flexopt::problem::Problem as DesignProblem;
-use flexopt::report::plot::register_font;
-use flexopt::report::{write_json, write_with};
+use flexopt::report::plot::{draw_legend, render_png};
+use flexopt::report::write_json;
 use plotters::prelude::*;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -339,90 +339,78 @@ const COLOURS: [RGBColor; 4] = [
 /// Log-log time against error, one panel per problem, one curve per solver: for each
 /// number of starts the point of each tolerance, joined in order of time.
 fn plot(path: &Path, records: &[Record]) -> Result<(), flexopt::report::WriteError> {
-    register_font();
     let floor = 1e-16;
-    write_with(path, |tmp| {
-        (|| -> Result<(), Box<dyn std::error::Error>> {
-            let root = BitMapBackend::new(tmp, (1400, 600)).into_drawing_area();
-            root.fill(&WHITE)?;
-            let root = root.titled(
-                "Run time against error of the best objective (two threads, median of 5)",
-                ("sans-serif", 20),
-            )?;
-            let panels = root.split_evenly((1, PROBLEMS.len()));
-            let names: Vec<String> =
-                records
-                    .iter()
-                    .map(|r| r.problem.clone())
-                    .fold(Vec::new(), |mut v, n| {
-                        if !v.contains(&n) {
-                            v.push(n);
-                        }
-                        v
-                    });
-            for (area, name) in panels.iter().zip(&names) {
-                let mine: Vec<&Record> = records.iter().filter(|r| &r.problem == name).collect();
-                let tmax = mine.iter().map(|r| r.median_ms).fold(1.0, f64::max) * 2.0;
-                let tmin = mine
-                    .iter()
-                    .map(|r| r.median_ms)
-                    .fold(f64::INFINITY, f64::min)
-                    .max(1e-3)
-                    / 2.0;
-                let mut chart = ChartBuilder::on(area)
-                    .caption(name, ("sans-serif", 16))
-                    .margin(10)
-                    .x_label_area_size(40)
-                    .y_label_area_size(60)
-                    .build_cartesian_2d((tmin..tmax).log_scale(), (floor..1.0).log_scale())?;
-                chart
-                    .configure_mesh()
-                    .x_desc("median wall time (ms)")
-                    .y_desc("relative error of the best objective")
-                    .y_label_formatter(&|v| format!("{v:.0e}"))
-                    .x_label_formatter(&|v| format!("{v}"))
-                    .label_style(("sans-serif", 12))
-                    .draw()?;
-                for (k, solver) in Solver::ALL.iter().enumerate() {
-                    let mut pts: Vec<(f64, f64)> = mine
-                        .iter()
-                        .filter(|r| r.solver == *solver)
-                        .filter_map(|r| r.error.map(|e| (r.median_ms, e.max(floor))))
-                        .collect();
-                    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                    // the frontier: the smallest error reached within each time
-                    let mut frontier: Vec<(f64, f64)> = Vec::new();
-                    for &(t, e) in &pts {
-                        let best = frontier.last().map_or(f64::INFINITY, |p| p.1);
-                        if e < best {
-                            if let Some(&(_, prev)) = frontier.last() {
-                                frontier.push((t, prev));
-                            }
-                            frontier.push((t, e));
-                        }
+    render_png(path, (1400, 600), |root| {
+        let root = root.titled(
+            "Run time against error of the best objective (two threads, median of 5)",
+            ("sans-serif", 20),
+        )?;
+        let panels = root.split_evenly((1, PROBLEMS.len()));
+        let names: Vec<String> =
+            records
+                .iter()
+                .map(|r| r.problem.clone())
+                .fold(Vec::new(), |mut v, n| {
+                    if !v.contains(&n) {
+                        v.push(n);
                     }
-                    let colour = COLOURS[k];
-                    chart
-                        .draw_series(LineSeries::new(frontier, colour.stroke_width(2)))?
-                        .label(solver.label())
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2))
-                        });
-                    chart.draw_series(
-                        pts.into_iter()
-                            .map(|p| Circle::new(p, 3, colour.mix(0.6).filled())),
-                    )?;
+                    v
+                });
+        for (area, name) in panels.iter().zip(&names) {
+            let mine: Vec<&Record> = records.iter().filter(|r| &r.problem == name).collect();
+            let tmax = mine.iter().map(|r| r.median_ms).fold(1.0, f64::max) * 2.0;
+            let tmin = mine
+                .iter()
+                .map(|r| r.median_ms)
+                .fold(f64::INFINITY, f64::min)
+                .max(1e-3)
+                / 2.0;
+            let mut chart = ChartBuilder::on(area)
+                .caption(name, ("sans-serif", 16))
+                .margin(10)
+                .x_label_area_size(40)
+                .y_label_area_size(60)
+                .build_cartesian_2d((tmin..tmax).log_scale(), (floor..1.0).log_scale())?;
+            chart
+                .configure_mesh()
+                .x_desc("median wall time (ms)")
+                .y_desc("relative error of the best objective")
+                .y_label_formatter(&|v| format!("{v:.0e}"))
+                .x_label_formatter(&|v| format!("{v}"))
+                .label_style(("sans-serif", 12))
+                .draw()?;
+            for (k, solver) in Solver::ALL.iter().enumerate() {
+                let mut pts: Vec<(f64, f64)> = mine
+                    .iter()
+                    .filter(|r| r.solver == *solver)
+                    .filter_map(|r| r.error.map(|e| (r.median_ms, e.max(floor))))
+                    .collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                // the frontier: the smallest error reached within each time
+                let mut frontier: Vec<(f64, f64)> = Vec::new();
+                for &(t, e) in &pts {
+                    let best = frontier.last().map_or(f64::INFINITY, |p| p.1);
+                    if e < best {
+                        if let Some(&(_, prev)) = frontier.last() {
+                            frontier.push((t, prev));
+                        }
+                        frontier.push((t, e));
+                    }
                 }
+                let colour = COLOURS[k];
                 chart
-                    .configure_series_labels()
-                    .background_style(WHITE.mix(0.8))
-                    .border_style(BLACK)
-                    .label_font(("sans-serif", 12))
-                    .draw()?;
+                    .draw_series(LineSeries::new(frontier, colour.stroke_width(2)))?
+                    .label(solver.label())
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2))
+                    });
+                chart.draw_series(
+                    pts.into_iter()
+                        .map(|p| Circle::new(p, 3, colour.mix(0.6).filled())),
+                )?;
             }
-            root.present()?;
-            Ok(())
-        })()
-        .map_err(|e| std::io::Error::other(e.to_string()))
+            draw_legend(&mut chart, 12)?;
+        }
+        Ok(())
     })
 }

@@ -11,6 +11,17 @@
 
 use serde::Serialize;
 
+/// Table 4 of paper 001: the platform's natural frequencies (theory, Hz) with their
+/// damping ratios.
+pub const PAPER001_TABLE4: [(f64, f64); 6] = [
+    (46.637, 0.28),
+    (52.421, 0.73),
+    (52.420, 0.86),
+    (79.246, 0.16),
+    (88.598, 0.79),
+    (88.598, 0.34),
+];
+
 /// `m x'' + c x' + k x = F` for `t >= 0`, at rest at `x = 0` before.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Oscillator {

@@ -1,22 +1,11 @@
 //! The command line end to end: `flexopt eval` and `flexopt sweep`.
 
-use std::process::Command;
+mod common;
 
+use common::{flexopt, printed};
 use serde_json::Value;
 
 const OPTIMUM: &str = "l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07,t4=0.4";
-
-fn flexopt(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_flexopt"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn printed(x: f64, digits: i32) -> f64 {
-    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
-    (x * scale).round() / scale
-}
 
 #[test]
 fn eval_prints_table2_and_table3_at_the_published_optimum() {

@@ -15,11 +15,6 @@ fn outputs_at_optimum() -> impl Fn(&str) -> f64 {
 }
 
 /// Rounds to `digits` significant digits, as the paper prints.
-fn printed(x: f64, digits: i32) -> f64 {
-    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
-    (x * scale).round() / scale
-}
-
 #[test]
 fn table2_displacements_under_the_fea_input_force_of_10_newton() {
     let out = outputs_at_optimum();

@@ -1,9 +1,11 @@
 //! Every rejection rule of the problem-file format: the message names the file, the key
 //! path and the bad value; the CLI exits with code 2.
 
-use std::path::Path;
-use std::process::Command;
+mod common;
 
+use std::path::Path;
+
+use common::flexopt;
 use flexopt::problem::design::parse_design;
 use flexopt::problem::{Problem, ProblemError};
 
@@ -302,10 +304,7 @@ fn the_command_line_exits_2_and_names_file_and_key() {
     std::fs::create_dir_all(&dir).unwrap();
     let bad = dir.join("bad.toml");
     std::fs::write(&bad, original().replacen("upper = 45", "upper = -50", 1)).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_flexopt"))
-        .args(["eval", bad.to_str().unwrap(), "--design", "l2=1"])
-        .output()
-        .unwrap();
+    let out = flexopt(&["eval", bad.to_str().unwrap(), "--design", "l2=1"]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(

@@ -1,17 +1,7 @@
 //! Fourth-order Runge-Kutta step responses (paper 001, Sec. 4.2) against the exact solution
 //! of the damped single-degree-of-freedom oscillator.
 
-use flexopt::dynamics::{exact_step, step_response, Oscillator};
-
-/// Table 4 of paper 001: natural frequencies (theory, Hz) and damping ratios.
-const TABLE4: [(f64, f64); 6] = [
-    (46.637, 0.28),
-    (52.421, 0.73),
-    (52.420, 0.86),
-    (79.246, 0.16),
-    (88.598, 0.79),
-    (88.598, 0.34),
-];
+use flexopt::dynamics::{exact_step, step_response, Oscillator, PAPER001_TABLE4};
 
 /// The largest error over `[0, t_end]` for step `h` (at one instant the error may pass
 /// near zero for some step, which would spoil the fit).
@@ -78,7 +68,7 @@ fn exact_settling(osc: &Oscillator, band: f64) -> f64 {
 
 #[test]
 fn settling_time_agrees_with_the_exact_one_to_within_a_step() {
-    for &(f, zeta) in TABLE4
+    for &(f, zeta) in PAPER001_TABLE4
         .iter()
         .chain(&[(10.0, 0.02), (10.0, 1.0), (10.0, 3.0)])
     {
@@ -107,7 +97,7 @@ fn settling_time_agrees_with_the_exact_one_to_within_a_step() {
 
 #[test]
 fn the_default_step_gives_the_requested_accuracy() {
-    for &(f, zeta) in &TABLE4 {
+    for &(f, zeta) in &PAPER001_TABLE4 {
         let osc = Oscillator::from_frequency(f, zeta);
         for tol in [1e-4, 1e-6, 1e-8] {
             let h = osc.step_for(tol);
@@ -128,7 +118,7 @@ fn table4_settling_times_lie_where_the_envelope_puts_them() {
     // exp(-zeta w t) / sqrt(1 - zeta^2) falls to 2 %: that bound is what this test holds the
     // integrated response to. Against 4 / (zeta omega_n) itself the ratios are printed (and
     // quoted in the README): the 3 % does not hold for every pair of Table 4.
-    for &(f, zeta) in &TABLE4 {
+    for &(f, zeta) in &PAPER001_TABLE4 {
         let osc = Oscillator::from_frequency(f, zeta);
         let r = step_response(&osc, 1.0, 0.02, 1e-6);
         let w = osc.omega();

@@ -4,8 +4,8 @@
 mod common;
 
 use std::path::Path;
-use std::process::Command;
 
+use common::flexopt;
 use common::hs::hs15;
 use flexopt::optim::multistart::{self, Sampling};
 use flexopt::optim::sqp::{self, SqpSettings};
@@ -119,13 +119,6 @@ fn zones_show_aligned_at_the_top_and_rhombic_below() {
     let lower_rhombic = (2..=c.zones.len())
         .any(|r| c.zones[r - 1].count > 0 && kind_of_zone(r).iter().all(|k| *k == "rhombic"));
     assert!(lower_rhombic, "a lower zone holds rhombic configurations");
-}
-
-fn flexopt(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_flexopt"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

@@ -158,9 +158,14 @@ impl Model for bridge::Bridge {
     }
 
     fn max_of(&self, output: usize) -> Option<&[usize]> {
-        // the stresses at nodes 2, 3, 4, 5 (indices into BridgeOutput::ALL)
-        const ALL_NODES: [usize; 4] = [15, 16, 17, 18];
         use bridge::BridgeOutput::*;
+        // the stresses at nodes 2, 3, 4, 5 (BridgeOutput::ALL lists the variants in order)
+        const ALL_NODES: [usize; 4] = [
+            StressNode2 as usize,
+            StressNode3 as usize,
+            StressNode4 as usize,
+            StressNode5 as usize,
+        ];
         match bridge::BridgeOutput::ALL[output] {
             StressMax => Some(&ALL_NODES),
             StressB => Some(&ALL_NODES[..2]),

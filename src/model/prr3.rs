@@ -49,7 +49,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::scalar::{Jet, Scalar};
-use super::{Dimension, Model, OutputInfo, ParameterInfo, MAX_WANTED};
+use super::{Dimension, Model, OutputInfo, ParameterInfo};
 
 /// Parameters of the 3-PRR mechanism, SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -321,20 +321,13 @@ impl Model for Prr3Model {
         out: &mut [f64],
         jacobian: &mut [f64],
     ) {
-        let seeded: Vec<Jet<10>> = x
-            .iter()
-            .enumerate()
-            .map(|(i, &v)| Jet::variable(v, i))
-            .collect();
+        let seeded: [Jet<10>; 10] = std::array::from_fn(|i| Jet::variable(x[i], i));
         let nan = Jet {
             re: f64::NAN,
             grad: [f64::NAN; 10],
         };
         let f = frequencies(&Prr3::from_slice(&seeded)).unwrap_or([nan; 3]);
-        debug_assert!(wanted.len() <= MAX_WANTED);
-        for (row, &k) in wanted.iter().enumerate() {
-            out[row] = f[k].re;
-            jacobian[row * 10..(row + 1) * 10].copy_from_slice(&f[k].grad);
-        }
+        let picked: Vec<Jet<10>> = wanted.iter().map(|&k| f[k]).collect();
+        super::unseed(&picked, out, jacobian);
     }
 }

@@ -343,15 +343,11 @@ impl Validator<'_, '_> {
                 ),
             ));
         }
-        let required = |present: bool, key: &str| -> Res<()> {
-            if present {
-                Ok(())
-            } else {
-                Err(self.err(
-                    &[k(key)],
-                    format!("missing field `{key}`: the {} model needs it", raw.model),
-                ))
-            }
+        let missing = |key: &str| {
+            self.err(
+                &[k(key)],
+                format!("missing field `{key}`: the {} model needs it", raw.model),
+            )
         };
         let refused = |present: bool, key: &str| -> Res<()> {
             if present {
@@ -365,12 +361,9 @@ impl Validator<'_, '_> {
         };
         let (material, model) = match raw.model.as_str() {
             "bridge" => {
-                required(raw.material.is_some(), "material")?;
-                required(raw.hinge.is_some(), "hinge")?;
-                required(raw.actuator.is_some(), "actuator")?;
-                let (Some(m), Some(h), Some(a)) = (&raw.material, &raw.hinge, &raw.actuator) else {
-                    unreachable!("checked just above")
-                };
+                let m = raw.material.as_ref().ok_or_else(|| missing("material"))?;
+                let h = raw.hinge.as_ref().ok_or_else(|| missing("hinge"))?;
+                let a = raw.actuator.as_ref().ok_or_else(|| missing("actuator"))?;
                 let material = self.material(m)?;
                 let model = ModelSpec::Bridge(Bridge::new(BridgeSettings {
                     hinge: self.hinge_kind(&h.kind)?,

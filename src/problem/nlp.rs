@@ -13,7 +13,7 @@
 
 use super::bind::{merit, scratch, Evaluator};
 use super::{Problem as DesignProblem, Sense};
-use crate::model::{Dimension, MAX_WANTED};
+use crate::model::{Dimension, MAX_PARAMETERS, MAX_WANTED};
 use crate::optim::Problem;
 
 /// One inequality: `sign * (value - limit) / scale >= 0`, `value` the evaluator's
@@ -90,11 +90,16 @@ impl<'p> DesignNlp<'p> {
 
     /// The free variables (SI) of a scaled design.
     pub fn unscale(&self, u: &[f64]) -> Vec<f64> {
-        u.iter()
-            .zip(&self.offset)
-            .zip(&self.range)
-            .map(|((u, o), r)| o + r * u)
-            .collect()
+        self.unscale_into(u, &mut [0.0; MAX_PARAMETERS]).to_vec()
+    }
+
+    /// [`DesignNlp::unscale`] into a stack buffer, for the evaluation hot path.
+    fn unscale_into<'b>(&self, u: &[f64], buf: &'b mut [f64; MAX_PARAMETERS]) -> &'b [f64] {
+        let x = &mut buf[..u.len()];
+        for ((xi, ui), (o, r)) in x.iter_mut().zip(u).zip(self.offset.iter().zip(&self.range)) {
+            *xi = o + r * ui;
+        }
+        x
     }
 
     /// The scaled design of free variables given in SI.
@@ -174,11 +179,8 @@ impl Problem for DesignNlp<'_> {
     }
 
     fn evaluate(&self, u: &[f64], c: &mut [f64]) -> f64 {
-        let mut x = [0.0; MAX_WANTED];
-        let x = &mut x[..u.len()];
-        for j in 0..u.len() {
-            x[j] = self.offset[j] + self.range[j] * u[j];
-        }
+        let mut buf = [0.0; MAX_PARAMETERS];
+        let x = self.unscale_into(u, &mut buf);
         let mut values = [0.0; MAX_WANTED];
         let values = &mut values[..self.values];
         let mut f = 0.0;
@@ -200,11 +202,8 @@ impl Problem for DesignNlp<'_> {
     ) -> f64 {
         let n = u.len();
         let nc = self.values;
-        let mut x = [0.0; MAX_WANTED];
-        let x = &mut x[..n];
-        for j in 0..n {
-            x[j] = self.offset[j] + self.range[j] * u[j];
-        }
+        let mut buf = [0.0; MAX_PARAMETERS];
+        let x = self.unscale_into(u, &mut buf);
         let mut values = [0.0; MAX_WANTED];
         let values = &mut values[..nc];
         let (mut small, mut large) = ([0.0; 96], Vec::new());

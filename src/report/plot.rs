@@ -33,6 +33,43 @@ pub struct Panel {
     pub points: Vec<(f64, f64)>,
 }
 
+/// The error a drawing closure of [`render_png`] returns.
+pub type DrawError = Box<dyn std::error::Error>;
+
+/// Draws a PNG of `size` pixels into `path`, whole or not at all: the bundled font is
+/// registered, the area filled white and handed to `draw`, and the image presented.
+pub fn render_png(
+    path: &Path,
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<BitMapBackend, plotters::coord::Shift>) -> Result<(), DrawError>,
+) -> Result<(), WriteError> {
+    register_font();
+    write_with(path, |tmp| {
+        (|| -> Result<(), DrawError> {
+            let root = BitMapBackend::new(tmp, size).into_drawing_area();
+            root.fill(&WHITE)?;
+            draw(&root)?;
+            root.present()?;
+            Ok(())
+        })()
+        .map_err(|e| std::io::Error::other(e.to_string()))
+    })
+}
+
+/// Draws the legend of `chart`'s labelled series in a framed, half-clear box.
+pub fn draw_legend<'a, CT: plotters::coord::CoordTranslate>(
+    chart: &mut ChartContext<'a, BitMapBackend<'a>, CT>,
+    font_size: u32,
+) -> Result<(), DrawError> {
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .label_font((FAMILY, font_size))
+        .draw()?;
+    Ok(())
+}
+
 /// Draws `panels` on a grid, `columns` wide, each `cell` pixels, into the PNG `path`.
 pub fn line_panels(
     path: &Path,
@@ -41,33 +78,16 @@ pub fn line_panels(
     columns: usize,
     cell: (u32, u32),
 ) -> Result<(), WriteError> {
-    register_font();
     let columns = columns.clamp(1, panels.len().max(1));
     let rows = panels.len().div_ceil(columns).max(1);
     let size = (cell.0 * columns as u32, cell.1 * rows as u32 + 40);
-    write_with(path, |tmp| {
-        draw_panels(tmp, size, title, panels, rows, columns).map_err(std::io::Error::other)
+    render_png(path, size, |root| {
+        let root = root.titled(title, (FAMILY, 22))?;
+        for (panel, area) in panels.iter().zip(root.split_evenly((rows, columns))) {
+            draw_panel(&area, panel)?;
+        }
+        Ok(())
     })
-}
-
-fn draw_panels(
-    path: &Path,
-    size: (u32, u32),
-    title: &str,
-    panels: &[Panel],
-    rows: usize,
-    columns: usize,
-) -> Result<(), String> {
-    let root = BitMapBackend::new(path, size).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let root = root
-        .titled(title, (FAMILY, 22))
-        .map_err(|e| e.to_string())?;
-    let areas = root.split_evenly((rows, columns));
-    for (panel, area) in panels.iter().zip(areas) {
-        draw_panel(&area, panel).map_err(|e| e.to_string())?;
-    }
-    root.present().map_err(|e| e.to_string())
 }
 
 /// Padded range of finite values, never empty.

@@ -8,8 +8,8 @@ use indexmap::IndexMap;
 use plotters::prelude::*;
 use serde::Serialize;
 
-use super::plot::{format_tick, range, register_font};
-use super::{write_atomic, write_json, write_with, DesignReport, WriteError};
+use super::plot::{draw_legend, format_tick, range, render_png};
+use super::{write_atomic, write_json, DesignReport, WriteError};
 use crate::model::bridge::Geometry;
 use crate::optim::Status;
 use crate::problem::{ModelSpec, Problem, Solver};
@@ -234,7 +234,6 @@ fn colour(rank: usize) -> RGBColor {
 /// Fig. 4 analogue: every feasible start's optimum, sorted, coloured by zone, with the
 /// zone thresholds.
 fn zones_png(path: &Path, problem: &Problem, study: &Study) -> Result<(), WriteError> {
-    register_font();
     let mut pts: Vec<(f64, usize)> = study
         .runs
         .iter()
@@ -252,67 +251,55 @@ fn zones_png(path: &Path, problem: &Problem, study: &Study) -> Result<(), WriteE
     } else {
         problem.objective.output.clone()
     };
-    write_with(path, |tmp| {
-        (|| -> Result<(), Box<dyn std::error::Error>> {
-            let root = BitMapBackend::new(tmp, (900, 560)).into_drawing_area();
-            root.fill(&WHITE)?;
-            let yr = range(pts.iter().map(|p| p.0).chain(thresholds.iter().copied()));
-            let mut chart = ChartBuilder::on(&root)
-                .caption(&title, ("sans-serif", 20))
-                .margin(12)
-                .x_label_area_size(40)
-                .y_label_area_size(64)
-                .build_cartesian_2d(0f64..(pts.len().max(1) as f64), yr.0..yr.1)?;
-            chart
-                .configure_mesh()
-                .x_desc("start, sorted by its optimum")
-                .y_desc(&ylabel)
-                .label_style(("sans-serif", 13))
-                .y_label_formatter(&|v| format_tick(*v))
-                .draw()?;
-            for &t in &thresholds {
-                chart.draw_series(LineSeries::new(
-                    [(0.0, t), (pts.len() as f64, t)],
-                    BLACK.mix(0.4).stroke_width(1),
-                ))?;
+    render_png(path, (900, 560), |root| {
+        let yr = range(pts.iter().map(|p| p.0).chain(thresholds.iter().copied()));
+        let mut chart = ChartBuilder::on(root)
+            .caption(&title, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(64)
+            .build_cartesian_2d(0f64..(pts.len().max(1) as f64), yr.0..yr.1)?;
+        chart
+            .configure_mesh()
+            .x_desc("start, sorted by its optimum")
+            .y_desc(&ylabel)
+            .label_style(("sans-serif", 13))
+            .y_label_formatter(&|v| format_tick(*v))
+            .draw()?;
+        for &t in &thresholds {
+            chart.draw_series(LineSeries::new(
+                [(0.0, t), (pts.len() as f64, t)],
+                BLACK.mix(0.4).stroke_width(1),
+            ))?;
+        }
+        for rank in 1..=study.clustering.zones.len() {
+            let series: Vec<(f64, f64)> = pts
+                .iter()
+                .enumerate()
+                .filter(|(_, p)| p.1 == rank)
+                .map(|(i, p)| (i as f64 + 0.5, p.0))
+                .collect();
+            if series.is_empty() {
+                continue;
             }
-            for rank in 1..=study.clustering.zones.len() {
-                let series: Vec<(f64, f64)> = pts
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, p)| p.1 == rank)
-                    .map(|(i, p)| (i as f64 + 0.5, p.0))
-                    .collect();
-                if series.is_empty() {
-                    continue;
-                }
-                let n = series.len();
-                chart
-                    .draw_series(
-                        series
-                            .into_iter()
-                            .map(|p| Circle::new(p, 3, colour(rank).filled())),
-                    )?
-                    .label(format!("zone {rank}: {n}"))
-                    .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour(rank).filled()));
-            }
+            let n = series.len();
             chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 13))
-                .draw()?;
-            root.present()?;
-            Ok(())
-        })()
-        .map_err(|e| std::io::Error::other(e.to_string()))
+                .draw_series(
+                    series
+                        .into_iter()
+                        .map(|p| Circle::new(p, 3, colour(rank).filled())),
+                )?
+                .label(format!("zone {rank}: {n}"))
+                .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour(rank).filled()));
+        }
+        draw_legend(&mut chart, 13)?;
+        Ok(())
     })
 }
 
 /// Fig. 5 analogue: the centre lines of hinge b, the middle link and hinge d of every
 /// feasible start's optimum, one panel per zone, origin at node 2 (mm).
 fn configurations_png(path: &Path, problem: &Problem, study: &Study) -> Result<(), WriteError> {
-    register_font();
     let zones = study.clustering.zones.len();
     let lines: Vec<(usize, Vec<(f64, f64)>)> = study
         .runs
@@ -334,43 +321,37 @@ fn configurations_png(path: &Path, problem: &Problem, study: &Study) -> Result<(
         problem.name
     );
     let columns = zones.clamp(1, 4);
-    write_with(path, |tmp| {
-        (|| -> Result<(), Box<dyn std::error::Error>> {
-            let root = BitMapBackend::new(tmp, (360 * columns as u32, 400)).into_drawing_area();
-            root.fill(&WHITE)?;
-            let root = root.titled(&title, ("sans-serif", 18))?;
-            let panels = root.split_evenly((zones.div_ceil(columns).max(1), columns));
-            for (k, area) in panels.iter().enumerate().take(zones) {
-                let rank = k + 1;
-                let count = lines.iter().filter(|l| l.0 == rank).count();
-                let mut chart = ChartBuilder::on(area)
-                    .caption(format!("zone {rank}: {count} starts"), ("sans-serif", 15))
-                    .margin(8)
-                    .x_label_area_size(32)
-                    .y_label_area_size(44)
-                    .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
-                chart
-                    .configure_mesh()
-                    .x_desc("x (mm)")
-                    .y_desc("y (mm)")
-                    .label_style(("sans-serif", 12))
-                    .draw()?;
-                // hinges b and d in the zone's colour, the rigid middle link in grey
-                for (_, pts) in lines.iter().filter(|l| l.0 == rank) {
-                    for (k, seg) in pts.windows(2).enumerate() {
-                        let style = if k == 1 {
-                            BLACK.mix(0.35).stroke_width(1)
-                        } else {
-                            colour(rank).mix(0.7).stroke_width(3)
-                        };
-                        chart.draw_series(LineSeries::new(seg.iter().copied(), style))?;
-                    }
+    render_png(path, (360 * columns as u32, 400), |root| {
+        let root = root.titled(&title, ("sans-serif", 18))?;
+        let panels = root.split_evenly((zones.div_ceil(columns).max(1), columns));
+        for (k, area) in panels.iter().enumerate().take(zones) {
+            let rank = k + 1;
+            let count = lines.iter().filter(|l| l.0 == rank).count();
+            let mut chart = ChartBuilder::on(area)
+                .caption(format!("zone {rank}: {count} starts"), ("sans-serif", 15))
+                .margin(8)
+                .x_label_area_size(32)
+                .y_label_area_size(44)
+                .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
+            chart
+                .configure_mesh()
+                .x_desc("x (mm)")
+                .y_desc("y (mm)")
+                .label_style(("sans-serif", 12))
+                .draw()?;
+            // hinges b and d in the zone's colour, the rigid middle link in grey
+            for (_, pts) in lines.iter().filter(|l| l.0 == rank) {
+                for (k, seg) in pts.windows(2).enumerate() {
+                    let style = if k == 1 {
+                        BLACK.mix(0.35).stroke_width(1)
+                    } else {
+                        colour(rank).mix(0.7).stroke_width(3)
+                    };
+                    chart.draw_series(LineSeries::new(seg.iter().copied(), style))?;
                 }
             }
-            root.present()?;
-            Ok(())
-        })()
-        .map_err(|e| std::io::Error::other(e.to_string()))
+        }
+        Ok(())
     })
 }
 

@@ -73,3 +73,17 @@ pub fn geometry(x: [f64; 8]) -> Geometry<f64> {
 pub fn rel(a: f64, b: f64, scale: f64) -> f64 {
     (a - b).abs() / b.abs().max(scale)
 }
+
+/// Runs the `flexopt` binary with `args` and collects its exit status and output.
+pub fn flexopt(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_flexopt"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// `x` rounded to `digits` significant digits, the way a paper prints it.
+pub fn printed(x: f64, digits: i32) -> f64 {
+    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
+}
