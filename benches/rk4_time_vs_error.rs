@@ -40,7 +40,7 @@ fn main() {
             times.sort_by(f64::total_cmp);
             let h = osc.step_for(tol);
             let err = max_relative_error(&osc, 1.0, h, 10.0 / (zeta * osc.omega()));
-            println!("f {f:>7} Hz zeta {zeta:.2} tol {tol:.0e}: step {h:.3e} s, {:>9.1} us, error {err:.1e}", times[10]);
+            println!("f {f:>7} Hz zeta {zeta:.4} tol {tol:.0e}: step {h:.3e} s, {:>9.1} us, error {err:.1e}", times[10]);
             records.push(Record {
                 frequency: f,
                 zeta,

@@ -5,10 +5,13 @@
 //!   outputs to an objective and constraints.
 //! - [`report`]: JSON export and plots.
 //! - [`sweep`]: curves of every output against one design variable.
+//! - [`pareto`]: trade-off fronts by stepping the limit of one constraint.
+//! - [`dynamics`]: Runge-Kutta step responses of single-degree-of-freedom systems.
 
 pub mod dynamics;
 pub mod model;
 pub mod optim;
+pub mod pareto;
 pub mod problem;
 pub mod report;
 pub mod study;

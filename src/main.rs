@@ -7,6 +7,7 @@ use clap::{Parser, Subcommand};
 
 use std::io::IsTerminal;
 
+use flexopt::pareto::{pareto, ParetoSpec};
 use flexopt::problem::design::parse_design;
 use flexopt::problem::{Problem, Solver};
 use flexopt::report::study::write_all;
@@ -71,18 +72,8 @@ enum Command {
     /// configurations.png).
     Run {
         problem: PathBuf,
-        /// Folder to write into (default: results/<problem name>).
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// Number of starts (default: the problem file's search.starts).
-        #[arg(long)]
-        starts: Option<usize>,
-        /// Random seed (default: the problem file's search.seed).
-        #[arg(long)]
-        seed: Option<u64>,
-        /// Worker threads, 0 for every core (default: the problem file's search.threads).
-        #[arg(long)]
-        threads: Option<usize>,
+        #[command(flatten)]
+        study: StudyArgs,
         /// Local solver (default: the problem file's search.solver).
         #[arg(long, value_parser = ["sqp", "nelder-mead"])]
         solver: Option<String>,
@@ -90,6 +81,43 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Trade-off front by the epsilon-constraint method: the limit of the problem's
+    /// one-sided constraint on OUTPUT is stepped from A to B and the study run at each
+    /// step (pareto.json, pareto.png).
+    Pareto {
+        problem: PathBuf,
+        /// The constrained output whose limit is stepped.
+        #[arg(long)]
+        vary: String,
+        /// First limit, in the constraint's unit.
+        #[arg(long, allow_hyphen_values = true)]
+        from: f64,
+        /// Last limit, in the constraint's unit.
+        #[arg(long, allow_hyphen_values = true)]
+        to: f64,
+        /// Number of limits.
+        #[arg(long, default_value_t = 11)]
+        steps: usize,
+        #[command(flatten)]
+        study: StudyArgs,
+    },
+}
+
+/// The options of a multistart study, shared by `run` and `pareto`.
+#[derive(clap::Args)]
+struct StudyArgs {
+    /// Folder to write into (default: results/<problem name>).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Number of starts, per limit for `pareto` (default: the problem file's search.starts).
+    #[arg(long)]
+    starts: Option<usize>,
+    /// Random seed (default: the problem file's search.seed).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Worker threads, 0 for every core (default: the problem file's search.threads).
+    #[arg(long)]
+    threads: Option<usize>,
 }
 
 fn main() -> ExitCode {
@@ -117,35 +145,14 @@ fn main() -> ExitCode {
         }
         Command::Run {
             problem,
-            out,
-            starts,
-            seed,
-            threads,
+            study,
             solver,
             quiet,
         } => {
-            let problem = match Problem::load(&problem) {
-                Ok(p) => p,
-                Err(e) => return bad_input(e),
+            let (problem, mut options) = match study_setup(&problem, &study) {
+                Ok(v) => v,
+                Err(code) => return code,
             };
-            let mut options = StudyOptions::from_problem(&problem);
-            if let Some(s) = starts {
-                if !(1..=1_000_000).contains(&s) {
-                    return bad_input(format!(
-                        "{}: key `--starts`: must lie between 1 and 1000000, got {s}",
-                        problem.file.display()
-                    ));
-                }
-                options.starts = s;
-            }
-            if threads.is_some_and(|t| t > 1024) {
-                return bad_input(format!(
-                    "{}: key `--threads`: must lie between 0 and 1024",
-                    problem.file.display()
-                ));
-            }
-            options.seed = seed.unwrap_or(options.seed);
-            options.threads = threads.unwrap_or(options.threads);
             if let Some(s) = solver {
                 options.solver = if s == "sqp" {
                     Solver::Sqp
@@ -154,9 +161,120 @@ fn main() -> ExitCode {
                 };
             }
             options.progress = !quiet && std::io::stderr().is_terminal();
-            let dir = out.unwrap_or_else(|| problem.default_output_dir());
+            let dir = study.out.unwrap_or_else(|| problem.default_output_dir());
             run_study(&problem, &options, &dir)
         }
+        Command::Pareto {
+            problem,
+            vary,
+            from,
+            to,
+            steps,
+            study,
+        } => {
+            let (problem, options) = match study_setup(&problem, &study) {
+                Ok(v) => v,
+                Err(code) => return code,
+            };
+            let spec = ParetoSpec {
+                output: vary,
+                from,
+                to,
+                steps,
+            };
+            let dir = study.out.unwrap_or_else(|| problem.default_output_dir());
+            run_pareto(&problem, &spec, &options, &dir)
+        }
+    }
+}
+
+/// Loads the problem and applies the command line's overrides of its `[search]`.
+fn study_setup(path: &Path, args: &StudyArgs) -> Result<(Problem, StudyOptions), ExitCode> {
+    let StudyArgs {
+        starts,
+        seed,
+        threads,
+        ..
+    } = *args;
+    let problem = Problem::load(path).map_err(bad_input)?;
+    let mut options = StudyOptions::from_problem(&problem);
+    if let Some(s) = starts {
+        if !(1..=1_000_000).contains(&s) {
+            return Err(bad_input(format!(
+                "{}: key `--starts`: must lie between 1 and 1000000, got {s}",
+                problem.file.display()
+            )));
+        }
+        options.starts = s;
+    }
+    if threads.is_some_and(|t| t > 1024) {
+        return Err(bad_input(format!(
+            "{}: key `--threads`: must lie between 0 and 1024",
+            problem.file.display()
+        )));
+    }
+    options.seed = seed.unwrap_or(options.seed);
+    options.threads = threads.unwrap_or(options.threads);
+    Ok((problem, options))
+}
+
+fn run_pareto(
+    problem: &Problem,
+    spec: &ParetoSpec,
+    options: &StudyOptions,
+    dir: &Path,
+) -> ExitCode {
+    use std::fmt::Write as _;
+    let front = match pareto(problem, spec, options) {
+        Ok(f) => f,
+        Err(e) => return bad_input(e),
+    };
+    let files = match front.write(dir) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(WRITE_FAILED);
+        }
+    };
+    let mut text = format!(
+        "{}: {} limits on {} x {} starts in {:.1} ms\n",
+        problem.name,
+        front.points.len(),
+        front.output,
+        front.starts,
+        front.elapsed.as_secs_f64() * 1e3
+    );
+    let _ = writeln!(
+        text,
+        "{:>12}  {:>12}  {:>12}  active  front",
+        format!("limit ({})", front.unit),
+        front.objective,
+        front.output
+    );
+    for p in &front.points {
+        let show = |v: Option<f64>| v.map_or("infeasible".to_string(), |v| format!("{v:.6}"));
+        let _ = writeln!(
+            text,
+            "{:>12}  {:>12}  {:>12}  {:<6}  {}",
+            format!("{:.6}", p.limit),
+            show(p.objective),
+            show(p.value),
+            if p.active { "yes" } else { "no" },
+            if p.on_front { "yes" } else { "no" }
+        );
+    }
+    for f in files {
+        let _ = writeln!(text, "wrote {}", f.display());
+    }
+    emit(&text);
+    if front.points.iter().any(|p| p.feasible) {
+        ExitCode::SUCCESS
+    } else {
+        eprintln!(
+            "error: {}: no limit of the range admits a feasible design",
+            problem.file.display()
+        );
+        ExitCode::from(NO_FEASIBLE_DESIGN)
     }
 }
 

@@ -65,21 +65,7 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
     };
     let var = &problem.variables[vi];
     let model = problem.model();
-    if spec.steps < 2 {
-        return Err(err(
-            "--steps",
-            format!("a sweep needs at least 2 steps, got {}", spec.steps),
-        ));
-    }
-    if !(spec.from.is_finite() && spec.to.is_finite()) || spec.from == spec.to {
-        return Err(err(
-            "--from",
-            format!(
-                "the range {} to {} is empty or not finite",
-                spec.from, spec.to
-            ),
-        ));
-    }
+    check_range(spec.from, spec.to, spec.steps, usize::MAX).map_err(|(k, m)| err(k, m))?;
     let positive = model.parameters()[var.parameter].dimension == crate::model::Dimension::Length;
     if positive && spec.from.min(spec.to) <= 0.0 {
         return Err(err(
@@ -91,12 +77,12 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
         ));
     }
     let wanted: Vec<usize> = if spec.outputs.is_empty() {
-        (0..model.outputs().len()).collect()
+        model.available_outputs()
     } else {
         spec.outputs
             .iter()
             .map(|name| {
-                model.output_index(name).ok_or_else(|| {
+                let i = model.output_index(name).ok_or_else(|| {
                     let names: Vec<_> = model.outputs().iter().map(|o| o.name).collect();
                     err(
                         "--outputs",
@@ -105,7 +91,11 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
                             names.join(", ")
                         ),
                     )
-                })
+                })?;
+                match model.unavailable(i) {
+                    Some(why) => Err(err("--outputs", why)),
+                    None => Ok(i),
+                }
             })
             .collect::<Result<_, _>>()?
     };
@@ -155,6 +145,35 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
             .collect(),
         order: wanted.iter().map(|&k| infos[k].name.to_string()).collect(),
     })
+}
+
+/// Checks the stepped range of a command (`--from`, `--to`, `--steps`): at least 2 and at
+/// most `max_steps` steps over a finite, non-empty range. On failure, the option at fault
+/// and why.
+pub fn check_range(
+    from: f64,
+    to: f64,
+    steps: usize,
+    max_steps: usize,
+) -> Result<(), (&'static str, String)> {
+    if steps < 2 || steps > max_steps {
+        let most = if max_steps == usize::MAX {
+            String::new()
+        } else {
+            format!(" and at most {max_steps}")
+        };
+        return Err((
+            "--steps",
+            format!("needs at least 2 steps{most}, got {steps}"),
+        ));
+    }
+    if !(from.is_finite() && to.is_finite()) || from == to {
+        return Err((
+            "--from",
+            format!("the range {from} to {to} is empty or not finite"),
+        ));
+    }
+    Ok(())
 }
 
 impl Sweep {

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{flexopt, printed};
+use common::{flexopt, flexopt_ok, printed};
 use serde_json::Value;
 
 const OPTIMUM: &str = "l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07,t4=0.4";
@@ -131,4 +131,100 @@ fn sweep_rejects_a_length_range_through_zero() {
         err.contains("problems/wei2017.toml") && err.contains("`--from`"),
         "{err}"
     );
+}
+
+#[test]
+fn pareto_steps_the_frequency_floor_and_writes_the_front() {
+    let dir = std::env::temp_dir().join(format!("flexopt-pareto-{}", std::process::id()));
+    flexopt_ok(&[
+        "pareto",
+        "problems/wei2017_dynamic.toml",
+        "--vary",
+        "natural_frequency",
+        "--from",
+        "600",
+        "--to",
+        "1400",
+        "--steps",
+        "5",
+        "--starts",
+        "40",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("pareto.json")).unwrap()).unwrap();
+    assert!(dir.join("pareto.png").is_file());
+    let points = json["points"].as_array().unwrap();
+    assert_eq!(points.len(), 5);
+    let get = |p: &Value, k: &str| p[k].as_f64().unwrap();
+    for (i, p) in points.iter().enumerate() {
+        let (limit, value) = (get(p, "limit"), get(p, "value"));
+        assert!((limit - (600.0 + 200.0 * i as f64)).abs() < 1e-9);
+        // every optimum meets its floor; the floors above the free optimum's 802 Hz bind
+        assert!(value >= limit * (1.0 - 1e-8), "{value} < {limit}");
+        assert_eq!(p["active"].as_bool().unwrap(), limit > 850.0, "{limit}");
+        assert!(p["on_front"].as_bool().unwrap());
+    }
+    // a higher floor costs amplification
+    for w in points.windows(2) {
+        assert!(get(&w[1], "objective") <= get(&w[0], "objective") * (1.0 + 1e-9));
+    }
+    assert!(get(&points[4], "objective") < get(&points[1], "objective") - 1.0);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn pareto_refuses_an_output_without_a_one_sided_constraint() {
+    for (output, words) in [
+        ("settling_time", "no constraint on \"settling_time\""),
+        ("span_x", "has two limits"),
+    ] {
+        let out = flexopt(&[
+            "pareto",
+            "problems/wei2017_dynamic.toml",
+            "--vary",
+            output,
+            "--from",
+            "1",
+            "--to",
+            "2",
+        ]);
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("problems/wei2017_dynamic.toml")
+                && err.contains("--vary")
+                && err.contains(words),
+            "{err}"
+        );
+    }
+}
+
+#[test]
+fn dynamic_outputs_need_a_dynamics_section() {
+    // wei2017.toml has no [dynamics]: eval leaves the dynamic outputs out, and a problem
+    // that names one is refused at the key that does
+    let out = flexopt(&["eval", "problems/wei2017.toml", "--design", OPTIMUM]);
+    let json: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(json["outputs"]["k_out_actuated"].is_number());
+    assert!(json["outputs"].get("natural_frequency").is_none());
+    let text = std::fs::read_to_string("problems/wei2017.toml")
+        .unwrap()
+        .replacen("output = \"k_out\"", "output = \"natural_frequency\"", 1)
+        .replacen(
+            "unit = \"N/m\"\nlower = 3.8e4",
+            "unit = \"Hz\"\nlower = 500",
+            1,
+        );
+    let path = std::env::temp_dir().join(format!("flexopt-nodyn-{}.toml", std::process::id()));
+    std::fs::write(&path, text).unwrap();
+    let out = flexopt(&["run", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("constraints[4].output") && err.contains("[dynamics]"),
+        "{err}"
+    );
+    std::fs::remove_file(&path).unwrap();
 }

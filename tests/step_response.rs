@@ -1,7 +1,9 @@
 //! Fourth-order Runge-Kutta step responses (paper 001, Sec. 4.2) against the exact solution
 //! of the damped single-degree-of-freedom oscillator.
 
-use flexopt::dynamics::{exact_step, step_response, Oscillator, PAPER001_TABLE4};
+use flexopt::dynamics::{
+    exact_settling_time, exact_step, step_response, Oscillator, PAPER001_TABLE4,
+};
 
 /// The largest error over `[0, t_end]` for step `h` (at one instant the error may pass
 /// near zero for some step, which would spoil the fit).
@@ -111,32 +113,63 @@ fn the_default_step_gives_the_requested_accuracy() {
 }
 
 #[test]
-fn table4_settling_times_lie_where_the_envelope_puts_them() {
-    // ts = 4 / (zeta omega_n) (paper 001, Sec. 4.2) is the envelope estimate of the 2 %
-    // settling time. The response leaves the band for the last time at a peak, so the true
-    // settling time lies within half a damped period before the time at which the envelope
-    // exp(-zeta w t) / sqrt(1 - zeta^2) falls to 2 %: that bound is what this test holds the
-    // integrated response to. Against 4 / (zeta omega_n) itself the ratios are printed (and
-    // quoted in the README): the 3 % does not hold for every pair of Table 4.
+fn table4_settling_times_agree_with_the_papers_estimate() {
+    // ts ~ 4 / (zeta omega_n) (paper 001, Sec. 4.2, Eq. 17) for the frequency and damping
+    // ratio of every mode of Table 4 (ratios in percent there): within 3 %. The estimate
+    // is the time at which the decay envelope falls to exp(-4) = 1.8 %; the response leaves
+    // the 2 % band for the last time at a peak a little earlier, ln(50)/4 = 0.978 of it.
     for &(f, zeta) in &PAPER001_TABLE4 {
         let osc = Oscillator::from_frequency(f, zeta);
         let r = step_response(&osc, 1.0, 0.02, 1e-6);
-        let w = osc.omega();
-        let envelope = ((1.0f64 / 0.02).ln() - (1.0 - zeta * zeta).sqrt().ln()) / (zeta * w);
-        let half_period = std::f64::consts::PI / (w * (1.0 - zeta * zeta).sqrt());
+        let estimate = 4.0 / (zeta * osc.omega());
+        let ratio = r.settling_time / estimate;
         assert!(
-            r.settling_time <= envelope + r.step
-                && r.settling_time >= envelope - half_period - r.step,
-            "zeta {zeta}: ts {} outside [{}, {}]",
-            r.settling_time,
-            envelope - half_period,
-            envelope
+            (ratio - 1.0).abs() < 0.03,
+            "f {f} Hz, zeta {zeta}: ts {} s, 4/(zeta wn) {estimate} s",
+            r.settling_time
         );
-        let estimate = 4.0 / (zeta * w);
         eprintln!(
-            "Table 4: f {f} Hz, zeta {zeta}: ts {:.6} s, 4/(zeta wn) {estimate:.6} s, ratio {:.4}",
-            r.settling_time,
-            r.settling_time / estimate
+            "Table 4: f {f} Hz, zeta {zeta}: ts {:.4} s, 4/(zeta wn) {estimate:.4} s, ratio {ratio:.4}",
+            r.settling_time
         );
     }
+}
+
+#[test]
+fn the_closed_form_settling_time_is_the_scanned_one() {
+    for &(f, zeta) in PAPER001_TABLE4.iter().chain(&[
+        (10.0, 0.02),
+        (10.0, 0.3),
+        (10.0, 0.999),
+        (10.0, 1.0),
+        (10.0, 3.0),
+    ]) {
+        let osc = Oscillator::from_frequency(f, zeta);
+        let closed = exact_settling_time(&osc, 0.02);
+        let scanned = exact_settling(&osc, 0.02);
+        assert!(
+            (closed - scanned).abs() <= 1e-9 * scanned,
+            "f {f} zeta {zeta}: {closed} vs {scanned}"
+        );
+    }
+}
+
+#[test]
+fn table5_settling_times_against_table4() {
+    // Table 5 gives the theoretical settling times 1.43 s (X/Y) and 1.31 s (Z). From
+    // Table 4, the Y translation (52.420 Hz, 0.86 %) settles in 1.374 s (4/(zeta wn):
+    // 1.412 s), 3.9 % below 1.43 s; the X translation (52.421 Hz, 0.73 %) in 1.622 s. The
+    // Z translation (79.246 Hz, 0.16 %) would take 4.9 s, not 1.31 s: no mode of Table 4
+    // gives 1.31 s at 79.246 Hz (it needs about 0.61 %). See the README.
+    let ts =
+        |(f, zeta): (f64, f64)| exact_settling_time(&Oscillator::from_frequency(f, zeta), 0.02);
+    let y = ts(PAPER001_TABLE4[2]);
+    assert!((y / 1.43 - 1.0).abs() < 0.04, "Y: {y}");
+    let x = ts(PAPER001_TABLE4[1]);
+    assert!(x / 1.43 - 1.0 > 0.1, "X: {x}");
+    let z = ts(PAPER001_TABLE4[3]);
+    assert!(z / 1.31 > 3.0, "Z: {z}");
+    // the damping ratio that would give Z 1.31 s lies between Table 4's values
+    let needed = 4.0 / (1.31 * 2.0 * std::f64::consts::PI * 79.246);
+    assert!(needed > 0.0034 && needed < 0.0073, "{needed}");
 }

@@ -72,6 +72,7 @@
 
 use serde::Serialize;
 
+use super::bridge_dynamics::{self, DynamicsSettings, QuarterMode};
 use super::hinge::{Compliance, HingeKind, HingeLoads};
 use super::material::Material;
 use super::scalar::{max, Jet, Scalar};
@@ -111,11 +112,15 @@ pub enum BridgeOutput {
     StressNode3,
     StressNode4,
     StressNode5,
+    KOutActuated,
+    EquivalentMass,
+    NaturalFrequency,
+    SettlingTime,
 }
 
 impl BridgeOutput {
     /// Every output, in the order of [`OUTPUTS`].
-    pub const ALL: [BridgeOutput; 19] = [
+    pub const ALL: [BridgeOutput; 23] = [
         BridgeOutput::Amplification,
         BridgeOutput::KIn,
         BridgeOutput::KOut,
@@ -135,11 +140,25 @@ impl BridgeOutput {
         BridgeOutput::StressNode3,
         BridgeOutput::StressNode4,
         BridgeOutput::StressNode5,
+        BridgeOutput::KOutActuated,
+        BridgeOutput::EquivalentMass,
+        BridgeOutput::NaturalFrequency,
+        BridgeOutput::SettlingTime,
     ];
+
+    /// Whether the output needs the masses and damping of [`BridgeSettings::dynamics`].
+    pub fn needs_dynamics(self) -> bool {
+        matches!(
+            self,
+            BridgeOutput::EquivalentMass
+                | BridgeOutput::NaturalFrequency
+                | BridgeOutput::SettlingTime
+        )
+    }
 }
 
 /// Names, dimensions and meanings of the outputs, indexed like [`BridgeOutput::ALL`].
-pub const OUTPUTS: [OutputInfo; 19] = [
+pub const OUTPUTS: [OutputInfo; 23] = [
     OutputInfo::new("amplification", Dimension::Ratio, "displacement amplification da = a21/a11 (Eq. 9)"),
     OutputInfo::new("k_in", Dimension::Stiffness, "input stiffness 1/a11 (Eq. 10)"),
     OutputInfo::new("k_out", Dimension::Stiffness, "output stiffness -1/a22 (Eq. 11)"),
@@ -159,6 +178,10 @@ pub const OUTPUTS: [OutputInfo; 19] = [
     OutputInfo::new("stress_node3", Dimension::Stress, "largest stress at node 3, the middle-link end of hinge b (Eq. 15-16)"),
     OutputInfo::new("stress_node4", Dimension::Stress, "largest stress at node 4, the middle-link end of hinge d (Eq. 17)"),
     OutputInfo::new("stress_node5", Dimension::Stress, "largest stress at node 5, the output-link end of hinge d (Eq. 17)"),
+    OutputInfo::new("k_out_actuated", Dimension::Stiffness, "face-to-face output stiffness with the actuator holding the input links (k_out for a free input; see bridge_dynamics)"),
+    OutputInfo::new("equivalent_mass", Dimension::Mass, "mass on the moving output face equivalent to the moving bridge and payload (Lagrange/Rayleigh, paper 001 Sec. 2.2)"),
+    OutputInfo::new("natural_frequency", Dimension::Frequency, "natural frequency along the output, sqrt(k_out_actuated / equivalent_mass) / 2 pi (paper 001 Eq. 12)"),
+    OutputInfo::new("settling_time", Dimension::Time, "settling time into +-2 % after a step, for the damping ratio of [dynamics] (paper 001 Sec. 4.2)"),
 ];
 
 /// The piezo actuator that drives the bridge (paper 004, Eq. 12-14).
@@ -180,6 +203,8 @@ pub struct BridgeSettings {
     pub width: f64,
     pub material: Material,
     pub actuator: Actuator,
+    /// Masses and damping for the dynamic outputs; `None` when the problem gives none.
+    pub dynamics: Option<DynamicsSettings>,
 }
 
 /// A bridge design: the eight configuration parameters, SI units (m, rad).
@@ -529,7 +554,9 @@ impl Bridge {
         let s = &self.settings;
         let trig = g.trig();
         let needs_quarter = wanted.iter().any(|&k| match BridgeOutput::ALL[k] {
-            SpanX | SpanY => false,
+            SpanX | SpanY | KOutActuated | EquivalentMass | NaturalFrequency | SettlingTime => {
+                false
+            }
             StrokeIn => s.actuator.stiffness.is_some(),
             _ => true,
         });
@@ -554,6 +581,7 @@ impl Bridge {
             quarter,
             input,
             stresses: None,
+            mode: None,
         };
         for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
             *slot = e.output(BridgeOutput::ALL[k]);
@@ -571,6 +599,8 @@ struct Evaluation<'a, D> {
     /// `(a11, a21, k_in = 1/a11)`, present with the quarter.
     input: Option<(D, D, D)>,
     stresses: Option<[D; 4]>,
+    /// The output mode and its equivalent mass, computed on demand.
+    mode: Option<(QuarterMode<D>, Option<D>)>,
 }
 
 impl<D: Scalar> Evaluation<'_, D> {
@@ -622,6 +652,46 @@ impl<D: Scalar> Evaluation<'_, D> {
         *self.stresses.insert([n2, n3, n4, n5])
     }
 
+    /// The quarter's deflection along the output, with the actuator in place.
+    fn mode(&mut self) -> QuarterMode<D> {
+        if let Some((m, _)) = self.mode {
+            return m;
+        }
+        let (g, s) = (self.g, self.s);
+        let b = s.hinge.compliance(g.l2, g.t2, s.width, &s.material);
+        let d = s.hinge.compliance(g.l4, g.t4, s.width, &s.material);
+        let m = QuarterMode::new(g, self.trig, &b, &d, s.actuator.stiffness);
+        self.mode = Some((m, None));
+        m
+    }
+
+    fn equivalent_mass(&mut self) -> D {
+        let mode = self.mode();
+        if let Some((_, Some(m))) = self.mode {
+            return m;
+        }
+        let (g, s) = (self.g, self.s);
+        // without masses there is no mass: NaN, which the problem layer never asks for
+        // (Model::unavailable) and reports omit
+        let Some(dynamics) = s.dynamics.as_ref() else {
+            return D::from(f64::NAN);
+        };
+        let masses = bridge_dynamics::quarter_masses(
+            g,
+            s.width,
+            s.material.density,
+            dynamics.link_thickness,
+        );
+        let m = bridge_dynamics::equivalent_mass(&mode, &masses, dynamics);
+        self.mode = Some((mode, Some(m)));
+        m
+    }
+
+    fn natural_frequency(&mut self) -> D {
+        let k = self.mode().stiffness;
+        bridge_dynamics::natural_frequency(k, self.equivalent_mass())
+    }
+
     fn output(&mut self, o: BridgeOutput) -> D {
         use BridgeOutput::*;
         match o {
@@ -659,6 +729,18 @@ impl<D: Scalar> Evaluation<'_, D> {
             A12 => self.quarter().a12(),
             A21 => self.input().1,
             A22 => self.quarter().a22(),
+            KOutActuated => self.mode().stiffness,
+            EquivalentMass => self.equivalent_mass(),
+            NaturalFrequency => self.natural_frequency(),
+            SettlingTime => {
+                let scale = self
+                    .s
+                    .dynamics
+                    .as_ref()
+                    .map_or(f64::NAN, |d| d.settling_scale());
+                let omega = self.natural_frequency() * (2.0 * std::f64::consts::PI);
+                omega.recip() * scale
+            }
         }
     }
 }

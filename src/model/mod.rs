@@ -5,9 +5,12 @@
 //! inside for exact gradients.
 
 pub mod bridge;
+pub mod bridge_dynamics;
+pub mod bridge_lagrange;
 pub mod bridge_matrix;
 pub mod hinge;
 pub mod material;
+pub mod platform6;
 pub mod prr3;
 pub mod scalar;
 
@@ -40,6 +43,8 @@ pub enum Dimension {
     RotationalStiffness,
     /// Hz
     Frequency,
+    /// s
+    Time,
 }
 
 impl Dimension {
@@ -56,6 +61,7 @@ impl Dimension {
             Dimension::Mass => "kg",
             Dimension::RotationalStiffness => "N m/rad",
             Dimension::Frequency => "Hz",
+            Dimension::Time => "s",
         }
     }
 }
@@ -128,6 +134,19 @@ pub trait Model: Send + Sync {
         None
     }
 
+    /// Why this output cannot be computed with the model's settings, if it cannot (a
+    /// dynamic output of a bridge without masses, say).
+    fn unavailable(&self, _output: usize) -> Option<String> {
+        None
+    }
+
+    /// The outputs that can be computed with the model's settings.
+    fn available_outputs(&self) -> Vec<usize> {
+        (0..self.outputs().len())
+            .filter(|&i| self.unavailable(i).is_none())
+            .collect()
+    }
+
     /// Index of the output called `name`.
     fn output_index(&self, name: &str) -> Option<usize> {
         self.outputs().iter().position(|o| o.name == name)
@@ -172,6 +191,16 @@ impl Model for bridge::Bridge {
             StressD => Some(&ALL_NODES[2..]),
             _ => None,
         }
+    }
+
+    fn unavailable(&self, output: usize) -> Option<String> {
+        let o = bridge::BridgeOutput::ALL[output];
+        (o.needs_dynamics() && self.settings.dynamics.is_none()).then(|| {
+            format!(
+                "output \"{}\" needs the masses and damping of a [dynamics] section",
+                bridge::OUTPUTS[output].name
+            )
+        })
     }
 
     fn domain_error(&self, x: &[f64]) -> Option<String> {

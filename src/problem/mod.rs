@@ -16,6 +16,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::model::bridge::{Actuator, Bridge, BridgeSettings};
+use crate::model::bridge_dynamics::DynamicsSettings;
 use crate::model::hinge::HingeKind;
 use crate::model::material::Material;
 use crate::model::prr3::Prr3Model;
@@ -370,6 +371,11 @@ impl Validator<'_, '_> {
                     width: self.positive(&[k("hinge"), k("width")], &h.width, Dimension::Length)?,
                     material: material.clone(),
                     actuator: self.actuator(a)?,
+                    dynamics: raw
+                        .dynamics
+                        .as_ref()
+                        .map(|d| self.dynamics(d))
+                        .transpose()?,
                 }));
                 (Some(material), model)
             }
@@ -377,6 +383,7 @@ impl Validator<'_, '_> {
                 refused(raw.material.is_some(), "material")?;
                 refused(raw.hinge.is_some(), "hinge")?;
                 refused(raw.actuator.is_some(), "actuator")?;
+                refused(raw.dynamics.is_some(), "dynamics")?;
                 (None, ModelSpec::Prr3(Prr3Model))
             }
             other => {
@@ -501,6 +508,31 @@ impl Validator<'_, '_> {
                 None => None,
             },
         })
+    }
+
+    fn dynamics(&self, d: &schema::RawDynamics) -> Res<DynamicsSettings> {
+        let path = |key: &str| [k("dynamics"), k(key)];
+        let mass = |key: &str, q: &Quantity| self.non_negative(&path(key), q, Dimension::Mass);
+        let zeta = self.finite(&path("damping_ratio"), d.damping_ratio)?;
+        // the settling time is that of an oscillator: it needs some damping, and above
+        // critical damping the +-2 % band is reached without oscillation, which is fine
+        if !(zeta > 0.0 && zeta <= 10.0) {
+            return Err(self.err(
+                &path("damping_ratio"),
+                format!("must lie in (0, 10], got {zeta}"),
+            ));
+        }
+        Ok(DynamicsSettings::new(
+            mass("payload_mass", &d.payload_mass)?,
+            mass("input_link_mass", &d.input_link_mass)?,
+            mass("output_link_mass", &d.output_link_mass)?,
+            self.non_negative(
+                &path("link_thickness"),
+                &d.link_thickness,
+                Dimension::Length,
+            )?,
+            zeta,
+        ))
     }
 
     fn variables(
@@ -632,7 +664,7 @@ impl Validator<'_, '_> {
     }
 
     fn output(&self, model: &dyn Model, path: &[Segment], name: &str) -> Res<usize> {
-        model.output_index(name).ok_or_else(|| {
+        let index = model.output_index(name).ok_or_else(|| {
             self.err(
                 path,
                 format!(
@@ -640,7 +672,11 @@ impl Validator<'_, '_> {
                     quoted(&model.outputs().iter().map(|o| o.name).collect::<Vec<_>>())
                 ),
             )
-        })
+        })?;
+        match model.unavailable(index) {
+            Some(why) => Err(self.err(path, why)),
+            None => Ok(index),
+        }
     }
 
     fn objective(&self, model: &dyn Model, o: &schema::RawObjective) -> Res<Objective> {

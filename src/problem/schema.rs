@@ -39,6 +39,8 @@ pub struct RawProblem {
     pub material: Option<RawMaterial>,
     pub hinge: Option<RawHinge>,
     pub actuator: Option<RawActuator>,
+    /// Masses and damping of the bridge, for its dynamic outputs.
+    pub dynamics: Option<RawDynamics>,
     pub variables: Vec<RawVariable>,
     pub objective: RawObjective,
     #[serde(default)]
@@ -73,6 +75,16 @@ pub struct RawActuator {
     pub nominal_stroke: Quantity,
     pub preload: Quantity,
     pub stiffness: Option<Quantity>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDynamics {
+    pub payload_mass: Quantity,
+    pub input_link_mass: Quantity,
+    pub output_link_mass: Quantity,
+    pub link_thickness: Quantity,
+    pub damping_ratio: Number,
 }
 
 #[derive(Debug, Deserialize)]

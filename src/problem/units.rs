@@ -47,6 +47,7 @@ const UNITS: &[(Dimension, &[(&str, f64)])] = &[
         ],
     ),
     (Dimension::Frequency, &[("Hz", 1.0), ("kHz", 1e3)]),
+    (Dimension::Time, &[("s", 1.0), ("ms", 1e-3), ("us", 1e-6)]),
 ];
 
 /// A unit of measure: its name as written and its factor to SI.
@@ -124,6 +125,7 @@ pub fn dimension_word(dimension: Dimension) -> &'static str {
         Dimension::Mass => "mass",
         Dimension::RotationalStiffness => "rotational stiffness",
         Dimension::Frequency => "frequency",
+        Dimension::Time => "time",
     }
 }
 
@@ -158,6 +160,7 @@ fn example(dimension: Dimension) -> &'static str {
         Dimension::Mass => "60 g",
         Dimension::RotationalStiffness => "34.53 N m/rad",
         Dimension::Frequency => "1200 Hz",
+        Dimension::Time => "20 ms",
     }
 }
 

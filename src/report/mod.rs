@@ -188,9 +188,14 @@ impl DesignReport {
     /// Evaluates every output of `problem`'s model at the full design `x` (SI).
     pub fn new(problem: &Problem, x: &[f64]) -> Self {
         let model = problem.model();
-        let all: Vec<usize> = (0..model.outputs().len()).collect();
-        let mut out = vec![0.0; all.len()];
-        model.evaluate(x, &all, &mut out);
+        let all = model.available_outputs();
+        let mut values = vec![0.0; all.len()];
+        model.evaluate(x, &all, &mut values);
+        // indexed like the model's outputs; the objective and constraints are available ones
+        let mut out = vec![f64::NAN; model.outputs().len()];
+        for (&i, &v) in all.iter().zip(&values) {
+            out[i] = v;
+        }
         let finite = |v: f64| v.is_finite().then_some(v);
         let mut report = DesignReport {
             problem: problem.name.clone(),
@@ -226,7 +231,8 @@ impl DesignReport {
                 .insert(v.name.clone(), v.unit.name.clone());
             report.design_si.insert(v.name.clone(), xi);
         }
-        for (info, &v) in model.outputs().iter().zip(&out) {
+        for (&i, &v) in all.iter().zip(&values) {
+            let info = &model.outputs()[i];
             report.outputs.insert(info.name.into(), finite(v));
             report
                 .output_units

@@ -5,6 +5,7 @@ pub mod exact;
 pub mod hs;
 
 use flexopt::model::bridge::{Actuator, Bridge, BridgeSettings, Geometry};
+use flexopt::model::bridge_dynamics::DynamicsSettings;
 use flexopt::model::hinge::HingeKind;
 use flexopt::model::material::Material;
 use rand::{Rng, SeedableRng};
@@ -24,6 +25,8 @@ pub fn wei2017_settings() -> BridgeSettings {
             preload: 40.0,
             stiffness: None,
         },
+        // the stage of problems/wei2017_dynamic.toml, so that every output has a value
+        dynamics: Some(DynamicsSettings::new(10e-3, 3e-3, 3e-3, 3e-3, 0.02)),
     }
 }
 
@@ -80,6 +83,18 @@ pub fn flexopt(args: &[&str]) -> std::process::Output {
         .args(args)
         .output()
         .unwrap()
+}
+
+/// Runs the `flexopt` binary with `args`, which must succeed, and returns its output.
+pub fn flexopt_ok(args: &[&str]) -> std::process::Output {
+    let out = flexopt(args);
+    assert!(
+        out.status.success(),
+        "flexopt {}: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
 }
 
 /// `x` rounded to `digits` significant digits, the way a paper prints it.
