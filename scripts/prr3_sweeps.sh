@@ -16,3 +16,10 @@ k1 1e5 1e7
 mp 4 400
 mg 0.5 40
 RANGES
+# Fig. 4: the inertia ratio Ip / Ig = (mp rb^2 / 4) / (mg l^2 / 3) changed through the platform
+# radius, as the paper changed it (its masses also scaled with rb and l, by rules it does not
+# give); inertia_ratio and mass_ratio are recorded beside the frequencies
+./target/release/flexopt sweep problems/prr3_frequency.toml --param rb --from 10 --to 60 \
+  --steps 200 --around "$example" --outputs f1,f2,f3,inertia_ratio --out "$out/inertia_ratio"
+./target/release/flexopt sweep problems/prr3_frequency.toml --param mp --from 4 --to 400 \
+  --steps 200 --around "$example" --outputs f1,f2,f3,mass_ratio --out "$out/mass_ratio"

@@ -219,7 +219,7 @@ pub fn bridge_configuration(x: &[f64]) -> &'static str {
 pub fn configuration(problem: &Problem, x: &[f64]) -> &'static str {
     match problem.model {
         ModelSpec::Bridge(_) => bridge_configuration(x),
-        // the 3-PRR keeps its topology: no configuration types
-        ModelSpec::Prr3(_) => "-",
+        // the parallel mechanisms keep their topology: no configuration types
+        ModelSpec::Prr3(_) | ModelSpec::Pss3(_) => "-",
     }
 }

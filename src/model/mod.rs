@@ -12,6 +12,7 @@ pub mod hinge;
 pub mod material;
 pub mod platform6;
 pub mod prr3;
+pub mod pss3;
 pub mod scalar;
 
 use serde::Serialize;
@@ -151,6 +152,95 @@ pub trait Model: Send + Sync {
     fn output_index(&self, name: &str) -> Option<usize> {
         self.outputs().iter().position(|o| o.name == name)
     }
+}
+
+/// A model that computes all its outputs at once (a parallel mechanism's frequencies come
+/// from one eigen-solve): `evaluate` and `evaluate_with_gradient` pick the wanted ones.
+pub(crate) trait AllOutputs<const N: usize, const K: usize> {
+    /// Every output at `x` (model order); `None` where the model has no value.
+    fn all<D: scalar::Scalar>(&self, x: &[D]) -> Option<[D; K]>;
+
+    fn pick_values(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {
+        let all = self.all(x).unwrap_or([f64::NAN; K]);
+        for (slot, &k) in out.iter_mut().zip(wanted) {
+            *slot = all[k];
+        }
+    }
+
+    fn pick_gradients(&self, x: &[f64], wanted: &[usize], out: &mut [f64], jacobian: &mut [f64]) {
+        let seeded: [Jet<N>; N] = std::array::from_fn(|i| Jet::variable(x[i], i));
+        let nan = Jet {
+            re: f64::NAN,
+            grad: [f64::NAN; N],
+        };
+        let all = self.all(&seeded).unwrap_or([nan; K]);
+        let picked: Vec<Jet<N>> = wanted.iter().map(|&k| all[k]).collect();
+        unseed(&picked, out, jacobian);
+    }
+}
+
+/// Implements [`Model`] for a type with [`AllOutputs`]: its parameters and outputs tables, its
+/// domain check (a function of the design), and evaluation by picking from all outputs.
+macro_rules! model_from_all_outputs {
+    ($model:ty, $parameters:expr, $outputs:expr, $domain_error:expr) => {
+        impl $crate::model::Model for $model {
+            fn parameters(&self) -> &[$crate::model::ParameterInfo] {
+                &$parameters
+            }
+
+            fn outputs(&self) -> &[$crate::model::OutputInfo] {
+                &$outputs
+            }
+
+            fn domain_error(&self, x: &[f64]) -> Option<String> {
+                $domain_error(x)
+            }
+
+            fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {
+                self.pick_values(x, wanted, out);
+            }
+
+            fn evaluate_with_gradient(
+                &self,
+                x: &[f64],
+                wanted: &[usize],
+                out: &mut [f64],
+                jacobian: &mut [f64],
+            ) {
+                self.pick_gradients(x, wanted, out, jacobian);
+            }
+        }
+    };
+}
+pub(crate) use model_from_all_outputs;
+
+/// The checks every parallel mechanism's `domain_error` starts with: the number of
+/// parameters, finite values, positive lengths (`positive`) and non-negative ones
+/// (`non_negative`, masses and stiffnesses, say).
+pub(crate) fn check_parameters(
+    model: &str,
+    info: &[ParameterInfo],
+    x: &[f64],
+    positive: &[usize],
+    non_negative: &[usize],
+) -> Option<String> {
+    if x.len() != info.len() {
+        return Some(format!(
+            "a {model} design has {} parameters, got {}",
+            info.len(),
+            x.len()
+        ));
+    }
+    if let Some((i, v)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Some(format!("{} = {v} is not finite", info[i].name));
+    }
+    if let Some(&i) = positive.iter().find(|&&i| x[i] <= 0.0) {
+        return Some(format!("{} = {} must be positive", info[i].name, x[i]));
+    }
+    if let Some(&i) = non_negative.iter().find(|&&i| x[i] < 0.0) {
+        return Some(format!("{} = {} must not be negative", info[i].name, x[i]));
+    }
+    None
 }
 
 /// Splits gradient-carrying results into values and a row-major Jacobian.

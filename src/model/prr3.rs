@@ -48,8 +48,10 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::scalar::{Jet, Scalar};
-use super::{Dimension, Model, OutputInfo, ParameterInfo};
+use super::scalar::Scalar;
+use super::{
+    check_parameters, model_from_all_outputs, AllOutputs, Dimension, OutputInfo, ParameterInfo,
+};
 
 /// Parameters of the 3-PRR mechanism, SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -124,8 +126,7 @@ pub fn jacobians<D: Scalar>(p: &Prr3<D>) -> ([[D; 3]; 3], [[D; 3]; 3]) {
 pub fn mass_and_stiffness<D: Scalar>(p: &Prr3<D>) -> ([[D; 3]; 3], [[D; 3]; 3]) {
     let (j, jt) = jacobians(p);
     let zero = D::from(0.0);
-    let ip = p.platform_mass * p.platform_radius * p.platform_radius * 0.25;
-    let ig = p.link_mass * p.link_length * p.link_length * (1.0 / 3.0);
+    let (ip, ig) = p.inertias();
     let mut m = [[zero; 3]; 3];
     let mut k = [[zero; 3]; 3];
     m[0][0] = p.platform_mass;
@@ -236,7 +237,7 @@ pub const PARAMETERS: [ParameterInfo; 10] = [
 ];
 
 /// The outputs of the 3-PRR model.
-pub const OUTPUTS: [OutputInfo; 3] = [
+pub const OUTPUTS: [OutputInfo; 5] = [
     OutputInfo::new(
         "f1",
         Dimension::Frequency,
@@ -252,9 +253,36 @@ pub const OUTPUTS: [OutputInfo; 3] = [
         Dimension::Frequency,
         "third natural frequency (Eq. 12)",
     ),
+    OutputInfo::new(
+        "mass_ratio",
+        Dimension::Ratio,
+        "platform mass over link mass, mp / mg (the abscissa of Fig. 4a)",
+    ),
+    OutputInfo::new(
+        "inertia_ratio",
+        Dimension::Ratio,
+        "platform inertia over link inertia, Ip / Ig = (mp rb^2 / 4) / (mg l^2 / 3) (Fig. 4b)",
+    ),
 ];
 
+/// Every output of the 3-PRR, in the order of [`OUTPUTS`]; `None` where the eigen-solve
+/// fails (a mass matrix that is not positive definite).
+fn all_outputs<D: Scalar>(p: &Prr3<D>) -> Option<[D; 5]> {
+    let [f1, f2, f3] = frequencies(p)?;
+    let (ip, ig) = p.inertias();
+    Some([f1, f2, f3, p.platform_mass / p.link_mass, ip / ig])
+}
+
 impl<D: Scalar> Prr3<D> {
+    /// The platform's inertia about its centre `Ip = mp rb^2 / 4` and a link's about its
+    /// hinge `Ig = mg l^2 / 3` (kg m^2).
+    pub fn inertias(&self) -> (D, D) {
+        (
+            self.platform_mass * self.platform_radius * self.platform_radius * 0.25,
+            self.link_mass * self.link_length * self.link_length * (1.0 / 3.0),
+        )
+    }
+
     /// From the parameters in the order of [`PARAMETERS`].
     pub fn from_slice(x: &[D]) -> Self {
         Prr3 {
@@ -276,58 +304,15 @@ impl<D: Scalar> Prr3<D> {
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Prr3Model;
 
-impl Model for Prr3Model {
-    fn parameters(&self) -> &[ParameterInfo] {
-        &PARAMETERS
-    }
+model_from_all_outputs!(Prr3Model, PARAMETERS, OUTPUTS, domain_error);
 
-    fn outputs(&self) -> &[OutputInfo] {
-        &OUTPUTS
-    }
+/// Why `x` lies outside the model's domain, if it does.
+fn domain_error(x: &[f64]) -> Option<String> {
+    check_parameters("3-PRR", &PARAMETERS, x, &[0, 1, 2, 6, 7, 8, 9], &[])
+}
 
-    fn domain_error(&self, x: &[f64]) -> Option<String> {
-        if x.len() != PARAMETERS.len() {
-            return Some(format!(
-                "a 3-PRR design has {} parameters, got {}",
-                PARAMETERS.len(),
-                x.len()
-            ));
-        }
-        if let Some((i, v)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Some(format!("{} = {v} is not finite", PARAMETERS[i].name));
-        }
-        for i in [0, 1, 2, 6, 7, 8, 9] {
-            if x[i] <= 0.0 {
-                return Some(format!(
-                    "{} = {} must be positive",
-                    PARAMETERS[i].name, x[i]
-                ));
-            }
-        }
-        None
-    }
-
-    fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {
-        let f = frequencies(&Prr3::from_slice(x)).unwrap_or([f64::NAN; 3]);
-        for (slot, &k) in out.iter_mut().zip(wanted) {
-            *slot = f[k];
-        }
-    }
-
-    fn evaluate_with_gradient(
-        &self,
-        x: &[f64],
-        wanted: &[usize],
-        out: &mut [f64],
-        jacobian: &mut [f64],
-    ) {
-        let seeded: [Jet<10>; 10] = std::array::from_fn(|i| Jet::variable(x[i], i));
-        let nan = Jet {
-            re: f64::NAN,
-            grad: [f64::NAN; 10],
-        };
-        let f = frequencies(&Prr3::from_slice(&seeded)).unwrap_or([nan; 3]);
-        let picked: Vec<Jet<10>> = wanted.iter().map(|&k| f[k]).collect();
-        super::unseed(&picked, out, jacobian);
+impl AllOutputs<10, 5> for Prr3Model {
+    fn all<D: Scalar>(&self, x: &[D]) -> Option<[D; 5]> {
+        all_outputs(&Prr3::from_slice(x))
     }
 }

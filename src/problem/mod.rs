@@ -20,6 +20,7 @@ use crate::model::bridge_dynamics::DynamicsSettings;
 use crate::model::hinge::HingeKind;
 use crate::model::material::Material;
 use crate::model::prr3::Prr3Model;
+use crate::model::pss3::Pss3Model;
 use crate::model::{Dimension, Model};
 pub use error::ProblemError;
 use error::{Locator, Segment};
@@ -32,15 +33,17 @@ use units::{parse_quantity, Unit};
 pub enum ModelSpec {
     Bridge(Bridge),
     Prr3(Prr3Model),
+    Pss3(Pss3Model),
 }
 
 impl ModelSpec {
-    pub const NAMES: &'static [&'static str] = &["bridge", "prr3"];
+    pub const NAMES: &'static [&'static str] = &["bridge", "prr3", "pss3"];
 
     pub fn as_model(&self) -> &dyn Model {
         match self {
             ModelSpec::Bridge(b) => b,
             ModelSpec::Prr3(p) => p,
+            ModelSpec::Pss3(p) => p,
         }
     }
 
@@ -49,6 +52,7 @@ impl ModelSpec {
         match self {
             ModelSpec::Bridge(_) => "bridge",
             ModelSpec::Prr3(_) => "prr3",
+            ModelSpec::Pss3(_) => "pss3",
         }
     }
 }
@@ -379,12 +383,17 @@ impl Validator<'_, '_> {
                 }));
                 (Some(material), model)
             }
-            "prr3" => {
+            "prr3" | "pss3" => {
                 refused(raw.material.is_some(), "material")?;
                 refused(raw.hinge.is_some(), "hinge")?;
                 refused(raw.actuator.is_some(), "actuator")?;
                 refused(raw.dynamics.is_some(), "dynamics")?;
-                (None, ModelSpec::Prr3(Prr3Model))
+                let spec = if raw.model == "prr3" {
+                    ModelSpec::Prr3(Prr3Model)
+                } else {
+                    ModelSpec::Pss3(Pss3Model)
+                };
+                (None, spec)
             }
             other => {
                 return Err(self.err(

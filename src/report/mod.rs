@@ -163,19 +163,23 @@ pub struct DesignReport {
     /// The quarter bridge's nodes 2..5 in mm, origin at node 2 (bridge models only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub nodes_mm: Option<Vec<[f64; 2]>>,
-    /// The natural modes, mass-normalised, in (x, y, gamma) of the platform (3-PRR only).
+    /// The natural modes, mass-normalised, in the platform coordinates (parallel mechanisms).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mode_shapes: Option<Vec<ModeShape>>,
 }
 
 /// A natural mode of a parallel mechanism: its frequency (Hz) and its shape in the
-/// platform coordinates (m, m, rad), normalised so that `v^T M v = 1`.
+/// platform coordinates, normalised so that `v^T M v = 1`: `(x, y, gamma)` (m, m, rad) for
+/// the planar 3-PRR, `(x, y, z)` (m) for the spatial 3-PSS.
 #[derive(Debug, Clone, Serialize)]
 pub struct ModeShape {
     pub frequency: f64,
     pub x: f64,
     pub y: f64,
-    pub gamma: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub z: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gamma: Option<f64>,
 }
 
 /// Relative margin within which a constraint counts as active.
@@ -255,10 +259,31 @@ impl DesignReport {
                             frequency: f[i],
                             x: v[(0, i)],
                             y: v[(1, i)],
-                            gamma: v[(2, i)],
+                            z: None,
+                            gamma: Some(v[(2, i)]),
                         })
                         .collect()
                 });
+            }
+            ModelSpec::Pss3(_) => {
+                // M and K are diagonal (see model::pss3): each axis is a mode
+                let p = crate::model::pss3::Pss3::from_slice(x);
+                let (m, f) = (p.mass_matrix(), p.axis_frequencies());
+                let mut modes: Vec<ModeShape> = (0..3)
+                    .map(|a| {
+                        let mut v = [0.0; 3];
+                        v[a] = m[a][a].sqrt().recip();
+                        ModeShape {
+                            frequency: f[a],
+                            x: v[0],
+                            y: v[1],
+                            z: Some(v[2]),
+                            gamma: None,
+                        }
+                    })
+                    .collect();
+                modes.sort_by(|a, b| a.frequency.total_cmp(&b.frequency));
+                report.mode_shapes = Some(modes);
             }
         }
         report

@@ -378,7 +378,7 @@ pub fn write_all(dir: &Path, problem: &Problem, study: &Study) -> Result<Vec<Pat
             configurations_png(&path(files[5]), problem, study)?;
             &files[..]
         }
-        ModelSpec::Prr3(_) => &files[..5],
+        ModelSpec::Prr3(_) | ModelSpec::Pss3(_) => &files[..5],
     };
     Ok(written.iter().map(|f| path(f)).collect())
 }
