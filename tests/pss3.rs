@@ -367,3 +367,43 @@ fn the_example_problem_finds_its_constrained_optimum() {
         s.runs[s.best].objective
     );
 }
+
+#[test]
+fn hinge_jacobians_give_the_rods_turn_and_ignore_z() {
+    // Eq. 13: |psi_i| is the angle the rod turns through, to first order; a motion along z
+    // bends no hinge (Sec. 3.2)
+    let mut r = rng(4);
+    for _ in 0..300 {
+        let m = random(&mut r);
+        let jp = m.hinge_jacobians();
+        let d = 1e-7 * m.rod_length;
+        let dp = [
+            r.random_range(-1.0..1.0) * d,
+            r.random_range(-1.0..1.0) * d,
+            r.random_range(-1.0..1.0) * d,
+        ];
+        for (i, j) in jp.iter().enumerate() {
+            let psi: Vec<f64> = (0..3)
+                .map(|k| (0..3).map(|c| j[k][c] * dp[c]).sum())
+                .collect();
+            assert_eq!(psi[2], 0.0);
+            let (r0, r1) = (rod(&m, [0.0; 3], i), rod(&m, dp, i));
+            let cross = [
+                r0[1] * r1[2] - r0[2] * r1[1],
+                r0[2] * r1[0] - r0[0] * r1[2],
+                r0[0] * r1[1] - r0[1] * r1[0],
+            ];
+            let turn =
+                cross.iter().map(|v| v * v).sum::<f64>().sqrt() / (m.rod_length * m.rod_length);
+            let got = (psi[0] * psi[0] + psi[1] * psi[1]).sqrt();
+            assert!(
+                (got - turn).abs() < 1e-5 * turn.max(1e-12),
+                "limb {i}: {got} vs {turn}"
+            );
+            assert!(
+                j.iter().all(|row| row[2].abs() < 1e-12 / m.rod_length),
+                "z bends limb {i}"
+            );
+        }
+    }
+}

@@ -16,10 +16,17 @@
 //! with `c_i = cos phi_i`, `s_i = sin phi_i`, `phi_i = 0, 120, 240 deg`. At rest,
 //! `J_i = (-Er c_i / h, -Er s_i / h, 1)`: the signs the extraction lost follow from Eq. 3, and
 //! the "approximate" Jacobian the paper prints is exact at the rest pose. The rod's tip
-//! moves relative to its foot by `dr_i = (dx, dy, dz - J_i . dP)`, which is normal to the rod,
-//! so the spherical hinge bends by `|dr_i| / l` (Eq. 7-13: the two small angles `alpha_i`,
-//! `beta_i` of the frame transformation are the components of that turn; torsion is
-//! blocked, Sec. 3).
+//! moves relative to its foot by `dr_i = (dx, dy, dz - J_i . dP)`, normal to the rod.
+//!
+//! # Hinge deformation (Eq. 7-13)
+//!
+//! The frame B_i2 has z2 along the rod at rest; the printed Eq. 8 with its signs rebuilt is
+//! `Rz(phi_i) Ry(theta_l)`, giving `x2 = (cos theta_l c_i, cos theta_l s_i, sin theta_l)` (for
+//! `Er > 0` the rod leans inwards: `z2 = (-sin theta_l c_i, -sin theta_l s_i, cos theta_l)`) and
+//! `y2 = (-s_i, c_i, 0)`. Eq. 10 with small angles, `[[1, 0, beta], [0, 1, -alpha],
+//! [-beta, alpha, 1]]`, carries the rod's tip `(0, 0, l)` to `l (beta, -alpha, 1)`, so Eq. 11 =
+//! Eq. 12 gives `beta_i = x2 . dr_i / l` and `alpha_i = -y2 . dr_i / l`: the rows of `J_psi,i`
+//! ([`Pss3::hinge_jacobians`]); the third angle (torsion) is blocked (Sec. 3).
 //!
 //! # Dynamics (Eq. 14-26)
 //!
@@ -185,28 +192,56 @@ impl<D: Scalar> Pss3<D> {
         m
     }
 
-    /// The stiffness matrix `K` (N/m): the hinges' bending and the gravity on the sliders.
-    pub fn stiffness_matrix(&self) -> [[D; 3]; 3] {
+    /// The hinge angular-deformation Jacobians of Eq. 13, `psi_i = J_psi,i P` with
+    /// `psi_i = (alpha_i, beta_i, 0)`: the two small turns of the equivalent spherical hinge
+    /// about the axes x2, y2 of its frame B_i2 (Eq. 8: z2 along the rod at rest, x2 in the
+    /// plane of the rod and the z axis, y2 = (-sin phi_i, cos phi_i, 0)). The rod's tip moves
+    /// by `dr_i = (dx, dy, dz - J_i . dP)`; Eq. 9-12 read `dr_i = l (beta_i x2 - alpha_i y2)`.
+    pub fn hinge_jacobians(&self) -> [[[D; 3]; 3]; 3] {
         let (er, h, l) = (self.radius_difference(), self.height(), self.rod_length);
+        let (ts, tc) = (er / l, h / l);
         let j = self.jacobian();
-        let bending = self.hinge_stiffness * 4.0 / (l * l);
+        let zero = D::from(0.0);
+        std::array::from_fn(|i| {
+            let (s, c) = LIMB_ANGLES[i];
+            let x2 = [tc * c, tc * s, ts];
+            let y2 = [D::from(-s), D::from(c), zero];
+            // d(dr_i)/dP, column by column
+            let dr = |col: usize| {
+                let mut v = [zero; 3];
+                if col < 2 {
+                    v[col] = D::from(1.0);
+                }
+                v[2] = v[2] + if col == 2 { D::from(1.0) } else { zero } - j[i][col];
+                v
+            };
+            let dot = |a: &[D; 3], b: [D; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            let inv_l = l.recip();
+            [
+                std::array::from_fn(|col| -dot(&y2, dr(col)) * inv_l),
+                std::array::from_fn(|col| dot(&x2, dr(col)) * inv_l),
+                [zero; 3],
+            ]
+        })
+    }
+
+    /// The stiffness matrix `K` (N/m) of Eq. 24: the four hinges of each limb,
+    /// `4 sum J_psi^T K_b J_psi` with `K_b = diag(kbm, kbm, 0)`, and the gravity on the sliders.
+    pub fn stiffness_matrix(&self) -> [[D; 3]; 3] {
+        let (er, h) = (self.radius_difference(), self.height());
         let weight = (self.slider_mass + self.rod_mass) * GRAVITY;
+        let bending = self.hinge_stiffness * 4.0;
         let zero = D::from(0.0);
         let mut k = [[zero; 3]; 3];
-        for (i, (s, c)) in LIMB_ANGLES.into_iter().enumerate() {
-            // d(dr_i)/dP: identity on x and y, then the row e_z - J_i
-            let a = [
-                [D::from(1.0), zero, zero],
-                [zero, D::from(1.0), zero],
-                [-j[i][0], -j[i][1], D::from(1.0) - j[i][2]],
-            ];
+        for (jp, (s, c)) in self.hinge_jacobians().iter().zip(LIMB_ANGLES) {
             let w = [er * c, er * s, zero];
             for r in 0..3 {
                 for col in 0..3 {
-                    let ata = a[0][r] * a[0][col] + a[1][r] * a[1][col] + a[2][r] * a[2][col];
+                    // K_b has no torsion: only the rows alpha and beta count
+                    let hinge = jp[0][r] * jp[0][col] + jp[1][r] * jp[1][col];
                     let flat = if r == col && r < 2 { h.recip() } else { zero };
                     let hess = flat + w[r] * w[col] / (h * h * h);
-                    k[r][col] = k[r][col] + bending * ata + weight * hess;
+                    k[r][col] = k[r][col] + bending * hinge + weight * hess;
                 }
             }
         }
