@@ -185,17 +185,37 @@ pub fn solve_with_hint(
             }
         }
         if p == usize::MAX {
+            // the most violated inequality, violations relative to the constraint's size so
+            // that scaling a row does not change which is the worst; general rows, then the
+            // bounds (lower, upper) of each variable
             let mut worst = 0.0;
-            for i in meq..m {
-                if ws.in_active[i] {
-                    continue;
+            let general = c.chunks_exact(n).zip(b).zip(&ws.inv_scale).enumerate();
+            for (i, ((row, &bi), &inv)) in general.skip(meq) {
+                if !ws.in_active[i] {
+                    let s = (dot(row, x) - bi) * inv;
+                    if s < worst {
+                        worst = s;
+                        p = i;
+                    }
                 }
-                // violations relative to the constraint's size, so that scaling a row
-                // does not change which is the worst
-                let s = rows.scaled_slack(i, x, &ws.inv_scale);
-                if s < worst {
-                    worst = s;
-                    p = i;
+            }
+            if !lower.is_empty() {
+                for (j, ((&xj, &lo), &hi)) in x.iter().zip(lower).zip(upper).enumerate() {
+                    let i = mg + 2 * j;
+                    if lo.is_finite() && !ws.in_active[i] {
+                        let s = (xj - lo) / (2.0 + lo.abs());
+                        if s < worst {
+                            worst = s;
+                            p = i;
+                        }
+                    }
+                    if hi.is_finite() && !ws.in_active[i + 1] {
+                        let s = (hi - xj) / (2.0 + hi.abs());
+                        if s < worst {
+                            worst = s;
+                            p = i + 1;
+                        }
+                    }
                 }
             }
             if p == usize::MAX || worst > -1e-14 {
