@@ -42,6 +42,7 @@ fn sqp_settings(problem: &Problem) -> SqpSettings {
     SqpSettings {
         tolerance: problem.search.tolerance,
         max_iterations: problem.search.max_iterations,
+        ..SqpSettings::default()
     }
 }
 

@@ -131,6 +131,7 @@ fn solve_all(
             let settings = SqpSettings {
                 tolerance: tol,
                 max_iterations: 500,
+                ..SqpSettings::default()
             };
             starts
                 .par_iter()
@@ -216,6 +217,7 @@ fn main() {
         let reference_settings = SqpSettings {
             tolerance: 1e-12,
             max_iterations: 1000,
+            ..SqpSettings::default()
         };
         let reference = pool.install(|| {
             all_starts

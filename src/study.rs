@@ -92,6 +92,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
             let settings = SqpSettings {
                 tolerance,
                 max_iterations,
+                ..SqpSettings::default()
             };
             multistart::run(
                 &nlp,

@@ -50,9 +50,16 @@ fn check<const N: usize>(p: &Hs<N>, s: &Solution, solver: &str) {
     );
 }
 
+/// SQP with its default Hessian refresh, and with BFGS alone.
 fn sqp_on<const N: usize>(p: Hs<N>) {
     let s = sqp::solve(&p, &p.start, &SqpSettings::default());
     check(&p, &s, "SQP");
+    let bfgs = SqpSettings {
+        hessian_refresh: 0,
+        ..SqpSettings::default()
+    };
+    let s = sqp::solve(&p, &p.start, &bfgs);
+    check(&p, &s, "SQP (BFGS only)");
 }
 
 #[test]

@@ -184,6 +184,7 @@ fn iteration_limits_report_a_sound_point() {
         &SqpSettings {
             tolerance: 1e-10,
             max_iterations: 2,
+            ..SqpSettings::default()
         },
     );
     sound(&p, &s);

@@ -3,6 +3,7 @@
 
 pub mod cluster;
 pub mod finite_differences;
+pub mod hessian;
 pub mod multistart;
 pub mod nelder_mead;
 pub mod problem;

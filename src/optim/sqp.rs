@@ -28,6 +28,7 @@
 //! M. J. D. Powell, "A fast algorithm for nonlinearly constrained optimization
 //! calculations", Lecture Notes in Mathematics 630 (1978).
 
+use super::hessian;
 use super::problem::{clamp_into, max_violation, Problem, Solution, Status};
 use super::qp::{self, QpStatus, QpWorkspace};
 
@@ -37,6 +38,10 @@ pub struct SqpSettings {
     /// Stop when the KKT residual is below this.
     pub tolerance: f64,
     pub max_iterations: usize,
+    /// Every this many iterations, replace the BFGS matrix by the Hessian of the Lagrangian
+    /// from differences of the exact gradients, its negative curvature flipped
+    /// ([`super::hessian`]); 0 for BFGS alone.
+    pub hessian_refresh: usize,
 }
 
 impl Default for SqpSettings {
@@ -44,9 +49,13 @@ impl Default for SqpSettings {
         SqpSettings {
             tolerance: 1e-10,
             max_iterations: 500,
+            hessian_refresh: HESSIAN_REFRESH,
         }
     }
 }
+
+/// The default of [`SqpSettings::hessian_refresh`].
+pub const HESSIAN_REFRESH: usize = 5;
 
 /// Solves `problem` from `x0` (moved into the bounds first).
 pub fn solve(problem: &dyn Problem, x0: &[f64], settings: &SqpSettings) -> Solution {
@@ -68,6 +77,8 @@ struct Work<'p> {
     jac: Vec<f64>,
     /// BFGS approximation of the Hessian of the Lagrangian, row-major.
     hess: Vec<f64>,
+    hess_scratch: Vec<f64>,
+    eigen_scratch: Vec<f64>,
     xt: Vec<f64>,
     ft: f64,
     ct: Vec<f64>,
@@ -121,6 +132,8 @@ impl<'p> Work<'p> {
             g: vec![0.0; n],
             jac: vec![0.0; m * n],
             hess: identity(n),
+            hess_scratch: vec![0.0; n * n],
+            eigen_scratch: vec![0.0; n * n],
             xt: vec![0.0; n],
             ft: f64::NAN,
             ct: vec![0.0; m],
@@ -163,6 +176,9 @@ impl<'p> Work<'p> {
         let (mut best_kkt, mut stalled) = (f64::INFINITY, 0);
         let mut stationary_violation = 0;
         for iteration in 0..settings.max_iterations {
+            if settings.hessian_refresh > 0 && iteration % settings.hessian_refresh == 0 {
+                self.refresh_hessian(problem);
+            }
             self.rhs.copy_from_slice(&self.c);
             let Some(elastic) = self.solve_qp() else {
                 return self.finish(
@@ -308,6 +324,50 @@ impl<'p> Work<'p> {
         self.d.copy_from_slice(&self.d_saved);
         self.lambda.copy_from_slice(&self.lambda_saved);
         false
+    }
+
+    /// `B <- |H|`, `H` the Hessian of the Lagrangian at `x` with the current multipliers, by
+    /// forward differences of the exact gradients (backward at an upper bound). Leaves `B`
+    /// as it was where a difference cannot be evaluated.
+    fn refresh_hessian(&mut self, problem: &dyn Problem) {
+        let n = self.n;
+        // the Lagrangian's gradient at x into bfgs_y, at the shifted point into bfgs_bs
+        lagrangian_gradient(&self.g, &self.jac, &self.lambda, &mut self.bfgs_y);
+        let h = &mut self.hess_scratch;
+        for j in 0..n {
+            let step = 1e-7 * (1.0 + self.x[j].abs());
+            let step = if self.x[j] + step <= self.upper[j] {
+                step
+            } else {
+                -step
+            };
+            self.xt.copy_from_slice(&self.x);
+            self.xt[j] += step;
+            self.ft = problem.evaluate_with_gradient(
+                &self.xt,
+                &mut self.ct,
+                &mut self.gt,
+                &mut self.jact,
+            );
+            self.evaluations += 1;
+            if !finite(self.ft, &self.ct, &self.gt, &self.jact) {
+                return;
+            }
+            lagrangian_gradient(&self.gt, &self.jact, &self.lambda, &mut self.bfgs_bs);
+            for i in 0..n {
+                h[i * n + j] = (self.bfgs_bs[i] - self.bfgs_y[i]) / step;
+            }
+        }
+        for i in 0..n {
+            for j in 0..i {
+                let v = 0.5 * (h[i * n + j] + h[j * n + i]);
+                h[i * n + j] = v;
+                h[j * n + i] = v;
+            }
+        }
+        if hessian::make_positive_definite(h, &mut self.eigen_scratch, n, 1e-6) {
+            self.hess.copy_from_slice(h);
+        }
     }
 
     fn reset_hessian(&mut self) {
@@ -531,6 +591,17 @@ impl<'p> Work<'p> {
             kkt_residual: kkt,
             iterations,
             evaluations: self.evaluations,
+        }
+    }
+}
+
+/// `grad f - J^T lambda`.
+fn lagrangian_gradient(g: &[f64], jac: &[f64], lambda: &[f64], out: &mut [f64]) {
+    let n = g.len();
+    out.copy_from_slice(g);
+    for (i, &l) in lambda.iter().enumerate() {
+        for (o, &d) in out.iter_mut().zip(&jac[i * n..(i + 1) * n]) {
+            *o -= l * d;
         }
     }
 }
