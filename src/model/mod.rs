@@ -312,8 +312,9 @@ impl Model for bridge::Bridge {
         out: &mut [f64],
         jacobian: &mut [f64],
     ) {
-        // most problems name a few outputs: keep them on the stack without zeroing much
-        let mut small = [Jet::<8>::from(0.0); 8];
+        // most problems name a few outputs (wei2017: 9, its stress limit on four node
+        // stresses): keep them on the stack without zeroing much
+        let mut small = [Jet::<8>::from(0.0); 12];
         let mut large = Vec::new();
         let y = if wanted.len() <= small.len() {
             &mut small[..wanted.len()]

@@ -80,7 +80,7 @@ impl<'p> Evaluator<'p> {
     pub fn evaluate(&self, free: &[f64], objective: &mut f64, constraints: &mut [f64]) {
         let mut x = [0.0; MAX_PARAMETERS];
         let x = self.fill(free, &mut x);
-        let (mut small, mut large) = ([0.0; 8], Vec::new());
+        let (mut small, mut large) = ([0.0; 16], Vec::new());
         let out = scratch(&mut small, &mut large, self.wanted.len());
         self.model.evaluate(x, &self.wanted, out);
         *objective = out[0];
@@ -102,9 +102,11 @@ impl<'p> Evaluator<'p> {
         let mut x = [0.0; MAX_PARAMETERS];
         let x = self.fill(free, &mut x);
         let np = x.len();
-        let (mut small_out, mut large_out) = ([0.0; 8], Vec::new());
+        // sized for the wei2017 problems (9 outputs of 8 parameters): a heap buffer per
+        // evaluation showed in the solver's profile
+        let (mut small_out, mut large_out) = ([0.0; 16], Vec::new());
         let out = scratch(&mut small_out, &mut large_out, self.wanted.len());
-        let (mut small_jac, mut large_jac) = ([0.0; 64], Vec::new());
+        let (mut small_jac, mut large_jac) = ([0.0; 128], Vec::new());
         let jac = scratch(&mut small_jac, &mut large_jac, self.wanted.len() * np);
         self.model.evaluate_with_gradient(x, &self.wanted, out, jac);
         let n = self.free.len();
