@@ -9,7 +9,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use flexopt::dynamics::{max_relative_error, step_response, Oscillator, PAPER001_TABLE4};
-use flexopt::report::plot::{draw_legend, render_png};
+use flexopt::report::plot::{draw_legend, render_png, FAMILY};
 use flexopt::report::write_json;
 use plotters::prelude::*;
 use serde::Serialize;
@@ -68,7 +68,7 @@ fn plot(path: &Path, records: &[Record]) -> Result<(), flexopt::report::WriteErr
         let mut chart = ChartBuilder::on(root)
             .caption(
                 "RK4 step response: run time against error (Table 4 of paper 001)",
-                ("sans-serif", 18),
+                (FAMILY, 18),
             )
             .margin(12)
             .x_label_area_size(40)
@@ -79,7 +79,7 @@ fn plot(path: &Path, records: &[Record]) -> Result<(), flexopt::report::WriteErr
             .x_desc("median time of one step response (us)")
             .y_desc("largest error relative to Sp")
             .y_label_formatter(&|v| format!("{v:.0e}"))
-            .label_style(("sans-serif", 12))
+            .label_style((FAMILY, 12))
             .draw()?;
         let colours = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
         for (k, &(f, zeta)) in PAPER001_TABLE4.iter().enumerate() {

@@ -23,7 +23,7 @@ use flexopt::optim::sqp::{self, SqpSettings};
 use flexopt::optim::{Problem, Status};
 use flexopt::problem::nlp::DesignNlp;
 use flexopt::problem::Problem as DesignProblem;
-use flexopt::report::plot::{draw_legend, render_png};
+use flexopt::report::plot::{draw_legend, render_png, FAMILY};
 use flexopt::report::write_json;
 use plotters::prelude::*;
 use rayon::prelude::*;
@@ -345,7 +345,7 @@ fn plot(path: &Path, records: &[Record]) -> Result<(), flexopt::report::WriteErr
     render_png(path, (1400, 600), |root| {
         let root = root.titled(
             "Run time against error of the best objective (two threads, median of 5)",
-            ("sans-serif", 20),
+            (FAMILY, 20),
         )?;
         let panels = root.split_evenly((1, PROBLEMS.len()));
         let names: Vec<String> =
@@ -368,7 +368,7 @@ fn plot(path: &Path, records: &[Record]) -> Result<(), flexopt::report::WriteErr
                 .max(1e-3)
                 / 2.0;
             let mut chart = ChartBuilder::on(area)
-                .caption(name, ("sans-serif", 16))
+                .caption(name, (FAMILY, 16))
                 .margin(10)
                 .x_label_area_size(40)
                 .y_label_area_size(60)
@@ -379,7 +379,7 @@ fn plot(path: &Path, records: &[Record]) -> Result<(), flexopt::report::WriteErr
                 .y_desc("relative error of the best objective")
                 .y_label_formatter(&|v| format!("{v:.0e}"))
                 .x_label_formatter(&|v| format!("{v}"))
-                .label_style(("sans-serif", 12))
+                .label_style((FAMILY, 12))
                 .draw()?;
             for (k, solver) in Solver::ALL.iter().enumerate() {
                 let mut pts: Vec<(f64, f64)> = mine

@@ -15,7 +15,7 @@ use plotters::prelude::*;
 use serde::Serialize;
 
 use crate::problem::{Problem, ProblemError, Sense};
-use crate::report::plot::{draw_legend, format_tick, range, render_png};
+use crate::report::plot::{draw_legend, format_tick, range, render_png, FAMILY};
 use crate::report::{write_json, WriteError, ACTIVE_TOLERANCE};
 use crate::study::{self, StudyOptions};
 use crate::sweep::check_range;
@@ -229,7 +229,7 @@ impl Pareto {
         );
         render_png(path, (800, 560), |root| {
             let mut chart = ChartBuilder::on(root)
-                .caption(&title, ("sans-serif", 18))
+                .caption(&title, (FAMILY, 18))
                 .margin(12)
                 .x_label_area_size(44)
                 .y_label_area_size(64)
@@ -238,7 +238,7 @@ impl Pareto {
                 .configure_mesh()
                 .x_desc(format!("{} ({})", self.output, self.unit))
                 .y_desc(&self.objective)
-                .label_style(("sans-serif", 13))
+                .label_style((FAMILY, 13))
                 .x_label_formatter(&|v| format_tick(*v))
                 .y_label_formatter(&|v| format_tick(*v))
                 .draw()?;

@@ -10,7 +10,8 @@ use plotters::style::FontStyle;
 use super::{write_with, WriteError};
 
 const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
-const FAMILY: &str = "sans-serif";
+/// The family the bundled font is registered under.
+pub const FAMILY: &str = "sans-serif";
 
 /// Registers the bundled font with plotters, once per process.
 pub fn register_font() {

@@ -8,7 +8,7 @@ use indexmap::IndexMap;
 use plotters::prelude::*;
 use serde::Serialize;
 
-use super::plot::{draw_legend, format_tick, range, render_png};
+use super::plot::{draw_legend, format_tick, range, render_png, FAMILY};
 use super::{write_atomic, write_json, DesignReport, WriteError};
 use crate::model::bridge::Geometry;
 use crate::optim::Status;
@@ -254,7 +254,7 @@ fn zones_png(path: &Path, problem: &Problem, study: &Study) -> Result<(), WriteE
     render_png(path, (900, 560), |root| {
         let yr = range(pts.iter().map(|p| p.0).chain(thresholds.iter().copied()));
         let mut chart = ChartBuilder::on(root)
-            .caption(&title, ("sans-serif", 20))
+            .caption(&title, (FAMILY, 20))
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(64)
@@ -263,7 +263,7 @@ fn zones_png(path: &Path, problem: &Problem, study: &Study) -> Result<(), WriteE
             .configure_mesh()
             .x_desc("start, sorted by its optimum")
             .y_desc(&ylabel)
-            .label_style(("sans-serif", 13))
+            .label_style((FAMILY, 13))
             .y_label_formatter(&|v| format_tick(*v))
             .draw()?;
         for &t in &thresholds {
@@ -322,13 +322,13 @@ fn configurations_png(path: &Path, problem: &Problem, study: &Study) -> Result<(
     );
     let columns = zones.clamp(1, 4);
     render_png(path, (360 * columns as u32, 400), |root| {
-        let root = root.titled(&title, ("sans-serif", 18))?;
+        let root = root.titled(&title, (FAMILY, 18))?;
         let panels = root.split_evenly((zones.div_ceil(columns).max(1), columns));
         for (k, area) in panels.iter().enumerate().take(zones) {
             let rank = k + 1;
             let count = lines.iter().filter(|l| l.0 == rank).count();
             let mut chart = ChartBuilder::on(area)
-                .caption(format!("zone {rank}: {count} starts"), ("sans-serif", 15))
+                .caption(format!("zone {rank}: {count} starts"), (FAMILY, 15))
                 .margin(8)
                 .x_label_area_size(32)
                 .y_label_area_size(44)
@@ -337,7 +337,7 @@ fn configurations_png(path: &Path, problem: &Problem, study: &Study) -> Result<(
                 .configure_mesh()
                 .x_desc("x (mm)")
                 .y_desc("y (mm)")
-                .label_style(("sans-serif", 12))
+                .label_style((FAMILY, 12))
                 .draw()?;
             // hinges b and d in the zone's colour, the rigid middle link in grey
             for (_, pts) in lines.iter().filter(|l| l.0 == rank) {
