@@ -81,6 +81,18 @@ pub fn pareto(
         position: None,
         message,
     };
+    let model = problem.model();
+    if model.output_index(&spec.output).is_none() {
+        let names: Vec<_> = model.outputs().iter().map(|o| o.name).collect();
+        return Err(err(
+            "--vary",
+            format!(
+                "unknown output \"{}\"; expected one of {}",
+                spec.output,
+                names.join(", ")
+            ),
+        ));
+    }
     let on_output: Vec<usize> = (0..problem.constraints.len())
         .filter(|&i| problem.constraints[i].output == spec.output)
         .collect();

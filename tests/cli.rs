@@ -179,6 +179,7 @@ fn pareto_refuses_an_output_without_a_one_sided_constraint() {
     for (output, words) in [
         ("settling_time", "no constraint on \"settling_time\""),
         ("span_x", "has two limits"),
+        ("bandwidth", "unknown output \"bandwidth\""),
     ] {
         let out = flexopt(&[
             "pareto",
