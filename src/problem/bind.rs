@@ -80,7 +80,7 @@ impl<'p> Evaluator<'p> {
     pub fn evaluate(&self, free: &[f64], objective: &mut f64, constraints: &mut [f64]) {
         let mut x = [0.0; MAX_PARAMETERS];
         let x = self.fill(free, &mut x);
-        let (mut small, mut large) = ([0.0; 16], Vec::new());
+        let (mut small, mut large) = ([0.0; 10], Vec::new());
         let out = scratch(&mut small, &mut large, self.wanted.len());
         self.model.evaluate(x, &self.wanted, out);
         *objective = out[0];
