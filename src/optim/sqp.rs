@@ -82,6 +82,8 @@ struct Work<'p> {
     hess: Vec<f64>,
     hess_scratch: Vec<f64>,
     eigen_scratch: Vec<f64>,
+    /// The variables inside their bounds, at a Hessian refresh.
+    refresh_free: Vec<usize>,
     xt: Vec<f64>,
     ft: f64,
     ct: Vec<f64>,
@@ -137,6 +139,7 @@ impl<'p> Work<'p> {
             hess: identity(n),
             hess_scratch: vec![0.0; n * n],
             eigen_scratch: vec![0.0; n * n],
+            refresh_free: Vec::with_capacity(n),
             xt: vec![0.0; n],
             ft: f64::NAN,
             ct: vec![0.0; m],
@@ -339,10 +342,20 @@ impl<'p> Work<'p> {
     /// as it was where a difference cannot be evaluated.
     fn refresh_hessian(&mut self, problem: &dyn Problem) {
         let n = self.n;
+        // only the variables strictly inside their bounds: a variable on a bound whose
+        // multiplier holds it there takes no step, so its row of B does not enter the QP's
+        // step; B keeps its curvature for it (decoupled) in case the bound lets go
+        self.refresh_free.clear();
+        self.refresh_free
+            .extend((0..n).filter(|&j| self.x[j] > self.lower[j] && self.x[j] < self.upper[j]));
+        let nf = self.refresh_free.len();
+        if nf == 0 {
+            return;
+        }
         // the Lagrangian's gradient at x into bfgs_y, at the shifted point into bfgs_bs
         lagrangian_gradient(&self.g, &self.jac, &self.lambda, &mut self.bfgs_y);
-        let h = &mut self.hess_scratch;
-        for j in 0..n {
+        let h = &mut self.hess_scratch[..nf * nf];
+        for (b, &j) in self.refresh_free.iter().enumerate() {
             let step = 1e-7 * (1.0 + self.x[j].abs());
             let step = if self.x[j] + step <= self.upper[j] {
                 step
@@ -362,19 +375,32 @@ impl<'p> Work<'p> {
                 return;
             }
             lagrangian_gradient(&self.gt, &self.jact, &self.lambda, &mut self.bfgs_bs);
-            for i in 0..n {
-                h[i * n + j] = (self.bfgs_bs[i] - self.bfgs_y[i]) / step;
+            for (a, &i) in self.refresh_free.iter().enumerate() {
+                h[a * nf + b] = (self.bfgs_bs[i] - self.bfgs_y[i]) / step;
             }
         }
+        for a in 0..nf {
+            for b in 0..a {
+                let v = 0.5 * (h[a * nf + b] + h[b * nf + a]);
+                h[a * nf + b] = v;
+                h[b * nf + a] = v;
+            }
+        }
+        if !hessian::make_positive_definite(h, &mut self.eigen_scratch[..nf * nf], nf, 1e-6) {
+            return;
+        }
+        // B = |H| on the free variables, B's own diagonal on the others, no coupling
         for i in 0..n {
-            for j in 0..i {
-                let v = 0.5 * (h[i * n + j] + h[j * n + i]);
-                h[i * n + j] = v;
-                h[j * n + i] = v;
+            for j in 0..n {
+                if i != j {
+                    self.hess[i * n + j] = 0.0;
+                }
             }
         }
-        if hessian::make_positive_definite(h, &mut self.eigen_scratch, n, 1e-6) {
-            self.hess.copy_from_slice(h);
+        for (a, &i) in self.refresh_free.iter().enumerate() {
+            for (b, &j) in self.refresh_free.iter().enumerate() {
+                self.hess[i * n + j] = h[a * nf + b];
+            }
         }
     }
 
