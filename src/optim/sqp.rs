@@ -342,9 +342,9 @@ impl<'p> Work<'p> {
     /// as it was where a difference cannot be evaluated.
     fn refresh_hessian(&mut self, problem: &dyn Problem) {
         let n = self.n;
-        // only the variables strictly inside their bounds: a variable on a bound whose
-        // multiplier holds it there takes no step, so its row of B does not enter the QP's
-        // step; B keeps its curvature for it (decoupled) in case the bound lets go
+        // only the variables strictly inside their bounds: a variable on a bound takes no
+        // step while the bound stays active, and then its row of B does not enter the QP's
+        // step; B keeps its diagonal for it (decoupled) in case the bound lets go
         self.refresh_free.clear();
         self.refresh_free
             .extend((0..n).filter(|&j| self.x[j] > self.lower[j] && self.x[j] < self.upper[j]));
