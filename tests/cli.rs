@@ -9,12 +9,7 @@ const OPTIMUM: &str = "l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,del
 
 #[test]
 fn eval_prints_table2_and_table3_at_the_published_optimum() {
-    let out = flexopt(&["eval", "problems/wei2017.toml", "--design", OPTIMUM]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = flexopt_ok(&["eval", "problems/wei2017.toml", "--design", OPTIMUM]);
     let json: Value = serde_json::from_slice(&out.stdout).expect("one JSON object on stdout");
     let o = &json["outputs"];
     let get = |k: &str| o[k].as_f64().unwrap_or_else(|| panic!("output {k}"));
@@ -65,7 +60,7 @@ fn eval_prints_table2_and_table3_at_the_published_optimum() {
 #[test]
 fn sweep_writes_json_and_png_with_the_curve() {
     let dir = std::env::temp_dir().join(format!("flexopt-sweep-{}", std::process::id()));
-    let out = flexopt(&[
+    flexopt_ok(&[
         "sweep",
         "problems/wei2017.toml",
         "--param",
@@ -81,11 +76,6 @@ fn sweep_writes_json_and_png_with_the_curve() {
         "--out",
         dir.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let json: Value =
         serde_json::from_slice(&std::fs::read(dir.join("delta3.json")).unwrap()).unwrap();
     let values = json["values"].as_array().unwrap();

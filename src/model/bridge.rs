@@ -334,16 +334,15 @@ impl<D: Scalar> Geometry<D> {
 
     /// Node coordinates 2..=5 of the quarter (m), origin at node 2.
     pub fn nodes(&self) -> [[D; 2]; 4] {
+        self.nodes_with(&self.trig())
+    }
+
+    /// [`Geometry::nodes`] from the angles' sines and cosines.
+    pub fn nodes_with(&self, t: &Trig<D>) -> [[D; 2]; 4] {
         let zero = D::from(0.0);
         let mut p = [[zero, zero]; 4];
-        let links = [
-            (self.l2, self.delta2),
-            (self.l3, self.delta3),
-            (self.l4, self.delta4),
-        ];
-        for (i, (l, d)) in links.into_iter().enumerate() {
-            let (s, c) = d.sin_cos();
-            p[i + 1] = [p[i][0] + l * c, p[i][1] + l * s];
+        for (i, l) in [self.l2, self.l3, self.l4].into_iter().enumerate() {
+            p[i + 1] = [p[i][0] + l * t.c[i], p[i][1] + l * t.s[i]];
         }
         p
     }
@@ -582,6 +581,7 @@ impl Bridge {
             input,
             stresses: None,
             mode: None,
+            mass: None,
         };
         for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
             *slot = e.output(BridgeOutput::ALL[k]);
@@ -600,7 +600,8 @@ struct Evaluation<'a, D> {
     input: Option<(D, D, D)>,
     stresses: Option<[D; 4]>,
     /// The output mode and its equivalent mass, computed on demand.
-    mode: Option<(QuarterMode<D>, Option<D>)>,
+    mode: Option<QuarterMode<D>>,
+    mass: Option<D>,
 }
 
 impl<D: Scalar> Evaluation<'_, D> {
@@ -654,22 +655,28 @@ impl<D: Scalar> Evaluation<'_, D> {
 
     /// The quarter's deflection along the output, with the actuator in place.
     fn mode(&mut self) -> QuarterMode<D> {
-        if let Some((m, _)) = self.mode {
+        if let Some(m) = self.mode {
             return m;
         }
         let (g, s) = (self.g, self.s);
-        let b = s.hinge.compliance(g.l2, g.t2, s.width, &s.material);
-        let d = s.hinge.compliance(g.l4, g.t4, s.width, &s.material);
-        let m = QuarterMode::new(g, self.trig, &b, &d, s.actuator.stiffness);
-        self.mode = Some((m, None));
-        m
+        // the closed form's hinge compliances when it was built, else the hinges afresh
+        let (b, d) = match self.quarter {
+            Some(q) => (q.b, q.d),
+            None => (
+                s.hinge.compliance(g.l2, g.t2, s.width, &s.material),
+                s.hinge.compliance(g.l4, g.t4, s.width, &s.material),
+            ),
+        };
+        *self
+            .mode
+            .insert(QuarterMode::new(g, self.trig, &b, &d, s.actuator.stiffness))
     }
 
     fn equivalent_mass(&mut self) -> D {
-        let mode = self.mode();
-        if let Some((_, Some(m))) = self.mode {
+        if let Some(m) = self.mass {
             return m;
         }
+        let mode = self.mode();
         let (g, s) = (self.g, self.s);
         // without masses there is no mass: NaN, which the problem layer never asks for
         // (Model::unavailable) and reports omit
@@ -682,9 +689,9 @@ impl<D: Scalar> Evaluation<'_, D> {
             s.material.density,
             dynamics.link_thickness,
         );
-        let m = bridge_dynamics::equivalent_mass(&mode, &masses, dynamics);
-        self.mode = Some((mode, Some(m)));
-        m
+        *self
+            .mass
+            .insert(bridge_dynamics::equivalent_mass(&mode, &masses, dynamics))
     }
 
     fn natural_frequency(&mut self) -> D {

@@ -169,7 +169,7 @@ impl<D: Scalar> QuarterMode<D> {
         d: &Compliance<D>,
         k_pzt: Option<f64>,
     ) -> Self {
-        let r = g.nodes();
+        let r = g.nodes_with(t);
         let (zero, one) = (D::from(0.0), D::from(1.0));
         let (ux, tx) = chain(&r, t, b, d, [one, zero]);
         let (uy, ty) = chain(&r, t, b, d, [zero, one]);
