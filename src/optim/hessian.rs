@@ -15,7 +15,7 @@
 /// `|H|` of the symmetric `n x n` matrix `h` (row-major, overwritten), every eigenvalue's
 /// magnitude floored at `floor_ratio` times the largest; `v` is scratch of the same size.
 /// False, with `h` undefined, when `H` has no curvature to speak of (every eigenvalue below
-/// `1e-12`: a linear Lagrangian), which leaves nothing to model.
+/// `1e-12`: a linear Lagrangian), which leaves nothing to model, or when `n > MAX_N`.
 pub fn make_positive_definite(h: &mut [f64], v: &mut [f64], n: usize, floor_ratio: f64) -> bool {
     // a matrix positive definite with every eigenvalue above the floor is its own |H|; a
     // Cholesky factorization of H - floor I (into v) tells, at a fraction of the cost
@@ -23,32 +23,27 @@ pub fn make_positive_definite(h: &mut [f64], v: &mut [f64], n: usize, floor_rati
     if largest_diag > 1e-12 && cholesky_succeeds(h, v, n, floor_ratio * largest_diag) {
         return true;
     }
-    // eigenvalues into the diagonal of h, eigenvectors into the columns of v
-    let mut d = [0.0; MAX_N];
-    let mut e = [0.0; MAX_N];
     if n > MAX_N {
         return false;
     }
+    // eigenvalues into d, eigenvectors into the columns of v
+    let (mut d, mut e) = ([0.0; MAX_N], [0.0; MAX_N]);
+    let (d, e) = (&mut d[..n], &mut e[..n]);
     v.copy_from_slice(&h[..n * n]);
-    tridiagonalize(v, n, &mut d[..n], &mut e[..n]);
-    diagonalize(v, n, &mut d[..n], &mut e[..n]);
-    for i in 0..n {
-        h[i * n + i] = d[i];
-    }
-    let largest = (0..n).map(|i| h[i * n + i].abs()).fold(0.0, f64::max);
+    tridiagonalize(v, n, d, e);
+    diagonalize(v, n, d, e);
+    let largest = d.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if largest <= 1e-12 {
         return false;
     }
     let floor = floor_ratio * largest;
-    let mut lam = [0.0; 32];
-    let lam = &mut lam[..n];
-    for (i, l) in lam.iter_mut().enumerate() {
-        *l = h[i * n + i].abs().max(floor);
+    for l in d.iter_mut() {
+        *l = l.abs().max(floor);
     }
     // H <- V |Lambda| V^T
     for i in 0..n {
         for j in 0..=i {
-            let s: f64 = (0..n).map(|k| v[i * n + k] * lam[k] * v[j * n + k]).sum();
+            let s: f64 = (0..n).map(|k| v[i * n + k] * d[k] * v[j * n + k]).sum();
             h[i * n + j] = s;
             h[j * n + i] = s;
         }
