@@ -197,6 +197,14 @@ fn study_setup(path: &Path, args: &StudyArgs) -> Result<(Problem, StudyOptions),
         ..
     } = *args;
     let problem = Problem::load(path).map_err(bad_input)?;
+    if problem.free_variables().next().is_none() {
+        return Err(bad_input(format!(
+            "{}: key `variables`: every variable has a fixed `value`, so there is nothing to \
+             optimize; give at least one `lower` and `upper` instead (`flexopt eval` and \
+             `flexopt sweep` take a fixed design)",
+            problem.file.display()
+        )));
+    }
     let mut options = StudyOptions::from_problem(&problem);
     if let Some(s) = starts {
         if !(1..=1_000_000).contains(&s) {

@@ -219,3 +219,32 @@ fn dynamic_outputs_need_a_dynamics_section() {
     );
     std::fs::remove_file(&path).unwrap();
 }
+
+#[test]
+fn run_and_pareto_reject_a_problem_without_free_variables() {
+    // the sweep file fixes every variable: a clear error, not a panic
+    for args in [
+        &["run", "problems/wei2017_fig9.toml", "--out", "/nonexistent"][..],
+        &[
+            "pareto",
+            "problems/wei2017_fig9.toml",
+            "--vary",
+            "k_out",
+            "--from",
+            "1",
+            "--to",
+            "2",
+        ][..],
+    ] {
+        let out = flexopt(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("problems/wei2017_fig9.toml")
+                && err.contains("`variables`")
+                && err.contains("nothing to optimize")
+                && !err.contains("panicked"),
+            "{err}"
+        );
+    }
+}

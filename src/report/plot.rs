@@ -91,7 +91,9 @@ pub fn line_panels(
     })
 }
 
-/// Padded range of finite values, never empty.
+/// Padded range of finite values, never empty, and at least 1e-4 of their size wide: a spread
+/// at the rounding level (100 starts ending at one optimum) is drawn flat, not magnified
+/// into a curve whose tick labels all read the same.
 pub fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
@@ -101,10 +103,11 @@ pub fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     if !lo.is_finite() {
         return (0.0, 1.0);
     }
+    let size = lo.abs().max(hi.abs());
     let pad = if hi > lo {
-        0.05 * (hi - lo)
+        (0.05 * (hi - lo)).max(1e-4 * size)
     } else {
-        0.5 * lo.abs().max(1e-12)
+        0.5 * size.max(1e-12)
     };
     (lo - pad, hi + pad)
 }
