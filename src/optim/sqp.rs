@@ -436,8 +436,11 @@ impl<'p> Work<'p> {
         }
     }
 
+    /// Starts the curvature model afresh, and with it the step limit, which was set from
+    /// steps of the old model.
     fn reset_hessian(&mut self) {
         self.hess = identity(self.n);
+        self.step_limit = f64::INFINITY;
     }
 
     fn set_trial(&mut self, alpha: f64) {
