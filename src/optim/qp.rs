@@ -527,8 +527,9 @@ fn solve_on_active_set(
             let s = dot(&wm[p * n..p * n + nf], &wm[k * n..k * n + nf])
                 - dot(&r[p * n..p * n + k], &r[k * n..k * n + k]);
             if p == k {
-                // dependent rows: left to the dual method
-                if !(s > 1e-20 * w_scale && s < f64::INFINITY) {
+                // dependent or nearly dependent rows (an angle below about 1e-7): left to the
+                // dual method, whose multipliers stay bounded there
+                if !(s > 1e-14 * w_scale && s < f64::INFINITY) {
                     return false;
                 }
                 r[p * n + p] = 1.0 / s.sqrt();
