@@ -528,7 +528,7 @@ fn solve_on_active_set(
                 - dot(&r[p * n..p * n + k], &r[k * n..k * n + k]);
             if p == k {
                 // dependent or nearly dependent rows (an angle below about 1e-7): left to the
-                // dual method, whose multipliers stay bounded there
+                // dual method, which never makes a dependent row active
                 if !(s > 1e-14 * w_scale && s < f64::INFINITY) {
                     return false;
                 }
