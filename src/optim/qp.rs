@@ -483,21 +483,9 @@ fn solve_on_active_set(
     }
     // G's lower triangle; free is ascending, so G_FF's lower triangle is in it
     let gl = |i: usize, j: usize| g[i.max(j) * n + i.min(j)];
-    // G_FF = L L^T into ws.l (row-major, reciprocal pivots on the diagonal)
-    let l = &mut ws.l;
-    for r in 0..nf {
-        let gr = &g[free[r] * n..];
-        for k in 0..=r {
-            let s = gr[free[k]] - dot(&l[r * n..r * n + k], &l[k * n..k * n + k]);
-            if r == k {
-                if !(s > 0.0 && s < f64::INFINITY) {
-                    return false;
-                }
-                l[r * n + r] = 1.0 / s.sqrt();
-            } else {
-                l[r * n + k] = s * l[k * n + k];
-            }
-        }
+    // G_FF = L L^T into ws.l
+    if !cholesky(&mut ws.l, n, nf, 0.0, |r, k| g[free[r] * n + free[k]]) {
+        return false;
     }
     let l = &ws.l;
     // y = -L^-1 (a_F + G_FB x_B) into ws.d
@@ -520,23 +508,13 @@ fn solve_on_active_set(
         let fixed: f64 = bound_vars.iter().map(|&j| row[j] * x[j]).sum();
         ws.rv[k] = rows.b[i] - fixed - dot(w, y);
     }
-    // W^T W = R R^T into ws.r (as L), then the multipliers into ws.rv
+    // W^T W = R R^T into ws.r (as L), then the multipliers into ws.rv; dependent or nearly
+    // dependent rows (an angle below about 1e-7) are left to the dual method, which never
+    // makes a dependent row active
     let (wm, r) = (&ws.j, &mut ws.r);
-    for p in 0..na {
-        for k in 0..=p {
-            let s = dot(&wm[p * n..p * n + nf], &wm[k * n..k * n + nf])
-                - dot(&r[p * n..p * n + k], &r[k * n..k * n + k]);
-            if p == k {
-                // dependent or nearly dependent rows (an angle below about 1e-7): left to the
-                // dual method, which never makes a dependent row active
-                if !(s > 1e-14 * w_scale && s < f64::INFINITY) {
-                    return false;
-                }
-                r[p * n + p] = 1.0 / s.sqrt();
-            } else {
-                r[p * n + k] = s * r[k * n + k];
-            }
-        }
+    let wtw = |p: usize, k: usize| dot(&wm[p * n..p * n + nf], &wm[k * n..k * n + nf]);
+    if !cholesky(r, n, na, 1e-14 * w_scale, wtw) {
+        return false;
     }
     let u = &mut ws.rv[..na];
     forward_substitute(r, n, na, u);
@@ -635,31 +613,41 @@ fn norm(a: &[f64]) -> f64 {
 
 /// `J = L^-T` with `G = L L^T`, column-major; false if `G` is not positive definite.
 fn factor(g: &[f64], n: usize, l: &mut [f64], j: &mut [f64]) -> bool {
-    // Cholesky into a row-major lower triangle; the diagonal holds the reciprocal pivots,
-    // which is all the solves below need
-    for i in 0..n {
-        for k in 0..=i {
-            let s = g[i * n + k] - dot(&l[i * n..i * n + k], &l[k * n..k * n + k]);
-            if i == k {
-                if s <= 0.0 || !s.is_finite() {
-                    return false;
-                }
-                l[i * n + i] = 1.0 / s.sqrt();
-            } else {
-                l[i * n + k] = s * l[k * n + k];
-            }
-        }
+    if !cholesky(l, n, n, 0.0, |i, k| g[i * n + k]) {
+        return false;
     }
     // J = L^-T: column k solves L^T y = e_k (L^T upper triangular)
     j.fill(0.0);
     for k in 0..n {
-        let y = &mut j[k * n..(k + 1) * n];
-        for i in (0..=k).rev() {
-            let mut s = if i == k { 1.0 } else { 0.0 };
-            for p in i + 1..=k {
-                s -= l[p * n + i] * y[p];
+        let y = &mut j[k * n..k * n + k + 1];
+        y[k] = 1.0;
+        back_substitute(l, n, k + 1, y);
+    }
+    true
+}
+
+/// `L L^T` of the `k x k` symmetric matrix whose lower triangle is `entry(r, c)` (`r >= c`),
+/// into `l` (row-major lower triangle with stride `n`), the diagonal holding the reciprocal
+/// pivots, which is all the solves need; false when a pivot is not above `min_pivot` or not
+/// finite.
+fn cholesky(
+    l: &mut [f64],
+    n: usize,
+    k: usize,
+    min_pivot: f64,
+    entry: impl Fn(usize, usize) -> f64,
+) -> bool {
+    for r in 0..k {
+        for c in 0..=r {
+            let s = entry(r, c) - dot(&l[r * n..r * n + c], &l[c * n..c * n + c]);
+            if r == c {
+                if !(s > min_pivot && s < f64::INFINITY) {
+                    return false;
+                }
+                l[r * n + r] = 1.0 / s.sqrt();
+            } else {
+                l[r * n + c] = s * l[c * n + c];
             }
-            y[i] = s * l[i * n + i];
         }
     }
     true
