@@ -4,7 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
-out=results/wei2017/fig9
+results=${RESULTS:-results}
+out=$results/wei2017/fig9
 while read -r param from to; do
   ./target/release/flexopt sweep problems/wei2017_fig9.toml --param "$param" \
     --from "$from" --to "$to" --steps 401 --outputs amplification --out "$out"

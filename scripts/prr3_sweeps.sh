@@ -5,7 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
-out=results/prr3_frequency/sweeps
+results=${RESULTS:-results}
+out=$results/prr3_frequency/sweeps
 example="rb=30,l=20,k=34.53"
 while read -r param from to; do
   ./target/release/flexopt sweep problems/prr3_frequency.toml --param "$param" \

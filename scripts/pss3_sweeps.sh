@@ -11,7 +11,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
-out=results/pss3_frequency/sweeps
+results=${RESULTS:-results}
+out=$results/pss3_frequency/sweeps
 problem=problems/pss3_frequency.toml
 sweep() { # folder param from to around
   ./target/release/flexopt sweep "$problem" --param "$2" --from "$3" --to "$4" --steps 200 \

@@ -1,24 +1,54 @@
 //! The `flexopt` command line: parse, call the library, print.
 
+use std::fmt::Display;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use std::io::IsTerminal;
-
 use flexopt::pareto::{pareto, ParetoSpec};
 use flexopt::problem::design::parse_design;
 use flexopt::problem::{Problem, Solver};
+use flexopt::report::pareto::write_pareto;
 use flexopt::report::study::write_all;
+use flexopt::report::summary::{ParetoSummary, StudySummary, Wrote};
+use flexopt::report::sweep::write_sweep;
 use flexopt::report::DesignReport;
 use flexopt::study::{self, StudyOptions};
 use flexopt::sweep::{sweep, SweepSpec};
 
-/// Exit code for a rejected problem file, design or option.
-const BAD_INPUT: u8 = 2;
-/// Exit code for results that could not be written.
-const WRITE_FAILED: u8 = 1;
+/// Why the command stopped: the message to print and the exit code.
+struct Failure {
+    code: u8,
+    message: String,
+}
+
+impl Failure {
+    /// Exit code 2: a rejected problem file, design or option.
+    fn bad_input(e: impl Display) -> Self {
+        Failure {
+            code: 2,
+            message: e.to_string(),
+        }
+    }
+
+    /// Exit code 1: results that could not be written or printed.
+    fn write_failed(e: impl Display) -> Self {
+        Failure {
+            code: 1,
+            message: e.to_string(),
+        }
+    }
+
+    /// Exit code 3: no feasible design; the results were written all the same.
+    fn no_feasible(e: impl Display) -> Self {
+        Failure {
+            code: 3,
+            message: e.to_string(),
+        }
+    }
+}
 
 #[derive(Parser)]
 #[command(
@@ -121,8 +151,17 @@ struct StudyArgs {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
-    match cli.command {
+    match run(Cli::parse().command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            eprintln!("error: {}", f.message);
+            ExitCode::from(f.code)
+        }
+    }
+}
+
+fn run(command: Command) -> Result<(), Failure> {
+    match command {
         Command::Eval { problem, design } => eval(&problem, &design),
         Command::Sweep {
             problem,
@@ -149,10 +188,7 @@ fn main() -> ExitCode {
             solver,
             quiet,
         } => {
-            let (problem, mut options) = match study_setup(&problem, &study) {
-                Ok(v) => v,
-                Err(code) => return code,
-            };
+            let (problem, mut options) = study_setup(&problem, &study)?;
             if let Some(s) = solver {
                 options.solver = if s == "sqp" {
                     Solver::Sqp
@@ -172,10 +208,7 @@ fn main() -> ExitCode {
             steps,
             study,
         } => {
-            let (problem, options) = match study_setup(&problem, &study) {
-                Ok(v) => v,
-                Err(code) => return code,
-            };
+            let (problem, options) = study_setup(&problem, &study)?;
             let spec = ParetoSpec {
                 output: vary,
                 from,
@@ -189,16 +222,16 @@ fn main() -> ExitCode {
 }
 
 /// Loads the problem and applies the command line's overrides of its `[search]`.
-fn study_setup(path: &Path, args: &StudyArgs) -> Result<(Problem, StudyOptions), ExitCode> {
+fn study_setup(path: &Path, args: &StudyArgs) -> Result<(Problem, StudyOptions), Failure> {
     let StudyArgs {
         starts,
         seed,
         threads,
         ..
     } = *args;
-    let problem = Problem::load(path).map_err(bad_input)?;
+    let problem = Problem::load(path).map_err(Failure::bad_input)?;
     if problem.free_variables().next().is_none() {
-        return Err(bad_input(format!(
+        return Err(Failure::bad_input(format!(
             "{}: key `variables`: every variable has a fixed `value`, so there is nothing to \
              optimize; give at least one `lower` and `upper` instead (`flexopt eval` and \
              `flexopt sweep` take a fixed design)",
@@ -208,7 +241,7 @@ fn study_setup(path: &Path, args: &StudyArgs) -> Result<(Problem, StudyOptions),
     let mut options = StudyOptions::from_problem(&problem);
     if let Some(s) = starts {
         if !(1..=1_000_000).contains(&s) {
-            return Err(bad_input(format!(
+            return Err(Failure::bad_input(format!(
                 "{}: key `--starts`: must lie between 1 and 1000000, got {s}",
                 problem.file.display()
             )));
@@ -216,7 +249,7 @@ fn study_setup(path: &Path, args: &StudyArgs) -> Result<(Problem, StudyOptions),
         options.starts = s;
     }
     if threads.is_some_and(|t| t > 1024) {
-        return Err(bad_input(format!(
+        return Err(Failure::bad_input(format!(
             "{}: key `--threads`: must lie between 0 and 1024",
             problem.file.display()
         )));
@@ -231,185 +264,62 @@ fn run_pareto(
     spec: &ParetoSpec,
     options: &StudyOptions,
     dir: &Path,
-) -> ExitCode {
-    use std::fmt::Write as _;
-    let front = match pareto(problem, spec, options) {
-        Ok(f) => f,
-        Err(e) => return bad_input(e),
-    };
-    let files = match front.write(dir) {
-        Ok(f) => f,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(WRITE_FAILED);
-        }
-    };
-    let mut text = format!(
-        "{}: {} limits on {} x {} starts in {:.1} ms\n",
-        problem.name,
-        front.points.len(),
-        front.output,
-        front.starts,
-        front.elapsed.as_secs_f64() * 1e3
-    );
-    let _ = writeln!(
-        text,
-        "{:>12}  {:>12}  {:>12}  active  front",
-        format!("limit ({})", front.unit),
-        front.objective,
-        front.output
-    );
-    for p in &front.points {
-        let show = |v: Option<f64>| v.map_or("infeasible".to_string(), |v| format!("{v:.6}"));
-        let _ = writeln!(
-            text,
-            "{:>12}  {:>12}  {:>12}  {:<6}  {}",
-            format!("{:.6}", p.limit),
-            show(p.objective),
-            show(p.value),
-            if p.active { "yes" } else { "no" },
-            if p.on_front { "yes" } else { "no" }
-        );
-    }
-    for f in files {
-        let _ = writeln!(text, "wrote {}", f.display());
-    }
-    emit(&text);
+) -> Result<(), Failure> {
+    let front = pareto(problem, spec, options).map_err(Failure::bad_input)?;
+    let files = write_pareto(dir, &front).map_err(Failure::write_failed)?;
+    emit(&ParetoSummary {
+        problem,
+        front: &front,
+        files: &files,
+    });
     if front.points.iter().any(|p| p.feasible) {
-        ExitCode::SUCCESS
+        Ok(())
     } else {
-        eprintln!(
-            "error: {}: no limit of the range admits a feasible design",
+        Err(Failure::no_feasible(format!(
+            "{}: no limit of the range admits a feasible design",
             problem.file.display()
-        );
-        ExitCode::from(NO_FEASIBLE_DESIGN)
+        )))
     }
 }
 
-/// Exit code for a study in which no start ended feasible.
-const NO_FEASIBLE_DESIGN: u8 = 3;
-
-fn run_study(problem: &Problem, options: &StudyOptions, dir: &Path) -> ExitCode {
+fn run_study(problem: &Problem, options: &StudyOptions, dir: &Path) -> Result<(), Failure> {
     let study = study::run(problem, options);
-    let files = match write_all(dir, problem, &study) {
-        Ok(f) => f,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(WRITE_FAILED);
-        }
-    };
-    let mut text = summary(problem, &study);
-    for f in files {
-        text.push_str(&format!("wrote {}\n", f.display()));
-    }
-    emit(&text);
+    let files = write_all(dir, problem, &study).map_err(Failure::write_failed)?;
+    emit(&StudySummary {
+        problem,
+        study: &study,
+        files: &files,
+    });
     if study.any_feasible {
-        ExitCode::SUCCESS
+        Ok(())
     } else {
-        eprintln!(
-            "error: {}: no start ended at a feasible design; optimum.json holds the least violating one",
+        Err(Failure::no_feasible(format!(
+            "{}: no start ended at a feasible design; optimum.json holds the least violating one",
             problem.file.display()
-        );
-        ExitCode::from(NO_FEASIBLE_DESIGN)
+        )))
     }
-}
-
-fn summary(problem: &Problem, study: &study::Study) -> String {
-    use std::fmt::Write as _;
-    let mut s = String::new();
-    let best = &study.runs[study.best];
-    let solver = match study.options.solver {
-        Solver::Sqp => "SQP",
-        Solver::NelderMead => "Nelder-Mead",
-    };
-    let _ = writeln!(
-        s,
-        "{}: {} starts with {solver}, seed {}, in {:.1} ms; {} ended feasible",
-        problem.name,
-        study.runs.len(),
-        study.options.seed,
-        study.elapsed.as_secs_f64() * 1e3,
-        study.feasible_runs.len()
-    );
-    let label = if study.any_feasible {
-        "best"
-    } else {
-        "least violating (infeasible)"
-    };
-    let _ = writeln!(
-        s,
-        "{label} {} = {:.6} ({})",
-        problem.objective.output,
-        best.objective,
-        study::configuration(problem, &best.x_end)
-    );
-    let design: Vec<String> = problem
-        .variables
-        .iter()
-        .zip(&best.x_end)
-        .map(|(v, &x)| format!("{}={:.6}", v.name, v.unit.from_si(x)))
-        .collect();
-    let _ = writeln!(s, "  design {}", design.join(","));
-    let _ = writeln!(s, "zone  starts  optima  best        worst");
-    for z in &study.clustering.zones {
-        let f = |v: f64| {
-            if v.is_finite() {
-                format!("{v:<10.6}")
-            } else {
-                format!("{:<10}", "-")
-            }
-        };
-        let _ = writeln!(
-            s,
-            "{:<5} {:<7} {:<7} {}  {}",
-            z.rank,
-            z.count,
-            z.optima.len(),
-            f(z.best),
-            f(z.worst)
-        );
-    }
-    let missing = study.runs.len() - study.feasible_runs.len();
-    if missing > 0 {
-        let _ = writeln!(
-            s,
-            "{missing} starts ended infeasible or failed (see starts.json)"
-        );
-    }
-    s
 }
 
 /// Writes to stdout; a reader that has gone away (a closed pipe) is not an error worth a
 /// panic, and the command just stops printing.
-fn emit(text: &str) {
+fn emit(text: &impl Display) {
     use std::io::Write;
     let mut out = std::io::stdout().lock();
-    let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+    let _ = write!(out, "{text}").and_then(|()| out.flush());
 }
 
-fn bad_input(e: impl std::fmt::Display) -> ExitCode {
-    eprintln!("error: {e}");
-    ExitCode::from(BAD_INPUT)
+fn print_json(value: &impl serde::Serialize) -> Result<(), Failure> {
+    let s = serde_json::to_string_pretty(value)
+        .map_err(|e| Failure::write_failed(format!("cannot format the result: {e}")))?;
+    emit(&format!("{s}\n"));
+    Ok(())
 }
 
-fn print_json(value: &impl serde::Serialize) -> ExitCode {
-    match serde_json::to_string_pretty(value) {
-        Ok(s) => {
-            emit(&format!("{s}\n"));
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!("error: cannot format the result: {e}");
-            ExitCode::from(WRITE_FAILED)
-        }
-    }
-}
-
-fn load_design(path: &Path, design: Option<&str>) -> Result<(Problem, Vec<f64>), ExitCode> {
-    let problem = Problem::load(path).map_err(bad_input)?;
+fn load_design(path: &Path, design: Option<&str>) -> Result<(Problem, Vec<f64>), Failure> {
+    let problem = Problem::load(path).map_err(Failure::bad_input)?;
     let x = match design {
         Some(text) => {
-            let parsed = parse_design(&problem, text).map_err(bad_input)?;
+            let parsed = parse_design(&problem, text).map_err(Failure::bad_input)?;
             for w in &parsed.warnings {
                 eprintln!("warning: {}: {w}", path.display());
             }
@@ -424,16 +334,13 @@ fn load_design(path: &Path, design: Option<&str>) -> Result<(Problem, Vec<f64>),
     Ok((problem, x))
 }
 
-fn eval(path: &Path, design: &str) -> ExitCode {
-    let (problem, x) = match load_design(path, Some(design)) {
-        Ok(v) => v,
-        Err(code) => return code,
-    };
+fn eval(path: &Path, design: &str) -> Result<(), Failure> {
+    let (problem, x) = load_design(path, Some(design))?;
     if let Some(why) = problem.model().domain_error(&x) {
-        return bad_input(format!(
+        return Err(Failure::bad_input(format!(
             "{}: key `--design`: outside the model's domain: {why}",
             path.display()
-        ));
+        )));
     }
     let report = DesignReport::new(&problem, &x);
     for name in report.non_finite_outputs() {
@@ -450,29 +357,11 @@ fn run_sweep(
     spec: &SweepSpec,
     around: Option<&str>,
     out: Option<PathBuf>,
-) -> ExitCode {
-    let (problem, base) = match load_design(path, around) {
-        Ok(v) => v,
-        Err(code) => return code,
-    };
-    let result = match sweep(&problem, spec, &base) {
-        Ok(s) => s,
-        Err(e) => return bad_input(e),
-    };
+) -> Result<(), Failure> {
+    let (problem, base) = load_design(path, around)?;
+    let result = sweep(&problem, spec, &base).map_err(Failure::bad_input)?;
     let dir = out.unwrap_or_else(|| problem.default_output_dir().join("sweep"));
-    match result.write(&dir) {
-        Ok(()) => {
-            for ext in ["json", "png"] {
-                emit(&format!(
-                    "wrote {}\n",
-                    dir.join(format!("{}.{ext}", spec.variable)).display()
-                ));
-            }
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(WRITE_FAILED)
-        }
-    }
+    let files = write_sweep(&dir, &result).map_err(Failure::write_failed)?;
+    emit(&Wrote(&files));
+    Ok(())
 }

@@ -7,16 +7,13 @@
 //! kept with the value the output actually takes there, so a floor that the unconstrained
 //! optimum already clears shows up as a repeated point, not as a fake trade.
 
-use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use indexmap::IndexMap;
-use plotters::prelude::*;
 use serde::Serialize;
 
+use crate::problem::nlp::ACTIVE_TOLERANCE;
 use crate::problem::{Problem, ProblemError, Sense};
-use crate::report::plot::{draw_legend, format_tick, range, render_png, FAMILY};
-use crate::report::{write_json, WriteError, ACTIVE_TOLERANCE};
 use crate::study::{self, StudyOptions};
 use crate::sweep::check_range;
 
@@ -168,7 +165,7 @@ pub fn pareto(
                 .zip(&best.x_end)
                 .map(|(v, &x)| (v.name.clone(), v.unit.from_si(x)))
                 .collect(),
-            configuration: study::configuration(problem, &best.x_end).into(),
+            configuration: problem.model().configuration(&best.x_end).into(),
             feasible_starts: s.feasible_runs.len(),
         });
     }
@@ -211,80 +208,3 @@ fn mark_front(points: &mut [ParetoPoint], sense: Sense, bound: &str) {
 
 /// Relative difference below which two points of a front count as one.
 pub const SAME: f64 = 1e-9;
-
-impl Pareto {
-    /// Writes `pareto.json` and `pareto.png` into `dir`; returns the paths.
-    pub fn write(&self, dir: &Path) -> Result<Vec<PathBuf>, WriteError> {
-        let json = dir.join("pareto.json");
-        let png = dir.join("pareto.png");
-        write_json(&json, self)?;
-        self.plot(&png)?;
-        Ok(vec![json, png])
-    }
-
-    fn plot(&self, path: &Path) -> Result<(), WriteError> {
-        let feasible: Vec<(f64, f64, bool)> = self
-            .points
-            .iter()
-            .filter_map(|p| Some((p.value?, p.objective?, p.on_front)))
-            .collect();
-        let xr = range(
-            feasible
-                .iter()
-                .map(|q| q.0)
-                .chain(self.points.iter().map(|p| p.limit)),
-        );
-        let yr = range(feasible.iter().map(|q| q.1));
-        let title = format!(
-            "{}: best {} against {} ({} starts per point)",
-            self.problem, self.objective, self.output, self.starts
-        );
-        render_png(path, (800, 560), |root| {
-            let mut chart = ChartBuilder::on(root)
-                .caption(&title, (FAMILY, 18))
-                .margin(12)
-                .x_label_area_size(44)
-                .y_label_area_size(64)
-                .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
-            chart
-                .configure_mesh()
-                .x_desc(format!("{} ({})", self.output, self.unit))
-                .y_desc(&self.objective)
-                .label_style((FAMILY, 13))
-                .x_label_formatter(&|v| format_tick(*v))
-                .y_label_formatter(&|v| format_tick(*v))
-                .draw()?;
-            let mut front: Vec<(f64, f64)> = feasible
-                .iter()
-                .filter(|q| q.2)
-                .map(|q| (q.0, q.1))
-                .collect();
-            front.sort_by(|a, b| a.0.total_cmp(&b.0));
-            chart
-                .draw_series(LineSeries::new(front.iter().copied(), BLUE.stroke_width(2)))?
-                .label("front")
-                .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLUE.stroke_width(2)));
-            chart
-                .draw_series(
-                    front
-                        .iter()
-                        .map(|&(x, y)| Circle::new((x, y), 4, BLUE.filled())),
-                )?
-                .label("best design at each limit")
-                .legend(|(x, y)| Circle::new((x + 9, y), 4, BLUE.filled()));
-            let behind: Vec<_> = feasible.iter().filter(|q| !q.2).collect();
-            if !behind.is_empty() {
-                chart
-                    .draw_series(
-                        behind
-                            .iter()
-                            .map(|q| Circle::new((q.0, q.1), 4, RED.stroke_width(1))),
-                    )?
-                    .label("dominated (a local optimum)")
-                    .legend(|(x, y)| Circle::new((x + 9, y), 4, RED.stroke_width(1)));
-            }
-            draw_legend(&mut chart, 13)?;
-            Ok(())
-        })
-    }
-}

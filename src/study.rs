@@ -5,16 +5,13 @@ use std::time::{Duration, Instant};
 
 use serde::Serialize;
 
-use crate::model::bridge::Geometry;
 use crate::optim::cluster::{cluster, ClusterSettings, Clustering, EndPoint};
 use crate::optim::multistart::{self, Sampling as StartSampling};
 use crate::optim::nelder_mead::{self, NelderMeadSettings};
 use crate::optim::sqp::{self, SqpSettings};
 use crate::optim::{Problem as _, Solution, Status};
-use crate::problem::nlp::DesignNlp;
-use crate::problem::{ModelSpec, Problem, Sampling, Sense, Solver};
-
-pub use crate::report::FEASIBILITY_TOLERANCE;
+use crate::problem::nlp::{DesignNlp, FEASIBILITY_TOLERANCE};
+use crate::problem::{Problem, Sampling, Sense, Solver};
 
 /// What a study runs with; the problem file's `[search]` gives the defaults.
 #[derive(Debug, Clone)]
@@ -188,39 +185,5 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
         any_feasible,
         elapsed,
         options: options.clone(),
-    }
-}
-
-/// The kind of a bridge configuration, by this rule (first match wins), with angle
-/// tolerance 1 deg:
-/// - `rhombic`: the rigid middle link shorter than a quarter of the chain `l2 + l3 + l4`,
-///   so that the flexible hinges make most of the arm, as in the rhombic type of paper
-///   004 (Fig. 2c, Eq. 24: one flexible beam from input to output);
-/// - `parallel`: both hinges horizontal (`delta2 = delta4 = 0`, Eq. 22);
-/// - `aligned`: hinges and middle link in one line (`delta2 = delta3 = delta4`, Eq. 26);
-/// - `general`: anything else.
-pub fn bridge_configuration(x: &[f64]) -> &'static str {
-    let Ok(x) = <[f64; 8]>::try_from(x) else {
-        return "general";
-    };
-    let g = Geometry::from_array(x);
-    let tol = 1f64.to_radians();
-    if g.l3 < 0.25 * (g.l2 + g.l3 + g.l4) {
-        "rhombic"
-    } else if g.delta2.abs() <= tol && g.delta4.abs() <= tol {
-        "parallel"
-    } else if (g.delta2 - g.delta3).abs() <= tol && (g.delta4 - g.delta3).abs() <= tol {
-        "aligned"
-    } else {
-        "general"
-    }
-}
-
-/// The configuration kind of a design of `problem`'s model.
-pub fn configuration(problem: &Problem, x: &[f64]) -> &'static str {
-    match problem.model {
-        ModelSpec::Bridge(_) => bridge_configuration(x),
-        // the parallel mechanisms keep their topology: no configuration types
-        ModelSpec::Prr3(_) | ModelSpec::Pss3(_) => "-",
     }
 }

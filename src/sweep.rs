@@ -1,13 +1,10 @@
 //! Curves of model outputs against one design variable, the others held at a base design.
 
 use indexmap::IndexMap;
-use std::path::Path;
 
 use serde::Serialize;
 
 use crate::problem::{Problem, ProblemError};
-use crate::report::plot::{line_panels, Panel};
-use crate::report::{write_json, WriteError};
 
 /// What to sweep, in the problem file's units.
 #[derive(Debug, Clone)]
@@ -36,7 +33,7 @@ pub struct Sweep {
     pub output_units: IndexMap<String, String>,
     /// Order of the outputs as the model lists them.
     #[serde(skip)]
-    order: Vec<String>,
+    pub order: Vec<String>,
 }
 
 /// Sweeps `spec.variable` with every other variable at `base` (full design, SI).
@@ -174,39 +171,4 @@ pub fn check_range(
         ));
     }
     Ok(())
-}
-
-impl Sweep {
-    /// Writes `<variable>.json` and `<variable>.png` into `dir`.
-    pub fn write(&self, dir: &Path) -> Result<(), WriteError> {
-        write_json(&dir.join(format!("{}.json", self.variable)), self)?;
-        let panels: Vec<Panel> = self
-            .order
-            .iter()
-            .map(|name| Panel {
-                title: name.clone(),
-                x_label: format!("{} ({})", self.variable, self.unit),
-                y_label: format!("{name} ({})", self.output_units[name]),
-                points: self
-                    .values
-                    .iter()
-                    .zip(&self.outputs[name])
-                    .map(|(&x, y)| (x, y.unwrap_or(f64::NAN)))
-                    .collect(),
-            })
-            .collect();
-        let columns = if panels.len() == 1 { 1 } else { 4 };
-        let cell = if panels.len() == 1 {
-            (720, 480)
-        } else {
-            (420, 300)
-        };
-        line_panels(
-            &dir.join(format!("{}.png", self.variable)),
-            &format!("{}: outputs against {}", self.problem, self.variable),
-            &panels,
-            columns,
-            cell,
-        )
-    }
 }

@@ -6,10 +6,10 @@ mod common;
 
 use common::{random_design, rel, rng, table1_optimum, wei2017_settings};
 use flexopt::dynamics::{step_response, Oscillator};
+use flexopt::model::bridge::dynamics::{DynamicsSettings, QuarterMode, SETTLING_BAND};
 use flexopt::model::bridge::{Bridge, BridgeOutput, BridgeSettings, Geometry, QuarterBridge};
-use flexopt::model::bridge_dynamics::{DynamicsSettings, QuarterMode, SETTLING_BAND};
 use flexopt::model::Model;
-use flexopt::problem::{ModelSpec, Problem};
+use flexopt::problem::Problem;
 use flexopt::study::{self, StudyOptions};
 use std::path::Path;
 
@@ -30,16 +30,16 @@ fn bridge(dynamics: DynamicsSettings, k_pzt: Option<f64>) -> Bridge {
     Bridge::new(s)
 }
 
-fn outputs(b: &Bridge, x: &[f64], wanted: &[usize]) -> Vec<f64> {
+fn outputs(b: &dyn Model, x: &[f64], wanted: &[usize]) -> Vec<f64> {
     let mut out = vec![0.0; wanted.len()];
-    Model::evaluate(b, x, wanted, &mut out);
+    b.evaluate(x, wanted, &mut out);
     out
 }
 
 fn mode(s: &BridgeSettings, x: [f64; 8], k_pzt: Option<f64>) -> QuarterMode<f64> {
     let g = Geometry::from_array(x);
-    let b = s.hinge.compliance(g.l2, g.t2, s.width, &s.material);
-    let d = s.hinge.compliance(g.l4, g.t4, s.width, &s.material);
+    let b = g.b.compliance(s.width, &s.material);
+    let d = g.d.compliance(s.width, &s.material);
     QuarterMode::new(&g, &g.trig(), &b, &d, k_pzt)
 }
 
@@ -53,7 +53,7 @@ fn the_chain_compliance_is_the_closed_form_of_appendix_a() {
     for _ in 0..2000 {
         let x = random_design(&mut r);
         let g = Geometry::from_array(x);
-        let q = QuarterBridge::new(&g, s.hinge, s.width, &s.material);
+        let q = QuarterBridge::new(&g, s.width, &s.material);
         let c = mode(&s, x, None).compliance;
         let scale = q.a11().abs().max(q.a22().abs());
         for (got, want) in [
@@ -78,7 +78,7 @@ fn the_actuated_stiffness_condenses_eq8_with_the_actuator() {
         let x = random_design(&mut r);
         let g = Geometry::from_array(x);
         let s = wei2017_settings();
-        let q = QuarterBridge::new(&g, s.hinge, s.width, &s.material);
+        let q = QuarterBridge::new(&g, s.width, &s.material);
         let (a11, a21, a22) = (q.a11(), q.a21(), q.a22());
         for (k, b) in actuators.into_iter().zip(&bridges) {
             let got = outputs(b, &x, &[K_OUT_ACTUATED])[0];
@@ -193,7 +193,8 @@ fn mass_grows_and_frequency_falls_with_every_added_mass() {
     let s = wei2017_settings();
     let g = Geometry::from_array(x);
     let rho_w = s.material.density * s.width;
-    let bridge_mass = 4.0 * (g.l2 * g.t2 + g.l3 * 3e-3 + g.l4 * g.t4) * rho_w + 12e-3;
+    let bridge_mass =
+        4.0 * (g.l2() * g.b.dims[1] + g.l3 * 3e-3 + g.l4() * g.d.dims[1]) * rho_w + 12e-3;
     assert!(m0 > base.payload_mass + 3e-3 && m0 < base.payload_mass + bridge_mass);
 }
 
@@ -263,10 +264,7 @@ fn the_frequency_floor_binds_and_costs_amplification() {
     assert!(study.any_feasible);
     let best = &study.runs[study.best];
     let [da, f] = outputs(
-        match &problem.model {
-            ModelSpec::Bridge(b) => b,
-            _ => unreachable!(),
-        },
+        problem.model(),
         &best.x_end,
         &[BridgeOutput::Amplification as usize, FREQUENCY],
     )[..] else {
@@ -276,14 +274,7 @@ fn the_frequency_floor_binds_and_costs_amplification() {
     assert!(rel(da.abs(), best.objective, 0.0) < 1e-12);
     assert!(da.abs() > 11.0 && da.abs() < 12.8979, "{da}");
     // the unconstrained optimum of wei2017 violates the floor
-    let free = outputs(
-        match &problem.model {
-            ModelSpec::Bridge(b) => b,
-            _ => unreachable!(),
-        },
-        &table1_optimum(),
-        &[FREQUENCY],
-    )[0];
+    let free = outputs(problem.model(), &table1_optimum(), &[FREQUENCY])[0];
     assert!(free < 1000.0, "{free}");
 }
 

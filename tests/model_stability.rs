@@ -8,8 +8,10 @@ mod common;
 
 use common::exact::Exact;
 use common::*;
-use flexopt::model::bridge::{closed_forms, BridgeOutput, Geometry, QuarterBridge};
-use flexopt::model::bridge_matrix;
+use flexopt::model::bridge::{BridgeOutput, Geometry, QuarterBridge};
+use flexopt::model::hinge::HingeKind;
+use flexopt::model::reference::bridge_matrix;
+use flexopt::model::reference::closed_forms;
 use flexopt::model::Model;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -43,9 +45,9 @@ fn extreme_design(r: &mut ChaCha8Rng, k: usize) -> [f64; 8] {
 /// `[a11, a12, a21, a22]` in f64 and exactly.
 fn coefficients(x: [f64; 8]) -> ([f64; 4], [f64; 4]) {
     let s = wei2017_settings();
-    let q = QuarterBridge::new(&geometry(x), s.hinge, s.width, &s.material);
+    let q = QuarterBridge::new(&geometry(x), s.width, &s.material);
     let ge: Geometry<Exact> = Geometry::from_array(x.map(Exact::from));
-    let qe = QuarterBridge::new(&ge, s.hinge, s.width, &s.material);
+    let qe = QuarterBridge::new(&ge, s.width, &s.material);
     let e = [
         qe.a11().to_f64(),
         qe.a12().to_f64(),
@@ -98,8 +100,8 @@ fn the_linear_system_agrees_within_its_own_conditioning() {
     for k in 0..2000 {
         let x = extreme_design(&mut r, k);
         let (a, e) = coefficients(x);
-        let b = s.hinge.compliance(x[0], x[2], s.width, &s.material);
-        let d = s.hinge.compliance(x[5], x[7], s.width, &s.material);
+        let b = HingeKind::Strip.compliance(&[x[0], x[2]], s.width, &s.material);
+        let d = HingeKind::Strip.compliance(&[x[5], x[7]], s.width, &s.material);
         let (m, kappa) = bridge_matrix::coefficients_and_condition(&geometry(x), &b, &d);
         let norm = e.iter().fold(0.0f64, |v, c| v.max(c.abs()));
         let diff = [m[(0, 0)], m[(0, 1)], m[(1, 0)], m[(1, 1)]]
@@ -218,8 +220,8 @@ fn degenerate_limits() {
             0.4 * MM,
         ];
         assert!(model.domain_error(&x).is_none());
-        let q = QuarterBridge::new(&geometry(x), s.hinge, s.width, &s.material);
-        let h = s.hinge.compliance(x[5], x[7], s.width, &s.material);
+        let q = QuarterBridge::new(&geometry(x), s.width, &s.material);
+        let h = HingeKind::Strip.compliance(&[x[5], x[7]], s.width, &s.material);
         let expect = closed_forms::rhombic_general(&h, delta * DEG);
         assert!(
             rel(q.a21() / q.a11(), expect, 1e-300) < 1e-12,
@@ -269,8 +271,8 @@ const WORST: [f64; 8] = [
 #[test]
 fn the_rotation_numerator_loses_no_digits_when_one_hinge_dominates() {
     let s = wei2017_settings();
-    let b = s.hinge.compliance(WORST[0], WORST[2], s.width, &s.material);
-    let d = s.hinge.compliance(WORST[5], WORST[7], s.width, &s.material);
+    let b = HingeKind::Strip.compliance(&[WORST[0], WORST[2]], s.width, &s.material);
+    let d = HingeKind::Strip.compliance(&[WORST[5], WORST[7]], s.width, &s.material);
     let c2 = flexopt::model::scalar::sin_cos(WORST[1]).1;
     let c3 = flexopt::model::scalar::sin_cos(WORST[4]).1;
     let c4 = flexopt::model::scalar::sin_cos(WORST[6]).1;
@@ -303,7 +305,8 @@ mod properties {
     use super::common::*;
     use super::STATIC_OUTPUTS;
     use flexopt::model::bridge::QuarterBridge;
-    use flexopt::model::bridge_matrix;
+    use flexopt::model::hinge::HingeKind;
+    use flexopt::model::reference::bridge_matrix;
     use flexopt::model::Model;
     use proptest::prelude::*;
 
@@ -427,13 +430,13 @@ mod properties {
             let s = wei2017_settings();
             let model = wei2017();
             prop_assert!(model.domain_error(&x).is_none());
-            let q = QuarterBridge::new(&geometry(x), s.hinge, s.width, &s.material);
+            let q = QuarterBridge::new(&geometry(x), s.width, &s.material);
             let a = [q.a11(), q.a12(), q.a21(), q.a22()];
             prop_assert!(a.iter().all(|v| v.is_finite()));
             let cross = (a[0] * a[3].abs()).sqrt();
             prop_assert!((a[1] + a[2]).abs() <= 1e-12 * cross, "{a:?}");
-            let b = s.hinge.compliance(x[0], x[2], s.width, &s.material);
-            let d = s.hinge.compliance(x[5], x[7], s.width, &s.material);
+            let b = HingeKind::Strip.compliance(&[x[0], x[2]], s.width, &s.material);
+            let d = HingeKind::Strip.compliance(&[x[5], x[7]], s.width, &s.material);
             let (m, kappa) = bridge_matrix::coefficients_and_condition(&geometry(x), &b, &d);
             let norm = a.iter().fold(0.0f64, |v, c| v.max(c.abs()));
             let diff = [m[(0, 0)], m[(0, 1)], m[(1, 0)], m[(1, 1)]].iter().zip(&a).map(|(m, a)| (m - a).abs()).fold(0.0, f64::max) / norm;
@@ -476,17 +479,17 @@ fn chain_compliance_is_accurate_to_its_conditioning() {
     // the serial chain behind the dynamic outputs condenses the moment at node 5 as the
     // linear system does, so it shares that formulation's error bound, eps times the
     // cancellation factor kappa, against the closed form
-    use flexopt::model::bridge_dynamics::QuarterMode;
-    use flexopt::model::bridge_matrix;
+    use flexopt::model::bridge::dynamics::QuarterMode;
+    use flexopt::model::reference::bridge_matrix;
     let s = wei2017_settings();
     let mut r = rng(21);
     let (mut worst, mut worst_kappa) = (0.0f64, 0.0f64);
     for k in 0..3000 {
         let x = extreme_design(&mut r, k);
         let g = geometry(x);
-        let q = QuarterBridge::new(&g, s.hinge, s.width, &s.material);
-        let b = s.hinge.compliance(x[0], x[2], s.width, &s.material);
-        let d = s.hinge.compliance(x[5], x[7], s.width, &s.material);
+        let q = QuarterBridge::new(&g, s.width, &s.material);
+        let b = HingeKind::Strip.compliance(&[x[0], x[2]], s.width, &s.material);
+        let d = HingeKind::Strip.compliance(&[x[5], x[7]], s.width, &s.material);
         let (_, kappa) = bridge_matrix::coefficients_and_condition(&g, &b, &d);
         let c = QuarterMode::new(&g, &g.trig(), &b, &d, None).compliance;
         let a = [q.a11(), q.a12(), -q.a21(), -q.a22()];

@@ -8,11 +8,11 @@ mod common;
 
 use common::{rel, rng, DEG, MM};
 use flexopt::dynamics::PAPER001_TABLE4;
-use flexopt::model::bridge::closed_forms;
-use flexopt::model::bridge_lagrange::BridgeLagrange;
 use flexopt::model::hinge::HingeKind;
 use flexopt::model::material::Material;
-use flexopt::model::platform6::{guide_bending_stiffness, Axis, Platform};
+use flexopt::model::reference::bridge_lagrange::BridgeLagrange;
+use flexopt::model::reference::closed_forms;
+use flexopt::model::reference::platform6::{guide_bending_stiffness, Axis, Platform};
 use rand::Rng;
 
 /// Table 1 of paper 001 (L = 9 mm, l = 7 mm, t = 0.8 mm, d = 10 mm, E = 210 GPa) with the
@@ -166,7 +166,7 @@ fn paper001_amplification_beside_paper004_for_the_same_bridge() {
     let mut mat = Material::spring_steel_65si2mn();
     mat.poisson_ratio = 0.28;
     let (l, t, big_l, w) = (7.0 * MM, 0.8 * MM, 9.0 * MM, 10.0 * MM);
-    let h = HingeKind::Strip.compliance(l, t, w, &mat);
+    let h = HingeKind::Strip.compliance(&[l, t], w, &mat);
     for deg in [2.0, 5.0, 8.0, 10.0, 15.0, 20.0, 30.0] {
         let th = deg * DEG;
         let a001 = table1(1.0, th).amplification();
@@ -181,7 +181,7 @@ fn paper001_amplification_beside_paper004_for_the_same_bridge() {
     }
     for deg in [5.0, 20.0] {
         let th = deg * DEG;
-        let thin = HingeKind::Strip.compliance(l, 1e-6, w, &mat);
+        let thin = HingeKind::Strip.compliance(&[l, 1e-6], w, &mat);
         let mut b = table1(1.0, th);
         b.hinge_thickness = 1e-6;
         let ideal = 1.0 / th.tan();

@@ -11,7 +11,7 @@ use flexopt::optim::multistart::{self, Sampling};
 use flexopt::optim::sqp::{self, SqpSettings};
 use flexopt::optim::{Problem as _, Status};
 use flexopt::problem::{Problem, Solver};
-use flexopt::study::{self, bridge_configuration, StudyOptions};
+use flexopt::study::{self, StudyOptions};
 
 fn wei2017() -> Problem {
     Problem::load(Path::new("problems/wei2017.toml")).unwrap()
@@ -109,7 +109,8 @@ fn zones_show_aligned_at_the_top_and_rhombic_below() {
             .optima
             .iter()
             .map(|&k| {
-                bridge_configuration(&s.runs[s.feasible_runs[c.optima[k].representative]].x_end)
+                p.model()
+                    .configuration(&s.runs[s.feasible_runs[c.optima[k].representative]].x_end)
             })
             .collect()
     };
@@ -228,7 +229,7 @@ fn a_stress_limited_variant_converges_from_every_start() {
         "{}",
         best.objective
     );
-    assert_eq!(bridge_configuration(&best.x_end), "parallel");
+    assert_eq!(p.model().configuration(&best.x_end), "parallel");
     let report = flexopt::report::DesignReport::new(&p, &best.x_end);
     let stress = report
         .constraints

@@ -1,6 +1,23 @@
-//! Isotropic linear-elastic materials.
+//! Isotropic linear-elastic materials, and the `[material]` section of a problem file.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+
+use crate::model::Dimension;
+use crate::problem::reader::{k, quoted, Res};
+use crate::problem::schema::{Number, Quantity};
+use crate::problem::sections::Sections;
+
+/// The `[material]` section as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMaterial {
+    pub preset: Option<String>,
+    pub name: Option<String>,
+    pub youngs_modulus: Option<Quantity>,
+    pub poisson_ratio: Option<Number>,
+    pub ultimate_strength: Option<Quantity>,
+    pub density: Option<Quantity>,
+}
 
 /// An isotropic linear-elastic material, SI units.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -59,6 +76,96 @@ impl Material {
 
     /// Names accepted by [`Material::preset`].
     pub const PRESETS: &'static [&'static str] = &["al7075-t6", "65si2mn"];
+}
+
+impl Material {
+    /// Reads the `[material]` section: a preset, or the values, or a preset with some
+    /// values overridden.
+    pub fn from_section(s: &Sections, m: &RawMaterial) -> Res<Material> {
+        let path = |key: &str| [k("material"), k(key)];
+        let mut mat = match &m.preset {
+            Some(p) => Material::preset(p).ok_or_else(|| {
+                s.err(
+                    &path("preset"),
+                    format!(
+                        "unknown material \"{p}\"; expected one of {}",
+                        quoted(Material::PRESETS)
+                    ),
+                )
+            })?,
+            None => {
+                if m.youngs_modulus.is_none() || m.poisson_ratio.is_none() {
+                    let missing = if m.youngs_modulus.is_none() {
+                        "youngs_modulus"
+                    } else {
+                        "poisson_ratio"
+                    };
+                    return Err(s.err(
+                        &path(missing),
+                        format!(
+                            "missing: give a `preset` ({}) or the material's values",
+                            quoted(Material::PRESETS)
+                        ),
+                    ));
+                }
+                Material {
+                    name: "custom".into(),
+                    youngs_modulus: f64::NAN,
+                    poisson_ratio: f64::NAN,
+                    ultimate_strength: None,
+                    density: f64::NAN,
+                }
+            }
+        };
+        if let Some(n) = &m.name {
+            mat.name = n.clone();
+        }
+        if let Some(q) = &m.youngs_modulus {
+            mat.youngs_modulus = s.positive(&path("youngs_modulus"), q, Dimension::Stress)?;
+        }
+        if let Some(n) = m.poisson_ratio {
+            let nu = s.finite(&path("poisson_ratio"), n)?;
+            if !(nu > -1.0 && nu < 0.5) {
+                return Err(s.err(
+                    &path("poisson_ratio"),
+                    format!("must lie in (-1, 0.5), got {nu}"),
+                ));
+            }
+            mat.poisson_ratio = nu;
+        }
+        if let Some(q) = &m.ultimate_strength {
+            mat.ultimate_strength =
+                Some(s.positive(&path("ultimate_strength"), q, Dimension::Stress)?);
+        }
+        if let Some(q) = &m.density {
+            mat.density = density(q).map_err(|msg| s.err(&path("density"), msg))?;
+        }
+        Ok(mat)
+    }
+}
+
+/// Density has a unit of its own: `"2810 kg/m3"` or `"2.81 g/cm3"`.
+fn density(q: &Quantity) -> Result<f64, String> {
+    let Quantity::Text(t) = q else {
+        return Err("expected a density with its unit, e.g. \"2810 kg/m3\"".into());
+    };
+    let t = t.trim();
+    let (num, unit) = t.split_at(t.find(char::is_whitespace).unwrap_or(t.len()));
+    let factor = match unit.trim() {
+        "kg/m3" | "kg/m^3" => 1.0,
+        "g/cm3" | "g/cm^3" => 1000.0,
+        u => {
+            return Err(format!(
+                "unknown unit \"{u}\" for a density; expected \"kg/m3\" or \"g/cm3\""
+            ))
+        }
+    };
+    match num.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v * factor),
+        _ => Err(format!(
+            "\"{t}\" is not a positive density, e.g. \"2810 kg/m3\""
+        )),
+    }
 }
 
 #[cfg(test)]

@@ -2,20 +2,25 @@
 //!
 //! Each model is written once, generic over [`scalar::Scalar`], and exposed through the
 //! object-safe [`Model`] trait, which speaks `f64` at its boundary and uses dual numbers
-//! inside for exact gradients.
+//! inside for exact gradients. A model owns everything about itself: its problem-file
+//! sections (read by its [`registry::ModelEntry`]), its parameters and outputs, the names of
+//! its configurations and its drawing data. The rest of flexopt reaches a model only
+//! through [`Model`] and the [`registry`].
 
 pub mod bridge;
-pub mod bridge_dynamics;
-pub mod bridge_lagrange;
-pub mod bridge_matrix;
 pub mod hinge;
 pub mod material;
-pub mod platform6;
 pub mod prr3;
 pub mod pss3;
+pub mod reference;
+pub mod registry;
 pub mod scalar;
 
+use std::borrow::Cow;
+
 use serde::Serialize;
+
+use material::Material;
 
 use scalar::Jet;
 
@@ -67,20 +72,21 @@ impl Dimension {
     }
 }
 
-/// A design parameter of a model.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// A design parameter of a model. Names are owned where a model builds them (the bridge
+/// names its hinges' dimensions after the hinge).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ParameterInfo {
-    pub name: &'static str,
+    pub name: Cow<'static, str>,
     pub dimension: Dimension,
-    pub description: &'static str,
+    pub description: Cow<'static, str>,
 }
 
 impl ParameterInfo {
     pub const fn new(name: &'static str, dimension: Dimension, description: &'static str) -> Self {
         ParameterInfo {
-            name,
+            name: Cow::Borrowed(name),
             dimension,
-            description,
+            description: Cow::Borrowed(description),
         }
     }
 }
@@ -103,11 +109,49 @@ impl OutputInfo {
     }
 }
 
+/// A natural mode of a mechanism: its frequency (Hz) and its shape in the platform
+/// coordinates, normalised so that `v^T M v = 1`: `(x, y, gamma)` (m, m, rad) for a planar
+/// mechanism, `(x, y, z)` (m) for a spatial one.
+#[derive(Debug, Clone, Serialize)]
+pub struct ModeShape {
+    pub frequency: f64,
+    pub x: f64,
+    pub y: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub z: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gamma: Option<f64>,
+}
+
+/// What a design report shows of a design besides its outputs.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Drawing {
+    /// The mechanism's nodes in mm (the bridge's quarter: nodes 2..5, origin at node 2).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nodes_mm: Option<Vec<[f64; 2]>>,
+    /// The natural modes, mass-normalised (parallel mechanisms).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mode_shapes: Option<Vec<ModeShape>>,
+}
+
+/// A design drawn as a chain of straight members, for the plot of every optimum's
+/// configuration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Skeleton {
+    /// The chain's nodes (mm).
+    pub nodes_mm: Vec<(f64, f64)>,
+    /// Whether each member (between nodes `i` and `i + 1`) is rigid; flexible members are
+    /// drawn in the zone's colour, rigid ones in grey.
+    pub rigid: Vec<bool>,
+}
+
 /// A mechanism model as the problem layer and the optimizer see it.
 ///
 /// `x` holds every parameter of [`Model::parameters`] in SI units; `wanted` lists indices
 /// into [`Model::outputs`]; only those outputs are computed.
-pub trait Model: Send + Sync {
+pub trait Model: Send + Sync + std::fmt::Debug {
+    /// The name a problem file's `model` key gives it.
+    fn name(&self) -> &'static str;
     fn parameters(&self) -> &[ParameterInfo];
     fn outputs(&self) -> &[OutputInfo];
     /// Writes the wanted outputs into `out` (same length as `wanted`).
@@ -152,6 +196,45 @@ pub trait Model: Send + Sync {
     fn output_index(&self, name: &str) -> Option<usize> {
         self.outputs().iter().position(|o| o.name == name)
     }
+
+    /// The material, where the model has one: constraints may set a stress limit as a
+    /// fraction of its strength.
+    fn material(&self) -> Option<&Material> {
+        None
+    }
+
+    /// The bound on every angle parameter's size, exclusive, where the model has one (the
+    /// bridge's angles stay within a right angle); bounds in a problem file must respect it.
+    fn angle_limit(&self) -> Option<f64> {
+        None
+    }
+
+    /// The kind of configuration the design `x` (SI) is, by [`Model::configuration_rule`];
+    /// `-` for a model whose topology does not change.
+    fn configuration(&self, _x: &[f64]) -> &'static str {
+        "-"
+    }
+
+    /// The rule by which [`Model::configuration`] names designs, for readers of the results.
+    fn configuration_rule(&self) -> Option<&'static str> {
+        None
+    }
+
+    /// Nodes and mode shapes of the design `x` (SI) for its report.
+    fn drawing(&self, _x: &[f64]) -> Drawing {
+        Drawing::default()
+    }
+
+    /// The design `x` (SI) as a chain of members, for the configuration plot; `None` where
+    /// the model has no such picture, and then no plot is drawn.
+    fn skeleton(&self, _x: &[f64]) -> Option<Skeleton> {
+        None
+    }
+
+    /// The legend of the configuration plot: what the colours and the origin mean.
+    fn skeleton_legend(&self) -> &'static str {
+        ""
+    }
 }
 
 /// A model that computes all its outputs at once (a parallel mechanism's frequencies come
@@ -182,8 +265,16 @@ pub(crate) trait AllOutputs<const N: usize, const K: usize> {
 /// Implements [`Model`] for a type with [`AllOutputs`]: its parameters and outputs tables, its
 /// domain check (a function of the design), and evaluation by picking from all outputs.
 macro_rules! model_from_all_outputs {
-    ($model:ty, $parameters:expr, $outputs:expr, $domain_error:expr) => {
+    ($model:ty, $name:expr, $parameters:expr, $outputs:expr, $domain_error:expr, $drawing:expr) => {
         impl $crate::model::Model for $model {
+            fn name(&self) -> &'static str {
+                $name
+            }
+
+            fn drawing(&self, x: &[f64]) -> $crate::model::Drawing {
+                $drawing(x)
+            }
+
             fn parameters(&self) -> &[$crate::model::ParameterInfo] {
                 &$parameters
             }
@@ -244,7 +335,7 @@ pub(crate) fn check_parameters(
 }
 
 /// Splits gradient-carrying results into values and a row-major Jacobian.
-fn unseed<const N: usize>(y: &[Jet<N>], out: &mut [f64], jacobian: &mut [f64]) {
+pub(crate) fn unseed<const N: usize>(y: &[Jet<N>], out: &mut [f64], jacobian: &mut [f64]) {
     for (i, yi) in y.iter().enumerate() {
         out[i] = yi.re;
         jacobian[i * N..(i + 1) * N].copy_from_slice(&yi.grad);
@@ -256,73 +347,3 @@ pub const MAX_WANTED: usize = 32;
 
 /// Largest number of parameters a model may have.
 pub const MAX_PARAMETERS: usize = 16;
-
-impl Model for bridge::Bridge {
-    fn parameters(&self) -> &[ParameterInfo] {
-        &bridge::PARAMETERS
-    }
-
-    fn outputs(&self) -> &[OutputInfo] {
-        &bridge::OUTPUTS
-    }
-
-    fn max_of(&self, output: usize) -> Option<&[usize]> {
-        use bridge::BridgeOutput::*;
-        // the stresses at nodes 2, 3, 4, 5 (BridgeOutput::ALL lists the variants in order)
-        const ALL_NODES: [usize; 4] = [
-            StressNode2 as usize,
-            StressNode3 as usize,
-            StressNode4 as usize,
-            StressNode5 as usize,
-        ];
-        match bridge::BridgeOutput::ALL[output] {
-            StressMax => Some(&ALL_NODES),
-            StressB => Some(&ALL_NODES[..2]),
-            StressD => Some(&ALL_NODES[2..]),
-            _ => None,
-        }
-    }
-
-    fn unavailable(&self, output: usize) -> Option<String> {
-        let o = bridge::BridgeOutput::ALL[output];
-        (o.needs_dynamics() && self.settings.dynamics.is_none()).then(|| {
-            format!(
-                "output \"{}\" needs the masses and damping of a [dynamics] section",
-                bridge::OUTPUTS[output].name
-            )
-        })
-    }
-
-    fn domain_error(&self, x: &[f64]) -> Option<String> {
-        match <[f64; 8]>::try_from(x) {
-            Ok(x) => bridge::Geometry::from_array(x).domain_error(),
-            Err(_) => Some(format!("a bridge design has 8 parameters, got {}", x.len())),
-        }
-    }
-
-    fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {
-        let x: [f64; 8] = x.try_into().expect("a bridge design has 8 parameters");
-        bridge::Bridge::evaluate(self, &bridge::Geometry::from_array(x), wanted, out);
-    }
-
-    fn evaluate_with_gradient(
-        &self,
-        x: &[f64],
-        wanted: &[usize],
-        out: &mut [f64],
-        jacobian: &mut [f64],
-    ) {
-        // most problems name a few outputs (wei2017: 9, its stress limit on four node
-        // stresses): keep them on the stack without zeroing much
-        let mut small = [Jet::<8>::from(0.0); 12];
-        let mut large = Vec::new();
-        let y = if wanted.len() <= small.len() {
-            &mut small[..wanted.len()]
-        } else {
-            large.resize(wanted.len(), Jet::from(0.0));
-            &mut large[..]
-        };
-        bridge::Bridge::evaluate(self, &bridge::Geometry::seeded(x), wanted, y);
-        unseed(y, out, jacobian);
-    }
-}

@@ -48,9 +48,13 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use std::sync::Arc;
+
+use super::registry::ModelEntry;
 use super::scalar::Scalar;
 use super::{
-    check_parameters, model_from_all_outputs, AllOutputs, Dimension, OutputInfo, ParameterInfo,
+    check_parameters, model_from_all_outputs, AllOutputs, Dimension, Drawing, ModeShape,
+    OutputInfo, ParameterInfo,
 };
 
 /// Parameters of the 3-PRR mechanism, SI units.
@@ -211,7 +215,7 @@ pub fn frequencies<D: Scalar>(p: &Prr3<D>) -> Option<[D; 3]> {
 }
 
 /// The design parameters of the 3-PRR model, in model order.
-pub const PARAMETERS: [ParameterInfo; 10] = [
+pub static PARAMETERS: [ParameterInfo; 10] = [
     ParameterInfo::new("ra", Dimension::Length, "base radius"),
     ParameterInfo::new("rb", Dimension::Length, "platform radius"),
     ParameterInfo::new("l", Dimension::Length, "passive link length"),
@@ -304,7 +308,41 @@ impl<D: Scalar> Prr3<D> {
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Prr3Model;
 
-model_from_all_outputs!(Prr3Model, PARAMETERS, OUTPUTS, domain_error);
+model_from_all_outputs!(
+    Prr3Model,
+    "prr3",
+    PARAMETERS,
+    OUTPUTS,
+    domain_error,
+    drawing
+);
+
+/// How a problem file selects the 3-PRR: it takes no section, every parameter is a variable.
+pub const ENTRY: ModelEntry = ModelEntry {
+    name: "prr3",
+    sections: &[],
+    build: |_| Ok(Arc::new(Prr3Model)),
+};
+
+/// The three natural modes of the design `x` (SI), in the platform coordinates.
+fn drawing(x: &[f64]) -> Drawing {
+    let p = Prr3::from_slice(x);
+    let (m, k) = mass_and_stiffness(&p);
+    Drawing {
+        nodes_mm: None,
+        mode_shapes: modes(&m, &k).map(|(f, v)| {
+            (0..3)
+                .map(|i| ModeShape {
+                    frequency: f[i],
+                    x: v[(0, i)],
+                    y: v[(1, i)],
+                    z: None,
+                    gamma: Some(v[(2, i)]),
+                })
+                .collect()
+        }),
+    }
+}
 
 /// Why `x` lies outside the model's domain, if it does.
 fn domain_error(x: &[f64]) -> Option<String> {

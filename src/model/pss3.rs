@@ -64,9 +64,13 @@
 //! stiffness is a moment per angle, and 5.18 N m/rad is the reading that reproduces its
 //! frequencies (tests/pss3.rs).
 
+use std::sync::Arc;
+
+use super::registry::ModelEntry;
 use super::scalar::Scalar;
 use super::{
-    check_parameters, model_from_all_outputs, AllOutputs, Dimension, OutputInfo, ParameterInfo,
+    check_parameters, model_from_all_outputs, AllOutputs, Dimension, Drawing, ModeShape,
+    OutputInfo, ParameterInfo,
 };
 
 /// Standard gravity (m/s^2).
@@ -92,7 +96,7 @@ pub struct Pss3<D> {
 }
 
 /// The design parameters, in model order.
-pub const PARAMETERS: [ParameterInfo; 7] = [
+pub static PARAMETERS: [ParameterInfo; 7] = [
     ParameterInfo::new(
         "ra",
         Dimension::Length,
@@ -305,7 +309,45 @@ impl<D: Scalar> Arcsin for D {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub struct Pss3Model;
 
-model_from_all_outputs!(Pss3Model, PARAMETERS, OUTPUTS, domain_error);
+model_from_all_outputs!(
+    Pss3Model,
+    "pss3",
+    PARAMETERS,
+    OUTPUTS,
+    domain_error,
+    drawing
+);
+
+/// How a problem file selects the 3-PSS: it takes no section, every parameter is a variable.
+pub const ENTRY: ModelEntry = ModelEntry {
+    name: "pss3",
+    sections: &[],
+    build: |_| Ok(Arc::new(Pss3Model)),
+};
+
+/// The natural modes of the design `x` (SI): M and K are diagonal, so each axis is a mode.
+fn drawing(x: &[f64]) -> Drawing {
+    let p = Pss3::from_slice(x);
+    let (m, f) = (p.mass_matrix(), p.axis_frequencies());
+    let mut modes: Vec<ModeShape> = (0..3)
+        .map(|a| {
+            let mut v = [0.0; 3];
+            v[a] = m[a][a].sqrt().recip();
+            ModeShape {
+                frequency: f[a],
+                x: v[0],
+                y: v[1],
+                z: Some(v[2]),
+                gamma: None,
+            }
+        })
+        .collect();
+    modes.sort_by(|a, b| a.frequency.total_cmp(&b.frequency));
+    Drawing {
+        nodes_mm: None,
+        mode_shapes: Some(modes),
+    }
+}
 
 /// Why `x` lies outside the model's domain, if it does.
 fn domain_error(x: &[f64]) -> Option<String> {

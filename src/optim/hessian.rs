@@ -12,6 +12,8 @@
 //! G. H. Golub and C. F. Van Loan, Matrix Computations, 4th ed., 2013, Sec. 8.3
 //! (tridiagonalization and the symmetric QR/QL algorithm), as in EISPACK's tred2 and tql2.
 
+use super::dense::cholesky;
+
 /// `|H|` of the symmetric `n x n` matrix `h` (row-major, overwritten), every eigenvalue's
 /// magnitude floored at `floor_ratio` times the largest; `v` is scratch of the same size.
 /// False, with `h` undefined, when `H` has no curvature to speak of (every eigenvalue below
@@ -20,7 +22,9 @@ pub fn make_positive_definite(h: &mut [f64], v: &mut [f64], n: usize, floor_rati
     // a matrix positive definite with every eigenvalue above the floor is its own |H|; a
     // Cholesky factorization of H - floor I (into v) tells, at a fraction of the cost
     let largest_diag = (0..n).map(|i| h[i * n + i].abs()).fold(0.0, f64::max);
-    if largest_diag > 1e-12 && cholesky_succeeds(h, v, n, floor_ratio * largest_diag) {
+    let shift = floor_ratio * largest_diag;
+    let shifted = |r: usize, c: usize| h[r * n + c] - if r == c { shift } else { 0.0 };
+    if largest_diag > 1e-12 && cholesky(v, n, n, 0.0, shifted) {
         return true;
     }
     if n > MAX_N {
@@ -217,27 +221,6 @@ fn pythag(a: f64, b: f64) -> f64 {
     } else {
         b * (1.0 + (a / b) * (a / b)).sqrt()
     }
-}
-
-/// Whether `h - shift I` has a Cholesky factor (computed into `l`).
-fn cholesky_succeeds(h: &[f64], l: &mut [f64], n: usize, shift: f64) -> bool {
-    for i in 0..n {
-        for k in 0..=i {
-            let mut s = h[i * n + k] - if i == k { shift } else { 0.0 };
-            for p in 0..k {
-                s -= l[i * n + p] * l[k * n + p];
-            }
-            if i == k {
-                if s <= 0.0 || !s.is_finite() {
-                    return false;
-                }
-                l[i * n + i] = s.sqrt();
-            } else {
-                l[i * n + k] = s / l[k * n + k];
-            }
-        }
-    }
-    true
 }
 
 #[cfg(test)]

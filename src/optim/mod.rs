@@ -2,6 +2,7 @@
 //! multistart engine and the clustering of optima, all written against [`Problem`].
 
 pub mod cluster;
+pub mod dense;
 pub mod finite_differences;
 pub mod hessian;
 pub mod multistart;

@@ -59,22 +59,7 @@ pub struct Solution {
     pub evaluations: usize,
 }
 
-/// Largest violation of the constraints `c` of `problem`.
-pub fn max_violation(c: &[f64], equalities: usize) -> f64 {
-    c.iter()
-        .enumerate()
-        .map(|(i, &v)| {
-            if i < equalities {
-                v.abs()
-            } else {
-                (-v).max(0.0)
-            }
-        })
-        .fold(
-            0.0,
-            |m: f64, v| if v.is_nan() { f64::INFINITY } else { m.max(v) },
-        )
-}
+pub use super::dense::max_violation;
 
 /// Moves `x` into the bounds.
 pub fn clamp_into(x: &mut [f64], lower: &[f64], upper: &[f64]) {

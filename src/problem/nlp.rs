@@ -9,15 +9,24 @@
 //!   defines as a maximum (`Model::max_of`) becomes one such row per part: the same
 //!   feasible set, without the kinks of the max.
 //!
-//! Gradients are the model's exact ones, through the chain rule of the scaling.
+//! The model is asked for exactly the outputs the objective and constraints name, once
+//! each (the objective first), at the full parameter vector: the free variables in place
+//! among the fixed values. Gradients are the model's exact ones, through the chain rule of
+//! the scaling.
 
-use super::bind::{merit, scratch, Evaluator};
 use super::{Problem as DesignProblem, Sense};
-use crate::model::{Dimension, MAX_PARAMETERS, MAX_WANTED};
+use crate::model::{Dimension, Model, MAX_PARAMETERS, MAX_WANTED};
 use crate::optim::Problem;
 
-/// One inequality: `sign * (value - limit) / scale >= 0`, `value` the evaluator's
-/// `value`-th output.
+/// Relative violation up to which a constraint counts as met: a constraint's value here is
+/// its relative margin, so this is the one place where the rule can be stated.
+pub const FEASIBILITY_TOLERANCE: f64 = 1e-8;
+
+/// Relative margin within which a constraint counts as active.
+pub const ACTIVE_TOLERANCE: f64 = 1e-6;
+
+/// One inequality: `sign * (value - limit) / scale >= 0`, `value` the position of its
+/// output among the wanted ones.
 #[derive(Debug, Clone, Copy)]
 struct Row {
     value: usize,
@@ -29,9 +38,15 @@ struct Row {
 /// The design problem in the solvers' form.
 pub struct DesignNlp<'p> {
     pub problem: &'p DesignProblem,
-    evaluator: Evaluator<'p>,
-    /// Number of outputs the evaluator gives besides the objective.
-    values: usize,
+    model: &'p dyn Model,
+    /// The full parameter vector with the fixed values in place.
+    base: Vec<f64>,
+    /// Model parameter index of each free variable.
+    free: Vec<usize>,
+    /// Every parameter is free, in model order: designs pass through unchanged.
+    all_free: bool,
+    /// Output indices the model is asked for: no duplicates, objective first.
+    wanted: Vec<usize>,
     offset: Vec<f64>,
     range: Vec<f64>,
     zeros: Vec<f64>,
@@ -47,11 +62,11 @@ impl<'p> DesignNlp<'p> {
         let free: Vec<_> = problem.free_variables().collect();
         let model = problem.model();
         let mut rows = Vec::new();
-        let mut outputs: Vec<usize> = Vec::new();
+        let mut wanted = vec![problem.objective.index];
         let mut value_of = |index: usize| {
-            outputs.iter().position(|&o| o == index).unwrap_or_else(|| {
-                outputs.push(index);
-                outputs.len() - 1
+            wanted.iter().position(|&o| o == index).unwrap_or_else(|| {
+                wanted.push(index);
+                wanted.len() - 1
             })
         };
         for c in &problem.constraints {
@@ -84,10 +99,19 @@ impl<'p> DesignNlp<'p> {
             .iter()
             .flat_map(|r| range.iter().map(move |rj| r.sign * rj / r.scale))
             .collect();
+        assert!(
+            wanted.len() <= MAX_WANTED,
+            "a problem names at most {MAX_WANTED} outputs"
+        );
+        assert!(problem.variables.len() <= MAX_PARAMETERS);
+        let free_index: Vec<usize> = free.iter().map(|v| v.parameter).collect();
         DesignNlp {
             problem,
-            evaluator: Evaluator::for_outputs(problem, &outputs),
-            values: outputs.len(),
+            model,
+            base: problem.variables.iter().map(|v| v.lower).collect(),
+            all_free: free_index.iter().copied().eq(0..problem.variables.len()),
+            free: free_index,
+            wanted,
             offset: free.iter().map(|v| v.lower).collect(),
             range,
             zeros: vec![0.0; free.len()],
@@ -122,7 +146,46 @@ impl<'p> DesignNlp<'p> {
 
     /// The full model design (SI) of a scaled design.
     pub fn full_design(&self, u: &[f64]) -> Vec<f64> {
-        self.evaluator.full_design(&self.unscale(u))
+        let mut x = self.base.clone();
+        for (&p, v) in self.free.iter().zip(self.unscale(u)) {
+            x[p] = v;
+        }
+        x
+    }
+
+    /// The output indices the model computes for this problem, the objective's first.
+    pub fn wanted(&self) -> &[usize] {
+        &self.wanted
+    }
+
+    /// The wanted outputs (SI) at the free variables `free` (SI, model order).
+    pub fn outputs(&self, free: &[f64], out: &mut [f64]) {
+        let mut x = [0.0; MAX_PARAMETERS];
+        self.model
+            .evaluate(self.fill(free, &mut x), &self.wanted, out);
+    }
+
+    /// As [`DesignNlp::outputs`], with the model's Jacobian over all its parameters,
+    /// row-major (`jacobian[i * np + p]`, `np` the number of parameters).
+    pub fn outputs_with_gradient(&self, free: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
+        let mut x = [0.0; MAX_PARAMETERS];
+        let x = self.fill(free, &mut x);
+        self.model
+            .evaluate_with_gradient(x, &self.wanted, out, jacobian);
+    }
+
+    /// The full parameter vector of the free variables `free`, in `buf` unless every
+    /// parameter is free.
+    fn fill<'a>(&self, free: &'a [f64], buf: &'a mut [f64; MAX_PARAMETERS]) -> &'a [f64] {
+        if self.all_free {
+            return free;
+        }
+        let x = &mut buf[..self.base.len()];
+        x.copy_from_slice(&self.base);
+        for (&p, &v) in self.free.iter().zip(free) {
+            x[p] = v;
+        }
+        x
     }
 
     /// The objective as the problem states it (absolute value taken if asked) from the
@@ -190,16 +253,12 @@ impl Problem for DesignNlp<'_> {
     fn evaluate(&self, u: &[f64], c: &mut [f64]) -> f64 {
         let mut buf = [0.0; MAX_PARAMETERS];
         let x = self.unscale_into(u, &mut buf);
-        let mut values = [0.0; MAX_WANTED];
-        let values = &mut values[..self.values];
-        let mut f = 0.0;
-        self.evaluator.evaluate(x, &mut f, values);
-        self.constraint_values(values, c);
-        merit(
-            self.problem.objective.sense,
-            self.problem.objective.absolute,
-            f,
-        )
+        let mut out = [0.0; MAX_WANTED];
+        let out = &mut out[..self.wanted.len()];
+        self.outputs(x, out);
+        self.constraint_values(out, c);
+        let o = &self.problem.objective;
+        merit(o.sense, o.absolute, out[0])
     }
 
     fn evaluate_with_gradient(
@@ -210,16 +269,22 @@ impl Problem for DesignNlp<'_> {
         jacobian: &mut [f64],
     ) -> f64 {
         let n = u.len();
-        let nc = self.values;
+        let np = self.base.len();
         let mut buf = [0.0; MAX_PARAMETERS];
         let x = self.unscale_into(u, &mut buf);
-        let mut values = [0.0; MAX_WANTED];
-        let values = &mut values[..nc];
-        let (mut small, mut large) = ([0.0; 96], Vec::new());
-        let value_grad = scratch(&mut small, &mut large, nc * n);
-        let mut f = 0.0;
-        self.evaluator
-            .evaluate_with_gradient(x, &mut f, gradient, values, value_grad);
+        let mut out = [0.0; MAX_WANTED];
+        let out = &mut out[..self.wanted.len()];
+        // sized for the wei2017 problems (9 outputs of 8 parameters): a heap buffer per
+        // evaluation showed in the solver's profile
+        let (mut small, mut large) = ([0.0; 128], Vec::new());
+        let model_jac = if out.len() * np <= small.len() {
+            &mut small[..out.len() * np]
+        } else {
+            large.resize(out.len() * np, 0.0);
+            &mut large[..]
+        };
+        self.outputs_with_gradient(x, out, model_jac);
+        let f = out[0];
         let o = &self.problem.objective;
         // d merit / d value: -1 or +1, times sign(value) for an absolute value
         let mut df = if o.sense == Sense::Maximize {
@@ -230,19 +295,29 @@ impl Problem for DesignNlp<'_> {
         if o.absolute && f < 0.0 {
             df = -df;
         }
-        for (gj, rj) in gradient.iter_mut().zip(&self.range) {
-            *gj *= df * rj;
+        for ((gj, rj), &p) in gradient.iter_mut().zip(&self.range).zip(&self.free) {
+            *gj = model_jac[p] * (df * rj);
         }
-        self.constraint_values(values, c);
+        self.constraint_values(out, c);
         let rows = jacobian
             .chunks_exact_mut(n)
             .zip(self.jacobian_factor.chunks_exact(n));
-        for ((out, factor), r) in rows.zip(&self.rows) {
-            let grad = &value_grad[r.value * n..(r.value + 1) * n];
-            for ((o, g), f) in out.iter_mut().zip(grad).zip(factor) {
-                *o = g * f;
+        for ((row, factor), r) in rows.zip(&self.rows) {
+            let grad = &model_jac[r.value * np..(r.value + 1) * np];
+            for ((o, &p), f) in row.iter_mut().zip(&self.free).zip(factor) {
+                *o = grad[p] * f;
             }
         }
         merit(o.sense, o.absolute, f)
+    }
+}
+
+/// The value an optimizer minimizes for an objective output `value`:
+/// `-value` or `-|value|` for a maximization, `value` or `|value|` for a minimization.
+pub fn merit(sense: Sense, absolute: bool, value: f64) -> f64 {
+    let v = if absolute { value.abs() } else { value };
+    match sense {
+        Sense::Maximize => -v,
+        Sense::Minimize => v,
     }
 }

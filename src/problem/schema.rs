@@ -1,5 +1,8 @@
-//! The problem file as written, before validation. Unknown keys are rejected.
+//! The problem file as written, before validation. Unknown keys are rejected (those at
+//! the top level once the model is known, [`RawProblem::sections`]).
 
+use indexmap::IndexMap;
+use serde::de::IgnoredAny;
 use serde::Deserialize;
 
 /// A number as TOML gives it: integer or float.
@@ -28,19 +31,26 @@ pub enum Quantity {
     Bare(Number),
 }
 
+/// The keys every problem file may have; any other top-level key is a section of the
+/// model's ([`crate::model::registry::ModelEntry::sections`]).
+pub const COMMON_KEYS: &[&str] = &[
+    "name",
+    "description",
+    "model",
+    "variables",
+    "objective",
+    "constraints",
+    "search",
+    "zones",
+];
+
+/// The common part of a problem file; the model reads its own sections.
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct RawProblem {
     pub name: String,
     #[serde(default)]
     pub description: String,
     pub model: String,
-    /// Required by the bridge; the 3-PRR model takes none.
-    pub material: Option<RawMaterial>,
-    pub hinge: Option<RawHinge>,
-    pub actuator: Option<RawActuator>,
-    /// Masses and damping of the bridge, for its dynamic outputs.
-    pub dynamics: Option<RawDynamics>,
     pub variables: Vec<RawVariable>,
     pub objective: RawObjective,
     #[serde(default)]
@@ -49,42 +59,10 @@ pub struct RawProblem {
     pub search: RawSearch,
     #[serde(default)]
     pub zones: RawZones,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawMaterial {
-    pub preset: Option<String>,
-    pub name: Option<String>,
-    pub youngs_modulus: Option<Quantity>,
-    pub poisson_ratio: Option<Number>,
-    pub ultimate_strength: Option<Quantity>,
-    pub density: Option<Quantity>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawHinge {
-    pub kind: String,
-    pub width: Quantity,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawActuator {
-    pub nominal_stroke: Quantity,
-    pub preload: Quantity,
-    pub stiffness: Option<Quantity>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawDynamics {
-    pub payload_mass: Quantity,
-    pub input_link_mass: Quantity,
-    pub output_link_mass: Quantity,
-    pub link_thickness: Quantity,
-    pub damping_ratio: Number,
+    /// The other top-level keys, in file order: the model's sections, checked against
+    /// the model's list before it reads them.
+    #[serde(flatten)]
+    pub sections: IndexMap<String, IgnoredAny>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -1,10 +1,14 @@
-//! Exports: JSON reports of designs, and plots.
+//! Every output file and summary: JSON reports of designs, the study's, sweep's and
+//! front's files and plots, and the text the command line prints.
 //!
 //! Every file is written whole or not at all: it is written beside its target under a
 //! temporary name and renamed into place.
 
+pub mod pareto;
 pub mod plot;
 pub mod study;
+pub mod summary;
+pub mod sweep;
 
 use indexmap::IndexMap;
 use std::io::Write;
@@ -12,8 +16,9 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use crate::model::bridge::Geometry;
-use crate::problem::{Constraint, ModelSpec, Problem};
+use crate::model::Drawing;
+use crate::problem::nlp::{ACTIVE_TOLERANCE, FEASIBILITY_TOLERANCE};
+use crate::problem::{Constraint, Problem};
 
 /// An error while writing results.
 #[derive(Debug)]
@@ -160,33 +165,10 @@ pub struct DesignReport {
     pub absolute: bool,
     pub constraints: Vec<ConstraintReport>,
     pub feasible: bool,
-    /// The quarter bridge's nodes 2..5 in mm, origin at node 2 (bridge models only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub nodes_mm: Option<Vec<[f64; 2]>>,
-    /// The natural modes, mass-normalised, in the platform coordinates (parallel mechanisms).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub mode_shapes: Option<Vec<ModeShape>>,
+    /// The model's drawing data: nodes, mode shapes.
+    #[serde(flatten)]
+    pub drawing: Drawing,
 }
-
-/// A natural mode of a parallel mechanism: its frequency (Hz) and its shape in the
-/// platform coordinates, normalised so that `v^T M v = 1`: `(x, y, gamma)` (m, m, rad) for
-/// the planar 3-PRR, `(x, y, z)` (m) for the spatial 3-PSS.
-#[derive(Debug, Clone, Serialize)]
-pub struct ModeShape {
-    pub frequency: f64,
-    pub x: f64,
-    pub y: f64,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub z: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub gamma: Option<f64>,
-}
-
-/// Relative margin within which a constraint counts as active.
-pub const ACTIVE_TOLERANCE: f64 = 1e-6;
-
-/// Relative violation up to which a constraint counts as met.
-pub const FEASIBILITY_TOLERANCE: f64 = 1e-8;
 
 impl DesignReport {
     /// Evaluates every output of `problem`'s model at the full design `x` (SI).
@@ -203,7 +185,7 @@ impl DesignReport {
         let finite = |v: f64| v.is_finite().then_some(v);
         let mut report = DesignReport {
             problem: problem.name.clone(),
-            model: problem.model.name().into(),
+            model: model.name().into(),
             design: IndexMap::new(),
             design_units: IndexMap::new(),
             design_si: IndexMap::new(),
@@ -225,8 +207,7 @@ impl DesignReport {
                 .map(|c| ConstraintReport::new(c, out[c.index], ACTIVE_TOLERANCE))
                 .collect(),
             feasible: false,
-            nodes_mm: None,
-            mode_shapes: None,
+            drawing: model.drawing(x),
         };
         for (v, &xi) in problem.variables.iter().zip(x) {
             report.design.insert(v.name.clone(), v.unit.from_si(xi));
@@ -244,48 +225,6 @@ impl DesignReport {
         }
         report.feasible =
             report.objective.is_some() && report.constraints.iter().all(|c| c.satisfied);
-        match &problem.model {
-            ModelSpec::Bridge(_) => {
-                let g = Geometry::from_array(<[f64; 8]>::try_from(x).expect("8 bridge parameters"));
-                report.nodes_mm =
-                    Some(g.nodes().iter().map(|p| [p[0] * 1e3, p[1] * 1e3]).collect());
-            }
-            ModelSpec::Prr3(_) => {
-                let p = crate::model::prr3::Prr3::from_slice(x);
-                let (m, k) = crate::model::prr3::mass_and_stiffness(&p);
-                report.mode_shapes = crate::model::prr3::modes(&m, &k).map(|(f, v)| {
-                    (0..3)
-                        .map(|i| ModeShape {
-                            frequency: f[i],
-                            x: v[(0, i)],
-                            y: v[(1, i)],
-                            z: None,
-                            gamma: Some(v[(2, i)]),
-                        })
-                        .collect()
-                });
-            }
-            ModelSpec::Pss3(_) => {
-                // M and K are diagonal (see model::pss3): each axis is a mode
-                let p = crate::model::pss3::Pss3::from_slice(x);
-                let (m, f) = (p.mass_matrix(), p.axis_frequencies());
-                let mut modes: Vec<ModeShape> = (0..3)
-                    .map(|a| {
-                        let mut v = [0.0; 3];
-                        v[a] = m[a][a].sqrt().recip();
-                        ModeShape {
-                            frequency: f[a],
-                            x: v[0],
-                            y: v[1],
-                            z: Some(v[2]),
-                            gamma: None,
-                        }
-                    })
-                    .collect();
-                modes.sort_by(|a, b| a.frequency.total_cmp(&b.frequency));
-                report.mode_shapes = Some(modes);
-            }
-        }
         report
     }
 

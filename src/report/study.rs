@@ -10,10 +10,10 @@ use serde::Serialize;
 
 use super::plot::{draw_legend, format_tick, range, render_png, FAMILY};
 use super::{write_atomic, write_json, DesignReport, WriteError};
-use crate::model::bridge::Geometry;
+use crate::model::Skeleton;
 use crate::optim::Status;
-use crate::problem::{ModelSpec, Problem, Solver};
-use crate::study::{configuration, Run, Study};
+use crate::problem::{Problem, Solver};
+use crate::study::{Run, Study};
 
 /// `optimum.json`: the optimal design with every output and how it was found.
 #[derive(Debug, Clone, Serialize)]
@@ -82,12 +82,15 @@ pub struct ZonesReport {
     pub zones: Vec<ZoneEntry>,
     /// Starts that did not end at a feasible point.
     pub not_feasible: usize,
-    pub configuration_rule: &'static str,
+    /// How the model names configurations; absent for a model whose topology is fixed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub configuration_rule: Option<&'static str>,
 }
 
-/// The rule of [`crate::study::bridge_configuration`], for readers of `zones.json`.
-pub const CONFIGURATION_RULE: &str = "rhombic: middle link shorter than a quarter of l2 + l3 + l4; \
-parallel: |delta2|, |delta4| <= 1 deg; aligned: delta2, delta3, delta4 within 1 deg of each other; general: otherwise (first match)";
+/// The configuration kind of a design of `problem`'s model.
+fn configuration(problem: &Problem, x: &[f64]) -> &'static str {
+    problem.model().configuration(x)
+}
 
 fn in_file_units(problem: &Problem, x: &[f64]) -> IndexMap<String, f64> {
     problem
@@ -174,7 +177,7 @@ pub fn zones_report(problem: &Problem, study: &Study) -> ZonesReport {
             })
             .collect(),
         not_feasible: study.runs.len() - study.feasible_runs.len(),
-        configuration_rule: CONFIGURATION_RULE,
+        configuration_rule: problem.model().configuration_rule(),
     }
 }
 
@@ -297,28 +300,22 @@ fn zones_png(path: &Path, problem: &Problem, study: &Study) -> Result<(), WriteE
     })
 }
 
-/// Fig. 5 analogue: the centre lines of hinge b, the middle link and hinge d of every
-/// feasible start's optimum, one panel per zone, origin at node 2 (mm).
+/// Fig. 5 analogue: the model's drawing of every feasible start's optimum as a chain of
+/// members ([`crate::model::Model::skeleton`]), one panel per zone (mm).
 fn configurations_png(path: &Path, problem: &Problem, study: &Study) -> Result<(), WriteError> {
+    let model = problem.model();
     let zones = study.clustering.zones.len();
-    let lines: Vec<(usize, Vec<(f64, f64)>)> = study
+    let lines: Vec<(usize, Skeleton)> = study
         .runs
         .iter()
-        .filter_map(|r| {
-            let zone = r.zone?;
-            let x = <[f64; 8]>::try_from(r.x_end.as_slice()).ok()?;
-            let nodes = Geometry::from_array(x).nodes();
-            Some((
-                zone,
-                nodes.iter().map(|p| (p[0] * 1e3, p[1] * 1e3)).collect(),
-            ))
-        })
+        .filter_map(|r| Some((r.zone?, model.skeleton(&r.x_end)?)))
         .collect();
-    let xr = range(lines.iter().flat_map(|l| l.1.iter().map(|p| p.0)));
-    let yr = range(lines.iter().flat_map(|l| l.1.iter().map(|p| p.1)));
+    let xr = range(lines.iter().flat_map(|l| l.1.nodes_mm.iter().map(|p| p.0)));
+    let yr = range(lines.iter().flat_map(|l| l.1.nodes_mm.iter().map(|p| p.1)));
     let title = format!(
-        "{}: configurations by zone (hinges in colour, middle link grey, origin at node 2)",
-        problem.name
+        "{}: configurations by zone ({})",
+        problem.name,
+        model.skeleton_legend()
     );
     let columns = zones.clamp(1, 4);
     render_png(path, (360 * columns as u32, 400), |root| {
@@ -339,10 +336,10 @@ fn configurations_png(path: &Path, problem: &Problem, study: &Study) -> Result<(
                 .y_desc("y (mm)")
                 .label_style((FAMILY, 12))
                 .draw()?;
-            // hinges b and d in the zone's colour, the rigid middle link in grey
-            for (_, pts) in lines.iter().filter(|l| l.0 == rank) {
-                for (k, seg) in pts.windows(2).enumerate() {
-                    let style = if k == 1 {
+            // flexible members in the zone's colour, rigid ones in grey
+            for (_, skeleton) in lines.iter().filter(|l| l.0 == rank) {
+                for (seg, &rigid) in skeleton.nodes_mm.windows(2).zip(&skeleton.rigid) {
+                    let style = if rigid {
                         BLACK.mix(0.35).stroke_width(1)
                     } else {
                         colour(rank).mix(0.7).stroke_width(3)
@@ -372,13 +369,13 @@ pub fn write_all(dir: &Path, problem: &Problem, study: &Study) -> Result<Vec<Pat
     write_atomic(&path(files[2]), csv(problem, &records).as_bytes())?;
     write_json(&path(files[3]), &zones_report(problem, study))?;
     zones_png(&path(files[4]), problem, study)?;
-    // the drawing of configurations is the bridge's; other models write the first five
-    let written = match problem.model {
-        ModelSpec::Bridge(_) => {
-            configurations_png(&path(files[5]), problem, study)?;
-            &files[..]
-        }
-        ModelSpec::Prr3(_) | ModelSpec::Pss3(_) => &files[..5],
+    // a model without a drawing of its configurations writes the first five
+    let best = &study.runs[study.best].x_end;
+    let written = if problem.model().skeleton(best).is_some() {
+        configurations_png(&path(files[5]), problem, study)?;
+        &files[..]
+    } else {
+        &files[..5]
     };
     Ok(written.iter().map(|f| path(f)).collect())
 }

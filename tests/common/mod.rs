@@ -4,8 +4,8 @@
 pub mod exact;
 pub mod hs;
 
+use flexopt::model::bridge::dynamics::DynamicsSettings;
 use flexopt::model::bridge::{Actuator, Bridge, BridgeSettings, Geometry};
-use flexopt::model::bridge_dynamics::DynamicsSettings;
 use flexopt::model::hinge::HingeKind;
 use flexopt::model::material::Material;
 use rand::{Rng, SeedableRng};
@@ -17,7 +17,8 @@ pub const DEG: f64 = std::f64::consts::PI / 180.0;
 /// Paper 004, Sec. 3: w = 10 mm, Al 7075-T6, 17.4 um nominal stroke, 40 N preload.
 pub fn wei2017_settings() -> BridgeSettings {
     BridgeSettings {
-        hinge: HingeKind::Strip,
+        hinge_b: HingeKind::Strip,
+        hinge_d: HingeKind::Strip,
         width: 10.0 * MM,
         material: Material::al7075_t6(),
         actuator: Actuator {

@@ -55,10 +55,10 @@
 
 use serde::Serialize;
 
-use super::bridge::{Geometry, Trig};
-use super::hinge::Compliance;
-use super::scalar::Scalar;
+use super::geometry::{Geometry, Trig};
 use crate::dynamics::{exact_settling_time, Oscillator};
+use crate::model::hinge::Compliance;
+use crate::model::scalar::Scalar;
 
 /// Masses, damping and mounting of a bridge for its dynamic outputs (SI units).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -215,9 +215,9 @@ pub fn quarter_masses<D: Scalar>(
 ) -> [D; 3] {
     let rho_w = density * width;
     [
-        g.l2 * g.t2 * rho_w,
+        g.b.area() * rho_w,
         g.l3 * (link_thickness * rho_w),
-        g.l4 * g.t4 * rho_w,
+        g.d.area() * rho_w,
     ]
 }
 

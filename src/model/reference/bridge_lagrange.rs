@@ -50,7 +50,7 @@
 //! 001's `fn = 266.95 Hz` (FEA 259.28 Hz) cannot be checked with either: the masses `m1`,
 //! `m2`, `m3`, the beam height `H` and the angle `theta` are not in its text.
 
-use super::scalar::Scalar;
+use crate::model::scalar::Scalar;
 
 /// A bridge-type amplifier as paper 001 describes it (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]

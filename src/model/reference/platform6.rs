@@ -25,8 +25,8 @@
 
 use serde::Serialize;
 
-use super::scalar::Scalar;
 use crate::dynamics::{step_response, Oscillator, StepResponse};
+use crate::model::scalar::Scalar;
 
 /// The six axes of the platform, in the order of Eq. 30.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]

@@ -12,23 +12,18 @@
 //!
 //! Nothing here comes from the paper's Eq. 3-9: only the hinge compliances (Eq. 2) and
 //! plane statics. The paper's coefficients relate to `K` by `[a11 a12; a21 a22] =
-//! diag(1, -1) K`, which is the sign convention stated in [`super::bridge`].
+//! diag(1, -1) K`, which is the sign convention stated in [`crate::model::bridge`].
 
 use nalgebra::{Matrix2, Matrix3, Vector2};
 
-use super::bridge::Geometry;
-use super::hinge::{Compliance, HingeKind};
-use super::material::Material;
+use crate::model::bridge::Geometry;
+use crate::model::hinge::Compliance;
+use crate::model::material::Material;
 
 /// `[[a11, a12], [a21, a22]]` of the quarter, solved as a linear elastic system.
-pub fn coefficients(
-    g: &Geometry<f64>,
-    hinge: HingeKind,
-    width: f64,
-    material: &Material,
-) -> Matrix2<f64> {
-    let b = hinge.compliance(g.l2, g.t2, width, material);
-    let d = hinge.compliance(g.l4, g.t4, width, material);
+pub fn coefficients(g: &Geometry<f64>, width: f64, material: &Material) -> Matrix2<f64> {
+    let b = g.b.compliance(width, material);
+    let d = g.d.compliance(width, material);
     coefficients_from(g, &b, &d)
 }
 

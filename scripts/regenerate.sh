@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Regenerates every committed file of results/ but the benchmarks': the study of each problem
+# in problems/ (but the sweep-only wei2017_fig9), the trade-off front of wei2017_dynamic, and
+# the sweeps of the three sweep scripts. With a folder as argument it writes there instead
+# of results/ (scripts/check_results.sh compares such a copy with the committed files).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export RESULTS=${1:-results}
+cargo build --release --quiet
+for p in wei2017 wei2017_dynamic bridge_stress prr3_frequency pss3_frequency; do
+  ./target/release/flexopt run "problems/$p.toml" --quiet --out "$RESULTS/$p" >/dev/null
+done
+./target/release/flexopt pareto problems/wei2017_dynamic.toml --vary natural_frequency \
+  --from 400 --to 2000 --steps 17 --out "$RESULTS/wei2017_dynamic" >/dev/null
+for s in fig9 prr3_sweeps pss3_sweeps; do
+  bash "scripts/$s.sh" >/dev/null
+done

@@ -1,0 +1,276 @@
+//! The design of a quarter bridge and where its parameters sit in the model's list.
+//!
+//! Hinges b and d are each a hinge of any kind ([`HingeKind`]) with the kind's own
+//! dimensions, named after the hinge: a strip's length and thickness are `l2`, `t2` at b and
+//! `l4`, `t4` at d. The parameter list is laid out as paper 004's Table 1 lists the strip
+//! bridge: hinge b's first dimension (its length), `delta2`, b's other dimensions, `l3`,
+//! `delta3`, hinge d's first dimension, `delta4`, d's other dimensions. For two strips that
+//! is `l2, delta2, t2, l3, delta3, l4, delta4, t4`.
+
+use std::borrow::Cow;
+
+use serde::Serialize;
+
+use crate::model::hinge::{Hinge, HingeKind};
+use crate::model::scalar::{Jet, Scalar};
+use crate::model::{Dimension, ParameterInfo};
+
+/// A bridge design in SI units (m, rad): the two hinges, the middle link and the angles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Geometry<D> {
+    /// Hinge b, from node 2 to node 3.
+    pub b: Hinge<D>,
+    pub delta2: D,
+    /// Length of the rigid middle link c, node 3 to node 4.
+    pub l3: D,
+    pub delta3: D,
+    /// Hinge d, from node 4 to node 5.
+    pub d: Hinge<D>,
+    pub delta4: D,
+}
+
+/// `sin` and `cos` of `delta2`, `delta3`, `delta4`.
+#[derive(Debug, Clone, Copy)]
+pub struct Trig<D> {
+    pub s: [D; 3],
+    pub c: [D; 3],
+}
+
+impl<D: Scalar> Trig<D> {
+    pub fn new(delta2: D, delta3: D, delta4: D) -> Self {
+        let (s2, c2) = delta2.sin_cos();
+        let (s3, c3) = delta3.sin_cos();
+        let (s4, c4) = delta4.sin_cos();
+        Trig {
+            s: [s2, s3, s4],
+            c: [c2, c3, c4],
+        }
+    }
+}
+
+impl<D: Scalar> Geometry<D> {
+    /// The strip bridge of paper 004 from its eight parameters in Table 1's order
+    /// `l2, delta2, t2, l3, delta3, l4, delta4, t4`.
+    pub fn from_array(x: [D; 8]) -> Self {
+        let [l2, delta2, t2, l3, delta3, l4, delta4, t4] = x;
+        Geometry {
+            b: Hinge::strip(l2, t2),
+            delta2,
+            l3,
+            delta3,
+            d: Hinge::strip(l4, t4),
+            delta4,
+        }
+    }
+
+    /// Length of hinge b along its centre line.
+    pub fn l2(&self) -> D {
+        self.b.length()
+    }
+
+    /// Length of hinge d along its centre line.
+    pub fn l4(&self) -> D {
+        self.d.length()
+    }
+
+    /// Sines and cosines of the three angles.
+    #[inline]
+    pub fn trig(&self) -> Trig<D> {
+        Trig::new(self.delta2, self.delta3, self.delta4)
+    }
+
+    /// Extent of the quarter along `x` (Sec. 3 contour limits).
+    pub fn span_x(&self) -> D {
+        self.span_x_with(&self.trig())
+    }
+
+    /// Extent of the quarter along `y` (Sec. 3 contour limits).
+    pub fn span_y(&self) -> D {
+        self.span_y_with(&self.trig())
+    }
+
+    pub(crate) fn span_x_with(&self, t: &Trig<D>) -> D {
+        self.l2() * t.c[0] + self.l3 * t.c[1] + self.l4() * t.c[2]
+    }
+
+    pub(crate) fn span_y_with(&self, t: &Trig<D>) -> D {
+        self.l2() * t.s[0] + self.l3 * t.s[1] + self.l4() * t.s[2]
+    }
+
+    /// Node coordinates 2..=5 of the quarter (m), origin at node 2.
+    pub fn nodes(&self) -> [[D; 2]; 4] {
+        self.nodes_with(&self.trig())
+    }
+
+    /// [`Geometry::nodes`] from the angles' sines and cosines.
+    pub fn nodes_with(&self, t: &Trig<D>) -> [[D; 2]; 4] {
+        let zero = D::from(0.0);
+        let mut p = [[zero, zero]; 4];
+        for (i, l) in [self.l2(), self.l3, self.l4()].into_iter().enumerate() {
+            p[i + 1] = [p[i][0] + l * t.c[i], p[i][1] + l * t.s[i]];
+        }
+        p
+    }
+}
+
+/// Where each part of a [`Geometry`] sits in the model's parameter list, for a choice of
+/// hinge kinds at b and d.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Layout {
+    pub hinge_b: HingeKind,
+    pub hinge_d: HingeKind,
+    #[serde(skip)]
+    parameters: Vec<ParameterInfo>,
+    /// Parameter index of each dimension of hinge b, of hinge d, and of
+    /// `delta2, l3, delta3, delta4`.
+    #[serde(skip)]
+    b: Vec<usize>,
+    #[serde(skip)]
+    d: Vec<usize>,
+    #[serde(skip)]
+    link: [usize; 4],
+}
+
+impl Layout {
+    pub fn new(hinge_b: HingeKind, hinge_d: HingeKind) -> Self {
+        let mut parameters = Vec::new();
+        let mut push = |name: Cow<'static, str>, dimension, description: Cow<'static, str>| {
+            parameters.push(ParameterInfo {
+                name,
+                dimension,
+                description,
+            });
+            parameters.len() - 1
+        };
+        let hinge = |kind: HingeKind, number: char, letter: char, k: usize| {
+            let d = kind.dimensions()[k];
+            (
+                Cow::Owned(format!("{}{number}", d.stem)),
+                d.dimension,
+                Cow::Owned(format!("{} of hinge {letter}", d.description)),
+            )
+        };
+        let angle = |name: &'static str, what: &'static str| {
+            (Cow::Borrowed(name), Dimension::Angle, Cow::Borrowed(what))
+        };
+        let mut b = Vec::new();
+        let mut d = Vec::new();
+        let (n, dim, what) = hinge(hinge_b, '2', 'b', 0);
+        b.push(push(n, dim, what));
+        let (n, dim, what) = angle("delta2", "angle of hinge b");
+        let delta2 = push(n, dim, what);
+        for k in 1..hinge_b.dimensions().len() {
+            let (n, dim, what) = hinge(hinge_b, '2', 'b', k);
+            b.push(push(n, dim, what));
+        }
+        let l3 = push(
+            Cow::Borrowed("l3"),
+            Dimension::Length,
+            Cow::Borrowed("length of the middle link c"),
+        );
+        let (n, dim, what) = angle("delta3", "angle of the middle link c");
+        let delta3 = push(n, dim, what);
+        let (n, dim, what) = hinge(hinge_d, '4', 'd', 0);
+        d.push(push(n, dim, what));
+        let (n, dim, what) = angle("delta4", "angle of hinge d");
+        let delta4 = push(n, dim, what);
+        for k in 1..hinge_d.dimensions().len() {
+            let (n, dim, what) = hinge(hinge_d, '4', 'd', k);
+            d.push(push(n, dim, what));
+        }
+        Layout {
+            hinge_b,
+            hinge_d,
+            parameters,
+            b,
+            d,
+            link: [delta2, l3, delta3, delta4],
+        }
+    }
+
+    /// The model's parameters, in order.
+    pub fn parameters(&self) -> &[ParameterInfo] {
+        &self.parameters
+    }
+
+    /// The design whose parameters (in the order of [`Layout::parameters`]) are `x`.
+    pub fn geometry<D: Scalar>(&self, x: &[D]) -> Geometry<D> {
+        let pick = |idx: &[usize]| {
+            let mut dims = [D::from(0.0); crate::model::hinge::MAX_HINGE_DIMENSIONS];
+            for (v, &i) in dims.iter_mut().zip(idx) {
+                *v = x[i];
+            }
+            dims
+        };
+        let [delta2, l3, delta3, delta4] = self.link.map(|i| x[i]);
+        Geometry {
+            b: Hinge {
+                kind: self.hinge_b,
+                dims: pick(&self.b),
+            },
+            delta2,
+            l3,
+            delta3,
+            d: Hinge {
+                kind: self.hinge_d,
+                dims: pick(&self.d),
+            },
+            delta4,
+        }
+    }
+
+    /// The design `x`, each parameter an independent variable of the gradient.
+    pub fn seeded<const N: usize>(&self, x: &[f64]) -> Geometry<Jet<N>> {
+        let seeded: [Jet<N>; N] = std::array::from_fn(|i| Jet::variable(x[i], i));
+        self.geometry(&seeded)
+    }
+
+    /// Why the design `x` (SI) lies outside the model's domain, if it does: every value
+    /// finite, each hinge valid for its kind (a strip's length not negative, its thickness
+    /// positive), `l3` not negative, at least one hinge of some length (else
+    /// `c33b + c33d = 0` and nothing bends), angles strictly between -90 and 90 deg.
+    pub fn domain_error(&self, x: &[f64]) -> Option<String> {
+        let names: Vec<&str> = self.parameters.iter().map(|p| p.name.as_ref()).collect();
+        if x.len() != names.len() {
+            return Some(format!(
+                "a bridge design has {} parameters, got {}",
+                names.len(),
+                x.len()
+            ));
+        }
+        if let Some((i, v)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Some(format!("{} = {v} is not finite", names[i]));
+        }
+        let hinge = |kind: HingeKind, idx: &[usize]| {
+            let dims: Vec<f64> = idx.iter().map(|&i| x[i]).collect();
+            let own: Vec<&str> = idx.iter().map(|&i| names[i]).collect();
+            kind.domain_error(&dims, &own)
+        };
+        let l3 = x[self.link[1]];
+        let l3_error = (l3 < 0.0).then(|| format!("l3 = {l3} m is negative"));
+        if let Some(e) = hinge(self.hinge_b, &self.b)
+            .or(l3_error)
+            .or_else(|| hinge(self.hinge_d, &self.d))
+        {
+            return Some(e);
+        }
+        let g = self.geometry(x);
+        if g.l2() + g.l4() == 0.0 {
+            return Some(format!(
+                "{} = {} = 0: a bridge without hinges does not deform",
+                names[self.b[0]], names[self.d[0]]
+            ));
+        }
+        let right = std::f64::consts::FRAC_PI_2;
+        for i in [self.link[0], self.link[2], self.link[3]] {
+            if x[i].abs() >= right {
+                return Some(format!(
+                    "{} = {} deg is not strictly between -90 and 90 deg",
+                    names[i],
+                    x[i].to_degrees()
+                ));
+            }
+        }
+        None
+    }
+}

@@ -1,0 +1,211 @@
+//! The general compliant bridge amplifier (paper 004: Wei et al., Micromachines 2017, 8, 238).
+//!
+//! - [`geometry`]: a design (hinges of any kind, the middle link, the angles) and the layout
+//!   of its parameters;
+//! - [`quarter`]: the quarter model of Sec. 2 and Appendix A, with the rebuilt equations;
+//! - [`outputs`]: the named outputs and one evaluation of those a problem asks for;
+//! - [`dynamics`]: the equivalent mass and natural frequency along the output;
+//! - [`configuration`]: the names of configurations, and the drawing of a quarter;
+//! - [`file`]: the bridge's sections of a problem file.
+//!
+//! The closed forms of the special configurations (Sec. 5) and an independent matrix
+//! formulation live in [`crate::model::reference`], as checks.
+
+pub mod configuration;
+pub mod dynamics;
+pub mod file;
+pub mod geometry;
+pub mod outputs;
+pub mod quarter;
+
+use serde::Serialize;
+
+pub use geometry::{Geometry, Layout, Trig};
+pub use outputs::{BridgeOutput, OUTPUTS};
+pub use quarter::QuarterBridge;
+
+use super::hinge::HingeKind;
+use super::material::Material;
+use super::registry::ModelEntry;
+use super::scalar::Jet;
+use super::{unseed, Drawing, Model, OutputInfo, ParameterInfo, Skeleton};
+use dynamics::DynamicsSettings;
+
+/// How a problem file selects the bridge (`model = "bridge"`).
+pub const ENTRY: ModelEntry = ModelEntry {
+    name: "bridge",
+    sections: file::SECTIONS,
+    build: file::build,
+};
+
+/// The piezo actuator that drives the bridge (paper 004, Eq. 12-14).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Actuator {
+    /// Nominal stroke X_PZT^nl (m).
+    pub nominal_stroke: f64,
+    /// Preload F_preload (N).
+    pub preload: f64,
+    /// Stiffness k_pzt (N/m); `None` for an actuator much stiffer than the bridge.
+    pub stiffness: Option<f64>,
+}
+
+/// Everything about a bridge that is not a design parameter.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BridgeSettings {
+    /// The kinds of hinges b and d, each with its own dimensions among the parameters.
+    pub hinge_b: HingeKind,
+    pub hinge_d: HingeKind,
+    /// Width w of the mechanism (m).
+    pub width: f64,
+    pub material: Material,
+    pub actuator: Actuator,
+    /// Masses and damping for the dynamic outputs; `None` when the problem gives none.
+    pub dynamics: Option<DynamicsSettings>,
+}
+
+/// The general bridge model: settings plus the evaluation of named outputs.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Bridge {
+    pub settings: BridgeSettings,
+    #[serde(skip)]
+    layout: Layout,
+}
+
+impl Bridge {
+    pub fn new(settings: BridgeSettings) -> Self {
+        let layout = Layout::new(settings.hinge_b, settings.hinge_d);
+        Bridge { settings, layout }
+    }
+
+    /// Where the parts of a design sit among the parameters.
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
+    /// The design whose parameters (model order) are `x`.
+    pub fn geometry<D: super::scalar::Scalar>(&self, x: &[D]) -> Geometry<D> {
+        self.layout.geometry(x)
+    }
+
+    /// Values and gradients of the outputs `wanted` at `x`, with `N` = the number of
+    /// parameters.
+    fn gradients<const N: usize>(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        // most problems name a few outputs (wei2017: 9, its stress limit on four node
+        // stresses): keep them on the stack without zeroing much
+        let mut small = [Jet::<N>::from(0.0); 12];
+        let mut large = Vec::new();
+        let y = if wanted.len() <= small.len() {
+            &mut small[..wanted.len()]
+        } else {
+            large.resize(wanted.len(), Jet::from(0.0));
+            &mut large[..]
+        };
+        self.evaluate(&self.layout.seeded::<N>(x), wanted, y);
+        unseed(y, out, jacobian);
+    }
+}
+
+impl Model for Bridge {
+    fn name(&self) -> &'static str {
+        "bridge"
+    }
+
+    fn parameters(&self) -> &[ParameterInfo] {
+        self.layout.parameters()
+    }
+
+    fn outputs(&self) -> &[OutputInfo] {
+        &OUTPUTS
+    }
+
+    fn max_of(&self, output: usize) -> Option<&[usize]> {
+        use BridgeOutput::*;
+        // the stresses at nodes 2, 3, 4, 5 (BridgeOutput::ALL lists the variants in order)
+        const ALL_NODES: [usize; 4] = [
+            StressNode2 as usize,
+            StressNode3 as usize,
+            StressNode4 as usize,
+            StressNode5 as usize,
+        ];
+        match BridgeOutput::ALL[output] {
+            StressMax => Some(&ALL_NODES),
+            StressB => Some(&ALL_NODES[..2]),
+            StressD => Some(&ALL_NODES[2..]),
+            _ => None,
+        }
+    }
+
+    fn unavailable(&self, output: usize) -> Option<String> {
+        let o = BridgeOutput::ALL[output];
+        (o.needs_dynamics() && self.settings.dynamics.is_none()).then(|| {
+            format!(
+                "output \"{}\" needs the masses and damping of a [dynamics] section",
+                OUTPUTS[output].name
+            )
+        })
+    }
+
+    fn domain_error(&self, x: &[f64]) -> Option<String> {
+        self.layout.domain_error(x)
+    }
+
+    fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {
+        Bridge::evaluate(self, &self.layout.geometry(x), wanted, out);
+    }
+
+    fn evaluate_with_gradient(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        // one gradient size per parameter count: two strips have 8, notches up to 10
+        match x.len() {
+            8 => self.gradients::<8>(x, wanted, out, jacobian),
+            9 => self.gradients::<9>(x, wanted, out, jacobian),
+            10 => self.gradients::<10>(x, wanted, out, jacobian),
+            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
+        }
+    }
+
+    fn material(&self) -> Option<&Material> {
+        Some(&self.settings.material)
+    }
+
+    fn angle_limit(&self) -> Option<f64> {
+        // the quarter model's angles stay within a right angle (Layout::domain_error)
+        Some(std::f64::consts::FRAC_PI_2)
+    }
+
+    fn configuration(&self, x: &[f64]) -> &'static str {
+        configuration::configuration(&self.layout.geometry(x))
+    }
+
+    fn configuration_rule(&self) -> Option<&'static str> {
+        Some(configuration::RULE)
+    }
+
+    fn drawing(&self, x: &[f64]) -> Drawing {
+        let g = self.layout.geometry(x);
+        Drawing {
+            nodes_mm: Some(g.nodes().iter().map(|p| [p[0] * 1e3, p[1] * 1e3]).collect()),
+            mode_shapes: None,
+        }
+    }
+
+    fn skeleton(&self, x: &[f64]) -> Option<Skeleton> {
+        (x.len() == self.layout.parameters().len())
+            .then(|| configuration::skeleton(&self.layout.geometry(x)))
+    }
+
+    fn skeleton_legend(&self) -> &'static str {
+        configuration::SKELETON_LEGEND
+    }
+}

@@ -1,0 +1,238 @@
+//! The QP subproblem of an SQP iteration: the quadratic model of the Lagrangian with the
+//! linearised constraints, solved by [`crate::optim::qp`], and, where the linearised
+//! constraints have no common point, the elastic QP that minimizes their largest violation.
+
+use super::curvature::Curvature;
+use super::{Iterate, Shape};
+use crate::optim::dense::inf_norm;
+use crate::optim::qp::{self, QpProblem, QpStatus, QpWorkspace};
+
+/// Which QP gave the step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum QpKind {
+    /// The plain QP: the linearised constraints are consistent.
+    Regular,
+    /// The elastic QP: one slack on every constraint, priced in the objective.
+    Elastic,
+}
+
+/// A QP's step and multipliers.
+#[derive(Debug, Clone)]
+pub(super) struct Step {
+    pub d: Vec<f64>,
+    /// Constraint multipliers.
+    pub lambda: Vec<f64>,
+    /// Bound multipliers: positive at a lower bound, negative at an upper one.
+    pub nu: Vec<f64>,
+}
+
+impl Step {
+    pub fn new(n: usize, m: usize) -> Self {
+        Step {
+            d: vec![0.0; n],
+            lambda: vec![0.0; m],
+            nu: vec![0.0; n],
+        }
+    }
+}
+
+/// The arrays of the QP and the workspaces of the plain and the elastic QP.
+pub(super) struct Subproblem {
+    n: usize,
+    g: Vec<f64>,
+    a: Vec<f64>,
+    c: Vec<f64>,
+    b: Vec<f64>,
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    x: Vec<f64>,
+    l: Vec<f64>,
+    ws: QpWorkspace,
+    ws_elastic: QpWorkspace,
+    /// The rows of the plain QP active at its last solve.
+    active_hint: Vec<usize>,
+}
+
+impl Subproblem {
+    pub fn new(n: usize) -> Self {
+        Subproblem {
+            n,
+            g: Vec::new(),
+            a: Vec::new(),
+            c: Vec::new(),
+            b: Vec::new(),
+            lo: Vec::new(),
+            hi: Vec::new(),
+            x: Vec::new(),
+            l: Vec::new(),
+            ws: QpWorkspace::new(n),
+            ws_elastic: QpWorkspace::new(n + 1),
+            active_hint: Vec::new(),
+        }
+    }
+
+    /// The slack of the last elastic solve: the least largest violation the linearised
+    /// constraints allow.
+    pub fn slack(&self) -> f64 {
+        self.x[self.n]
+    }
+
+    /// Solves the QP at `point` with constraint values `rhs` into `step`; the elastic QP
+    /// when the plain one has no solution. `None` when even that fails. A model that has
+    /// lost its definiteness is restarted (`curvature`) and the QP solved again.
+    pub fn solve(
+        &mut self,
+        shape: &Shape,
+        point: &Iterate,
+        rhs: &[f64],
+        curvature: &mut Curvature,
+        step: &mut Step,
+    ) -> Option<QpKind> {
+        for kind in [QpKind::Regular, QpKind::Elastic] {
+            let elastic = kind == QpKind::Elastic;
+            self.build(shape, point, rhs, curvature, elastic);
+            let nv = shape.n + usize::from(elastic);
+            self.x.resize(nv, 0.0);
+            self.l.resize(self.b.len() + 2 * nv, 0.0);
+            let ws = if elastic {
+                &mut self.ws_elastic
+            } else {
+                &mut self.ws
+            };
+            let problem = QpProblem {
+                g: &self.g,
+                a: &self.a,
+                c: &self.c,
+                b: &self.b,
+                meq: if elastic { 0 } else { shape.meq },
+                lower: &self.lo,
+                upper: &self.hi,
+            };
+            // the rows of the plain QP keep their meaning between iterations: start from the
+            // last active set
+            let hint: &[usize] = if elastic { &[] } else { &self.active_hint };
+            let status = qp::solve_with_hint(&problem, hint, &mut self.x, &mut self.l, ws);
+            if status == QpStatus::Optimal && !elastic {
+                self.active_hint.clear();
+                self.active_hint
+                    .extend_from_slice(qp::active_rows(&self.ws));
+            }
+            match status {
+                QpStatus::Optimal => {
+                    self.read(shape, step, elastic);
+                    return Some(kind);
+                }
+                QpStatus::NotConvex if !curvature.is_identity() => {
+                    // rounding in the BFGS updates cost B its definiteness: start it afresh
+                    curvature.reset();
+                    return self.solve(shape, point, rhs, curvature, step);
+                }
+                _ => {}
+            }
+        }
+        None
+    }
+
+    /// QP variables: `d` (and the slack in elastic mode), bounded by `lower - x <= d <=
+    /// upper - x` (and `s >= 0`). Rows: the linearised constraints, both sides of each
+    /// equality in elastic mode.
+    fn build(
+        &mut self,
+        shape: &Shape,
+        point: &Iterate,
+        rhs: &[f64],
+        curvature: &Curvature,
+        elastic: bool,
+    ) {
+        let Shape { n, m, meq, .. } = *shape;
+        let nv = n + usize::from(elastic);
+        let hess = curvature.matrix();
+        self.g.clear();
+        self.g.resize(nv * nv, 0.0);
+        for i in 0..n {
+            self.g[i * nv..i * nv + n].copy_from_slice(&hess[i * n..(i + 1) * n]);
+        }
+        // B inherits the near-zero curvature of the Lagrangian along the constraint
+        // normals; the dual QP method inverts it through L^-T and would lose as many digits
+        // as its condition number has. A floor of 1e-6 of the largest curvature bounds that
+        // loss and barely moves the step in the directions that matter.
+        let floor = 1e-6 * (0..n).map(|i| hess[i * n + i]).fold(0.0, f64::max);
+        for i in 0..n {
+            self.g[i * nv + i] += floor;
+        }
+        self.a.clear();
+        self.a.extend_from_slice(&point.g);
+        self.c.clear();
+        self.b.clear();
+        self.lo.clear();
+        self.hi.clear();
+        // the step limit is left out of the elastic QP, whose slack must be free to show
+        // how far the linearised constraints can be met
+        let limit = if elastic {
+            f64::INFINITY
+        } else {
+            curvature.step_limit()
+        };
+        self.lo.extend(
+            shape
+                .lower
+                .iter()
+                .zip(&point.x)
+                .map(|(l, x)| (l - x).max(-limit)),
+        );
+        self.hi.extend(
+            shape
+                .upper
+                .iter()
+                .zip(&point.x)
+                .map(|(u, x)| (u - x).min(limit)),
+        );
+        if elastic {
+            // a large linear price on the slack, and a curvature of the size of B's so that
+            // G stays well conditioned; priced from the gradient alone: the multipliers of
+            // an elastic QP are bounded by this price, and feeding them back would make it
+            // grow without end
+            let scale = inf_norm(&point.g).max(1.0);
+            let diag = (0..n).map(|i| hess[i * n + i]).sum::<f64>() / n as f64;
+            self.g[n * nv + n] = diag.max(1e-8);
+            self.a.push(1e4 * scale);
+            self.lo.push(0.0);
+            self.hi.push(f64::INFINITY);
+        }
+        for i in 0..m {
+            let row = &point.jac[i * n..(i + 1) * n];
+            self.push_row(row, 1.0, elastic, -rhs[i]);
+            if elastic && i < meq {
+                self.push_row(row, -1.0, elastic, rhs[i]);
+            }
+        }
+    }
+
+    fn push_row(&mut self, row: &[f64], sign: f64, slack: bool, b: f64) {
+        self.c.extend(row.iter().map(|v| sign * v));
+        if slack {
+            self.c.push(1.0);
+        }
+        self.b.push(b);
+    }
+
+    /// The step and the multipliers of the constraints (an equality's two elastic rows
+    /// folded into one) and of the bounds.
+    fn read(&self, shape: &Shape, step: &mut Step, elastic: bool) {
+        let (n, m, meq) = (shape.n, shape.m, shape.meq);
+        step.d.copy_from_slice(&self.x[..n]);
+        let mut row = 0;
+        for i in 0..m {
+            step.lambda[i] = self.l[row];
+            row += 1;
+            if elastic && i < meq {
+                step.lambda[i] -= self.l[row];
+                row += 1;
+            }
+        }
+        // the bound rows follow: lower then upper for each variable
+        for j in 0..n {
+            step.nu[j] = self.l[row + 2 * j] - self.l[row + 2 * j + 1];
+        }
+    }
+}

@@ -1,0 +1,428 @@
+//! Validation of a problem file's common part: the name, the design variables, the
+//! objective and constraints bound to the model's outputs, the search and the zones. The
+//! model's own sections are read by the model ([`crate::model::registry`]).
+
+use std::ops::Deref;
+
+use super::reader::{k, quoted, Reader, Res};
+use super::schema::{self, Number, RawProblem};
+use super::sections::Sections;
+use super::units::Unit;
+use super::{
+    Constraint, Objective, Problem, Sampling, SearchSettings, Segment, Sense, Solver, Variable,
+    ZoneSettings,
+};
+use crate::model::registry::{self, ModelEntry};
+use crate::model::{Dimension, Model};
+
+pub(crate) struct Validator<'a, 'b> {
+    pub reader: Reader<'a, 'b>,
+    pub text: &'b str,
+    pub models: &'a [ModelEntry],
+}
+
+impl<'a, 'b> Deref for Validator<'a, 'b> {
+    type Target = Reader<'a, 'b>;
+
+    fn deref(&self) -> &Self::Target {
+        &self.reader
+    }
+}
+
+impl Validator<'_, '_> {
+    pub fn problem(&self, raw: RawProblem) -> Res<Problem> {
+        let name = raw.name.trim().to_string();
+        let name_ok = !name.is_empty()
+            && name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+            && !name.starts_with('.');
+        if !name_ok {
+            return Err(self.err(
+                &[k("name")],
+                format!(
+                    "\"{}\" cannot name a results folder: use letters, digits, '-', '_' and '.'",
+                    raw.name
+                ),
+            ));
+        }
+        let Some(entry) = registry::find(self.models, &raw.model) else {
+            let names: Vec<&str> = self.models.iter().map(|m| m.name).collect();
+            return Err(self.err(
+                &[k("model")],
+                format!(
+                    "unknown model \"{}\"; expected one of {}",
+                    raw.model,
+                    quoted(&names)
+                ),
+            ));
+        };
+        // a section the model does not read is refused before the model looks at the rest
+        for key in raw.sections.keys() {
+            if entry.sections.contains(&key.as_str()) {
+                continue;
+            }
+            let message = if self
+                .models
+                .iter()
+                .any(|m| m.sections.contains(&key.as_str()))
+            {
+                format!("the {} model takes no `{key}` section", entry.name)
+            } else {
+                let known: Vec<&str> = schema::COMMON_KEYS
+                    .iter()
+                    .chain(entry.sections)
+                    .copied()
+                    .collect();
+                format!(
+                    "unknown field `{key}`, expected one of {}",
+                    known
+                        .iter()
+                        .map(|n| format!("`{n}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            };
+            return Err(self.err(&[k(key)], message));
+        }
+        let model_arc = (entry.build)(&mut Sections::new(self.loc, self.text, entry.name))?;
+        let model = model_arc.as_ref();
+        let variables = self.variables(model, &raw.variables)?;
+        let objective = self.objective(model, &raw.objective)?;
+        let constraints = raw
+            .constraints
+            .iter()
+            .enumerate()
+            .map(|(i, c)| self.constraint(model, i, c))
+            .collect::<Res<Vec<_>>>()?;
+        Ok(Problem {
+            file: self.loc.file().to_path_buf(),
+            name,
+            description: raw.description,
+            model: model_arc,
+            variables,
+            objective,
+            constraints,
+            search: self.search(&raw.search)?,
+            zones: self.zones(&raw.zones)?,
+        })
+    }
+
+    fn variables(&self, model: &dyn Model, raw: &[schema::RawVariable]) -> Res<Vec<Variable>> {
+        let params = model.parameters();
+        let mut found: Vec<Option<Variable>> = vec![None; params.len()];
+        for (i, v) in raw.iter().enumerate() {
+            let path = |key: &str| [k("variables"), Segment::Index(i), k(key)];
+            let Some(p) = params.iter().position(|p| p.name == v.name) else {
+                return Err(self.err(
+                    &path("name"),
+                    format!(
+                        "\"{}\" is not a parameter of this model; expected one of {}",
+                        v.name,
+                        quoted(&params.iter().map(|p| p.name.as_ref()).collect::<Vec<_>>())
+                    ),
+                ));
+            };
+            if found[p].is_some() {
+                return Err(self.err(
+                    &path("name"),
+                    format!("variable \"{}\" is defined twice", v.name),
+                ));
+            }
+            let dim = params[p].dimension;
+            let unit = Unit::parse(&v.unit, dim).map_err(|m| self.err(&path("unit"), m))?;
+            let must_be_positive = matches!(
+                dim,
+                Dimension::Length
+                    | Dimension::Mass
+                    | Dimension::Stiffness
+                    | Dimension::RotationalStiffness
+            );
+            let check = |key: &str, n: Number| -> Res<f64> {
+                let x = self.finite(&path(key), n)?;
+                let limit = model.angle_limit().filter(|_| dim == Dimension::Angle);
+                if limit.is_some_and(|limit| unit.to_si(x).abs() >= limit) {
+                    return Err(self.err(
+                        &path(key),
+                        format!("{} is an angle: it must lie strictly between -90 and 90 deg, got {x} {}", v.name, unit.name),
+                    ));
+                }
+                if must_be_positive && x <= 0.0 {
+                    return Err(self.err(
+                        &path(key),
+                        format!(
+                            "{} is a {}: it must be positive, got {x} {}",
+                            v.name, params[p].description, unit.name
+                        ),
+                    ));
+                }
+                Ok(unit.to_si(x))
+            };
+            let var = match (v.value, v.lower, v.upper) {
+                (Some(val), None, None) => {
+                    let x = check("value", val)?;
+                    Variable {
+                        name: v.name.clone(),
+                        parameter: p,
+                        unit: unit.clone(),
+                        lower: x,
+                        upper: x,
+                        fixed: true,
+                    }
+                }
+                (None, Some(lo), Some(hi)) => {
+                    let (lower, upper) = (check("lower", lo)?, check("upper", hi)?);
+                    if lower >= upper {
+                        return Err(self.err(
+                            &path("lower"),
+                            format!(
+                                "lower bound {} is not below upper bound {} (for a fixed variable write `value`)",
+                                lo.get(),
+                                hi.get()
+                            ),
+                        ));
+                    }
+                    Variable {
+                        name: v.name.clone(),
+                        parameter: p,
+                        unit: unit.clone(),
+                        lower,
+                        upper,
+                        fixed: false,
+                    }
+                }
+                (Some(_), _, _) => {
+                    return Err(self.err(
+                        &path("value"),
+                        "a variable has either `value` (fixed) or `lower` and `upper`, not both",
+                    ))
+                }
+                (None, None, _) => {
+                    return Err(self.err(
+                        &path("lower"),
+                        "missing: a free variable needs `lower` and `upper`",
+                    ))
+                }
+                (None, _, None) => {
+                    return Err(self.err(
+                        &path("upper"),
+                        "missing: a free variable needs `lower` and `upper`",
+                    ))
+                }
+            };
+            found[p] = Some(var);
+        }
+        found
+            .into_iter()
+            .enumerate()
+            .map(|(p, v)| {
+                v.ok_or_else(|| {
+                    self.err(
+                        &[k("variables")],
+                        format!(
+                            "missing design variable \"{}\" ({}); every model parameter needs bounds or a fixed value",
+                            params[p].name, params[p].description
+                        ),
+                    )
+                })
+            })
+            .collect()
+    }
+
+    fn output(&self, model: &dyn Model, path: &[Segment], name: &str) -> Res<usize> {
+        let index = model.output_index(name).ok_or_else(|| {
+            self.err(
+                path,
+                format!(
+                    "unknown output \"{name}\"; expected one of {}",
+                    quoted(&model.outputs().iter().map(|o| o.name).collect::<Vec<_>>())
+                ),
+            )
+        })?;
+        match model.unavailable(index) {
+            Some(why) => Err(self.err(path, why)),
+            None => Ok(index),
+        }
+    }
+
+    fn objective(&self, model: &dyn Model, o: &schema::RawObjective) -> Res<Objective> {
+        let (sense, name, key) = match (&o.maximize, &o.minimize) {
+            (Some(n), None) => (Sense::Maximize, n, "maximize"),
+            (None, Some(n)) => (Sense::Minimize, n, "minimize"),
+            (Some(_), Some(_)) => {
+                return Err(self.err(
+                    &[k("objective"), k("minimize")],
+                    "give either `maximize` or `minimize`, not both",
+                ))
+            }
+            (None, None) => {
+                return Err(self.err(
+                    &[k("objective"), k("maximize")],
+                    "missing: give `maximize` or `minimize` and an output name",
+                ))
+            }
+        };
+        Ok(Objective {
+            output: name.clone(),
+            index: self.output(model, &[k("objective"), k(key)], name)?,
+            sense,
+            absolute: o.absolute,
+        })
+    }
+
+    fn constraint(
+        &self,
+        model: &dyn Model,
+        i: usize,
+        c: &schema::RawConstraint,
+    ) -> Res<Constraint> {
+        let mat = model.material();
+        let path = |key: &str| [k("constraints"), Segment::Index(i), k(key)];
+        let index = self.output(model, &path("output"), &c.output)?;
+        let dim = model.outputs()[index].dimension;
+        let unit = if c.unit == "ultimate" {
+            if dim != Dimension::Stress {
+                return Err(self.err(
+                    &path("unit"),
+                    format!("\"ultimate\" (a fraction of the ultimate strength) only fits stress outputs, not \"{}\"", c.output),
+                ));
+            }
+            let su = mat.and_then(|m| m.ultimate_strength).ok_or_else(|| {
+                self.err(
+                    &path("unit"),
+                    match mat {
+                        Some(m) => format!(
+                            "material \"{}\" has no ultimate strength: set material.ultimate_strength",
+                            m.name
+                        ),
+                        None => "this model has no material, so no ultimate strength".to_string(),
+                    },
+                )
+            })?;
+            Unit {
+                name: "ultimate".into(),
+                dimension: dim,
+                to_si: su,
+            }
+        } else {
+            Unit::parse(&c.unit, dim).map_err(|m| self.err(&path("unit"), m))?
+        };
+        let limit = |key: &str, n: Option<Number>| -> Res<Option<f64>> {
+            n.map(|n| self.finite(&path(key), n).map(|v| unit.to_si(v)))
+                .transpose()
+        };
+        let (lower, upper) = (limit("lower", c.lower)?, limit("upper", c.upper)?);
+        match (lower, upper) {
+            (None, None) => Err(self.err(
+                &path("upper"),
+                "missing: a constraint needs `lower`, `upper` or both",
+            )),
+            (Some(lo), Some(hi)) if lo > hi => Err(self.err(
+                &path("lower"),
+                format!(
+                    "lower limit {} is above upper limit {}",
+                    c.lower.unwrap().get(),
+                    c.upper.unwrap().get()
+                ),
+            )),
+            _ => Ok(Constraint {
+                output: c.output.clone(),
+                index,
+                lower,
+                upper,
+                unit,
+            }),
+        }
+    }
+
+    fn search(&self, s: &schema::RawSearch) -> Res<SearchSettings> {
+        let path = |key: &str| [k("search"), k(key)];
+        let count = |key: &str, v: Option<i64>, default: usize, min: i64, max: i64| -> Res<usize> {
+            match v {
+                None => Ok(default),
+                Some(n) if (min..=max).contains(&n) => Ok(n as usize),
+                Some(n) => Err(self.err(
+                    &path(key),
+                    format!("must lie between {min} and {max}, got {n}"),
+                )),
+            }
+        };
+        let solver = match s.solver.as_deref() {
+            None | Some("sqp") => Solver::Sqp,
+            Some("nelder-mead") => Solver::NelderMead,
+            Some(o) => {
+                return Err(self.err(
+                    &path("solver"),
+                    format!("unknown solver \"{o}\"; expected \"sqp\" or \"nelder-mead\""),
+                ))
+            }
+        };
+        let sampling = match s.sampling.as_deref() {
+            None | Some("uniform") => Sampling::Uniform,
+            Some("latin-hypercube") => Sampling::LatinHypercube,
+            Some(o) => {
+                return Err(self.err(
+                    &path("sampling"),
+                    format!(
+                        "unknown sampling \"{o}\"; expected \"uniform\" or \"latin-hypercube\""
+                    ),
+                ))
+            }
+        };
+        let tolerance = match s.tolerance {
+            None => 1e-10,
+            Some(n) => {
+                let t = self.finite(&path("tolerance"), n)?;
+                if t <= 0.0 {
+                    return Err(self.err(&path("tolerance"), format!("must be positive, got {t}")));
+                }
+                t
+            }
+        };
+        let seed = match s.seed {
+            None => 0,
+            Some(n) if n >= 0 => n as u64,
+            Some(n) => {
+                return Err(self.err(&path("seed"), format!("must not be negative, got {n}")))
+            }
+        };
+        Ok(SearchSettings {
+            starts: count("starts", s.starts, 300, 1, 1_000_000)?,
+            seed,
+            solver,
+            sampling,
+            tolerance,
+            max_iterations: count("max_iterations", s.max_iterations, 500, 1, 1_000_000)?,
+            threads: count("threads", s.threads, 0, 0, 1024)?,
+        })
+    }
+
+    fn zones(&self, z: &schema::RawZones) -> Res<ZoneSettings> {
+        let path = |key: &str| [k("zones"), k(key)];
+        let mut thresholds = Vec::new();
+        for (i, n) in z.thresholds.iter().flatten().enumerate() {
+            thresholds.push(self.finite(&[k("zones"), k("thresholds"), Segment::Index(i)], *n)?);
+        }
+        thresholds.sort_by(|a, b| b.total_cmp(a));
+        thresholds.dedup();
+        let tol = |key: &str, n: Option<Number>, default: f64| -> Res<f64> {
+            match n {
+                None => Ok(default),
+                Some(n) => {
+                    let v = self.finite(&path(key), n)?;
+                    if v > 0.0 {
+                        Ok(v)
+                    } else {
+                        Err(self.err(&path(key), format!("must be positive, got {v}")))
+                    }
+                }
+            }
+        };
+        Ok(ZoneSettings {
+            thresholds,
+            x_tolerance: tol("x_tolerance", z.x_tolerance, 1e-3)?,
+            objective_tolerance: tol("objective_tolerance", z.objective_tolerance, 1e-6)?,
+            merge_mirror_images: z.merge_mirror_images.unwrap_or(true),
+        })
+    }
+}

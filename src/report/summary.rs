@@ -1,0 +1,139 @@
+//! What the command line prints after a study or a front: summaries as [`Display`].
+
+use std::fmt::{self, Display};
+use std::path::PathBuf;
+
+use crate::pareto::Pareto;
+use crate::problem::{Problem, Solver};
+use crate::study::Study;
+
+/// The summary of a study: starts, the best design and the zones, then the files written.
+pub struct StudySummary<'a> {
+    pub problem: &'a Problem,
+    pub study: &'a Study,
+    pub files: &'a [PathBuf],
+}
+
+impl Display for StudySummary<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (problem, study) = (self.problem, self.study);
+        let best = &study.runs[study.best];
+        let solver = match study.options.solver {
+            Solver::Sqp => "SQP",
+            Solver::NelderMead => "Nelder-Mead",
+        };
+        writeln!(
+            s,
+            "{}: {} starts with {solver}, seed {}, in {:.1} ms; {} ended feasible",
+            problem.name,
+            study.runs.len(),
+            study.options.seed,
+            study.elapsed.as_secs_f64() * 1e3,
+            study.feasible_runs.len()
+        )?;
+        let label = if study.any_feasible {
+            "best"
+        } else {
+            "least violating (infeasible)"
+        };
+        writeln!(
+            s,
+            "{label} {} = {:.6} ({})",
+            problem.objective.output,
+            best.objective,
+            problem.model().configuration(&best.x_end)
+        )?;
+        let design: Vec<String> = problem
+            .variables
+            .iter()
+            .zip(&best.x_end)
+            .map(|(v, &x)| format!("{}={:.6}", v.name, v.unit.from_si(x)))
+            .collect();
+        writeln!(s, "  design {}", design.join(","))?;
+        writeln!(s, "zone  starts  optima  best        worst")?;
+        for z in &study.clustering.zones {
+            let f = |v: f64| {
+                if v.is_finite() {
+                    format!("{v:<10.6}")
+                } else {
+                    format!("{:<10}", "-")
+                }
+            };
+            writeln!(
+                s,
+                "{:<5} {:<7} {:<7} {}  {}",
+                z.rank,
+                z.count,
+                z.optima.len(),
+                f(z.best),
+                f(z.worst)
+            )?;
+        }
+        let missing = study.runs.len() - study.feasible_runs.len();
+        if missing > 0 {
+            writeln!(
+                s,
+                "{missing} starts ended infeasible or failed (see starts.json)"
+            )?;
+        }
+        wrote(s, self.files)
+    }
+}
+
+/// The table of a trade-off front, then the files written.
+pub struct ParetoSummary<'a> {
+    pub problem: &'a Problem,
+    pub front: &'a Pareto,
+    pub files: &'a [PathBuf],
+}
+
+impl Display for ParetoSummary<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let front = self.front;
+        writeln!(
+            s,
+            "{}: {} limits on {} x {} starts in {:.1} ms",
+            self.problem.name,
+            front.points.len(),
+            front.output,
+            front.starts,
+            front.elapsed.as_secs_f64() * 1e3
+        )?;
+        writeln!(
+            s,
+            "{:>12}  {:>12}  {:>12}  active  front",
+            format!("limit ({})", front.unit),
+            front.objective,
+            front.output
+        )?;
+        for p in &front.points {
+            let show = |v: Option<f64>| v.map_or("infeasible".to_string(), |v| format!("{v:.6}"));
+            writeln!(
+                s,
+                "{:>12}  {:>12}  {:>12}  {:<6}  {}",
+                format!("{:.6}", p.limit),
+                show(p.objective),
+                show(p.value),
+                if p.active { "yes" } else { "no" },
+                if p.on_front { "yes" } else { "no" }
+            )?;
+        }
+        wrote(s, self.files)
+    }
+}
+
+/// The files written, one line each.
+pub struct Wrote<'a>(pub &'a [PathBuf]);
+
+impl Display for Wrote<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        wrote(s, self.0)
+    }
+}
+
+fn wrote(s: &mut fmt::Formatter<'_>, files: &[PathBuf]) -> fmt::Result {
+    for f in files {
+        writeln!(s, "wrote {}", f.display())?;
+    }
+    Ok(())
+}
