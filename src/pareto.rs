@@ -43,7 +43,7 @@ pub struct ParetoPoint {
     pub on_front: bool,
     /// The best design, variable -> value in the problem file's units.
     pub design: IndexMap<String, f64>,
-    /// Configuration type of the best design (bridges only).
+    /// Configuration type of the best design (`-` for a model whose topology is fixed).
     pub configuration: String,
     pub feasible_starts: usize,
 }

@@ -211,22 +211,27 @@ impl<D: Scalar> Hinge<D> {
     }
 
     /// The kind's dimensions.
+    #[inline]
     pub fn dims(&self) -> &[D] {
         &self.dims[..self.kind.dimensions().len()]
     }
 
+    #[inline]
     pub fn length(&self) -> D {
         self.kind.length(self.dims())
     }
 
+    #[inline]
     pub fn area(&self) -> D {
         self.kind.area(self.dims())
     }
 
+    #[inline]
     pub fn compliance(&self, width: f64, material: &Material) -> Compliance<D> {
         self.kind.compliance(self.dims(), width, material)
     }
 
+    #[inline]
     pub fn end_stresses(&self, width: f64, loads: &HingeLoads<D>) -> (D, D) {
         self.kind.end_stresses(self.dims(), width, loads)
     }

@@ -160,6 +160,7 @@ impl<D: Scalar> QuarterBridge<D> {
     }
 
     /// `(a11, a21)`, sharing their hinge terms.
+    #[inline]
     pub fn input_coefficients(&self) -> (D, D) {
         let (hb, hd) = self.bending(0);
         let [s2, s3, s4] = self.s;

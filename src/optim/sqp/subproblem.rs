@@ -199,11 +199,11 @@ impl Subproblem {
             self.lo.push(0.0);
             self.hi.push(f64::INFINITY);
         }
-        for i in 0..m {
+        for (i, &r) in rhs.iter().enumerate().take(m) {
             let row = &point.jac[i * n..(i + 1) * n];
-            self.push_row(row, 1.0, elastic, -rhs[i]);
+            self.push_row(row, 1.0, elastic, -r);
             if elastic && i < meq {
-                self.push_row(row, -1.0, elastic, rhs[i]);
+                self.push_row(row, -1.0, elastic, r);
             }
         }
     }

@@ -18,10 +18,10 @@ pub(super) fn kkt_residual(shape: &Shape, point: &Iterate, step: &Step) -> f64 {
     } = *shape;
     let (lambda, nu) = (&step.lambda, &step.nu);
     let mut stat: f64 = 0.0;
-    for j in 0..n {
-        let mut r = point.g[j] - nu[j];
-        for i in 0..m {
-            r -= lambda[i] * point.jac[i * n + j];
+    for (j, (&gj, &nuj)) in point.g.iter().zip(nu).enumerate() {
+        let mut r = gj - nuj;
+        for (i, &l) in lambda.iter().enumerate() {
+            r -= l * point.jac[i * n + j];
         }
         stat = stat.max(r.abs());
     }
