@@ -41,7 +41,8 @@ impl Failure {
         }
     }
 
-    /// Exit code 3: no feasible design; the results were written all the same.
+    /// Exit code 3: no feasible design; the results were written all the same. (Exit code
+    /// 4, a feasible design that did not converge, is built where it arises.)
     fn no_feasible(e: impl Display) -> Self {
         Failure {
             code: 3,
@@ -248,9 +249,9 @@ fn study_setup(path: &Path, args: &StudyArgs) -> Result<(Problem, StudyOptions),
         }
         options.starts = s;
     }
-    if threads.is_some_and(|t| t > 1024) {
+    if let Some(t) = threads.filter(|&t| t > 1024) {
         return Err(Failure::bad_input(format!(
-            "{}: key `--threads`: must lie between 0 and 1024",
+            "{}: key `--threads`: must lie between 0 and 1024, got {t}",
             problem.file.display()
         )));
     }
@@ -290,7 +291,17 @@ fn run_study(problem: &Problem, options: &StudyOptions, dir: &Path) -> Result<()
         study: &study,
         files: &files,
     });
-    if study.any_feasible {
+    if study.any_feasible && !study.best_converged {
+        Err(Failure {
+            code: 4,
+            message: format!(
+                "{}: no feasible start converged; optimum.json holds the best feasible design, \
+                 unconverged (\"converged\": false): raise search.max_iterations or check the \
+                 tolerance",
+                problem.file.display()
+            ),
+        })
+    } else if study.any_feasible {
         Ok(())
     } else {
         Err(Failure::no_feasible(format!(

@@ -59,11 +59,41 @@ pub struct Study {
     /// Clustering of the feasible runs; indices there refer to `feasible_runs`.
     pub clustering: Clustering,
     pub feasible_runs: Vec<usize>,
-    /// The best feasible run, or the least violating one when none is feasible.
+    /// The best feasible run that converged; else the best feasible run (see
+    /// `best_converged`); else the least violating one when none is feasible.
     pub best: usize,
     pub any_feasible: bool,
+    /// Whether `best` converged (KKT residual below the tolerance).
+    pub best_converged: bool,
+    /// How the local solves ended.
+    pub ends: Ends,
     pub elapsed: Duration,
     pub options: StudyOptions,
+}
+
+/// How the local solves of a study ended, by status.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct Ends {
+    pub converged: usize,
+    pub iteration_limit: usize,
+    /// Stopped at a point that minimizes the constraint violation but violates them.
+    pub infeasible: usize,
+    pub failed: usize,
+}
+
+impl Ends {
+    fn count(runs: &[Run]) -> Self {
+        let mut e = Ends::default();
+        for r in runs {
+            match r.solution.status {
+                Status::Converged => e.converged += 1,
+                Status::IterationLimit => e.iteration_limit += 1,
+                Status::Infeasible => e.infeasible += 1,
+                Status::Failed(_) => e.failed += 1,
+            }
+        }
+        e
+    }
 }
 
 /// Runs the study of `problem`.
@@ -162,7 +192,16 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
         runs[i].zone = Some(clustering.zone_of[k]);
     }
     let any_feasible = !feasible_runs.is_empty();
-    let best = if any_feasible {
+    // the optima are sorted best first and so are their members: the first converged
+    // member is the best converged run
+    let best_converged_run = clustering
+        .optima
+        .iter()
+        .flat_map(|o| o.members.iter().map(|&k| feasible_runs[k]))
+        .find(|&i| runs[i].solution.status == Status::Converged);
+    let best = if let Some(i) = best_converged_run {
+        i
+    } else if any_feasible {
         feasible_runs[clustering.optima[0].representative]
     } else {
         // the least violating run that could be evaluated
@@ -177,7 +216,10 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
             })
             .unwrap_or(0)
     };
+    let ends = Ends::count(&runs);
     Study {
+        best_converged: best_converged_run.is_some(),
+        ends,
         runs,
         clustering,
         feasible_runs,

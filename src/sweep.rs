@@ -6,6 +6,9 @@ use serde::Serialize;
 
 use crate::problem::{Problem, ProblemError};
 
+/// The most points a sweep computes.
+pub const MAX_STEPS: usize = 100_000;
+
 /// What to sweep, in the problem file's units.
 #[derive(Debug, Clone)]
 pub struct SweepSpec {
@@ -62,7 +65,7 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
     };
     let var = &problem.variables[vi];
     let model = problem.model();
-    check_range(spec.from, spec.to, spec.steps, usize::MAX).map_err(|(k, m)| err(k, m))?;
+    check_range(spec.from, spec.to, spec.steps, MAX_STEPS).map_err(|(k, m)| err(k, m))?;
     let positive = model.parameters()[var.parameter].dimension == crate::model::Dimension::Length;
     if positive && spec.from.min(spec.to) <= 0.0 {
         return Err(err(

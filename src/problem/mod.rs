@@ -24,6 +24,9 @@ pub use error::ProblemError;
 use error::{Locator, Segment};
 use units::Unit;
 
+/// The largest problem file [`Problem::load`] reads (1 MiB).
+pub const MAX_FILE_BYTES: u64 = 1 << 20;
+
 /// A design variable: one model parameter, free within bounds or fixed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Variable {
@@ -130,12 +133,25 @@ pub struct Problem {
 impl Problem {
     /// Reads and validates a problem file.
     pub fn load(path: &Path) -> Result<Problem, ProblemError> {
-        let text = std::fs::read_to_string(path).map_err(|e| ProblemError {
+        let fail = |message: String| ProblemError {
             file: path.to_path_buf(),
             key: String::new(),
             position: None,
-            message: format!("cannot read the file: {e}"),
-        })?;
+            message,
+        };
+        // refused before it is read: a problem file is a few kilobytes, and parsing a huge
+        // one takes seconds and gigabytes before its first error
+        let size = std::fs::metadata(path)
+            .map_err(|e| fail(format!("cannot read the file: {e}")))?
+            .len();
+        if size > MAX_FILE_BYTES {
+            return Err(fail(format!(
+                "the file has {size} bytes; a problem file may have at most {MAX_FILE_BYTES} \
+                 (1 MiB)"
+            )));
+        }
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| fail(format!("cannot read the file: {e}")))?;
         Self::parse(path, &text)
     }
 

@@ -50,8 +50,14 @@ pub(crate) fn deserialize<'de, S: DeserializeSeed<'de>>(
                 }
             }
         }
+        // the value as written, where the parser says where it is
+        let written = inner
+            .span()
+            .and_then(|sp| text.get(sp))
+            .map(|w| format!(", got {}", w.trim()))
+            .unwrap_or_default();
         let message = if message.contains("untagged enum Number") {
-            "expected a number".to_string()
+            format!("expected a number{written}")
         } else if message.contains("untagged enum Quantity") {
             "expected a quantity with its unit, e.g. \"10 mm\"".to_string()
         } else {

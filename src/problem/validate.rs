@@ -15,6 +15,9 @@ use super::{
 use crate::model::registry::{self, ModelEntry};
 use crate::model::{Dimension, Model};
 
+/// The range of `search.tolerance`.
+pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-3);
+
 pub(crate) struct Validator<'a, 'b> {
     pub reader: Reader<'a, 'b>,
     pub text: &'b str,
@@ -373,8 +376,16 @@ impl Validator<'_, '_> {
             None => 1e-10,
             Some(n) => {
                 let t = self.finite(&path("tolerance"), n)?;
-                if t <= 0.0 {
-                    return Err(self.err(&path("tolerance"), format!("must be positive, got {t}")));
+                // below 1e-14 a scaled KKT residual is rounding, which no solve can meet;
+                // above 1e-3 a start "converges" where it stands
+                if !(TOLERANCE_RANGE.0..=TOLERANCE_RANGE.1).contains(&t) {
+                    return Err(self.err(
+                        &path("tolerance"),
+                        format!(
+                            "must lie between {:e} and {:e}, got {t:e}",
+                            TOLERANCE_RANGE.0, TOLERANCE_RANGE.1
+                        ),
+                    ));
                 }
                 t
             }

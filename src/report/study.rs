@@ -13,7 +13,7 @@ use super::{write_atomic, write_json, DesignReport, WriteError};
 use crate::model::Skeleton;
 use crate::optim::Status;
 use crate::problem::{Problem, Solver};
-use crate::study::{Run, Study};
+use crate::study::{Ends, Run, Study};
 
 /// `optimum.json`: the optimal design with every output and how it was found.
 #[derive(Debug, Clone, Serialize)]
@@ -30,6 +30,11 @@ pub struct OptimumReport {
     pub status: Status,
     pub kkt_residual: Option<f64>,
     pub iterations: usize,
+    /// Whether this design's solve converged; `false` only when no start converged to a
+    /// feasible design, and then `flexopt run` exits with code 4.
+    pub converged: bool,
+    /// How every start's solve ended.
+    pub ends: Ends,
 }
 
 /// One line of `starts.json`.
@@ -118,6 +123,8 @@ pub fn optimum_report(problem: &Problem, study: &Study) -> OptimumReport {
         status: run.solution.status.clone(),
         kkt_residual: run.solution.kkt_residual,
         iterations: run.solution.iterations,
+        converged: study.best_converged,
+        ends: study.ends,
     }
 }
 

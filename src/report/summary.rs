@@ -31,10 +31,16 @@ impl Display for StudySummary<'_> {
             study.elapsed.as_secs_f64() * 1e3,
             study.feasible_runs.len()
         )?;
-        let label = if study.any_feasible {
-            "best"
-        } else {
-            "least violating (infeasible)"
+        let e = &study.ends;
+        writeln!(
+            s,
+            "ends: {} converged, {} at the iteration limit, {} infeasible, {} failed",
+            e.converged, e.iteration_limit, e.infeasible, e.failed
+        )?;
+        let label = match (study.any_feasible, study.best_converged) {
+            (true, true) => "best",
+            (true, false) => "best (NOT CONVERGED: no feasible start converged)",
+            (false, _) => "least violating (infeasible)",
         };
         writeln!(
             s,
@@ -73,7 +79,7 @@ impl Display for StudySummary<'_> {
         if missing > 0 {
             writeln!(
                 s,
-                "{missing} starts ended infeasible or failed (see starts.json)"
+                "{missing} starts did not end at a feasible design (see starts.json)"
             )?;
         }
         wrote(s, self.files)
