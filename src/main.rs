@@ -14,7 +14,7 @@ use flexopt::report::pareto::write_pareto;
 use flexopt::report::study::write_all;
 use flexopt::report::summary::{ParetoSummary, StudySummary, Wrote};
 use flexopt::report::sweep::write_sweep;
-use flexopt::report::DesignReport;
+use flexopt::report::{check_writable, DesignReport};
 use flexopt::study::{self, StudyOptions};
 use flexopt::sweep::{sweep, SweepSpec};
 
@@ -198,7 +198,7 @@ fn run(command: Command) -> Result<(), Failure> {
                 };
             }
             options.progress = !quiet && std::io::stderr().is_terminal();
-            let dir = study.out.unwrap_or_else(|| problem.default_output_dir());
+            let dir = output_dir(&problem, study.out)?;
             run_study(&problem, &options, &dir)
         }
         Command::Pareto {
@@ -216,10 +216,18 @@ fn run(command: Command) -> Result<(), Failure> {
                 to,
                 steps,
             };
-            let dir = study.out.unwrap_or_else(|| problem.default_output_dir());
+            let dir = output_dir(&problem, study.out)?;
             run_pareto(&problem, &spec, &options, &dir)
         }
     }
+}
+
+/// The folder a study writes into (`--out`, else `results/<name>/`), checked before the
+/// computation.
+fn output_dir(problem: &Problem, out: Option<PathBuf>) -> Result<PathBuf, Failure> {
+    let dir = out.unwrap_or_else(|| problem.default_output_dir());
+    check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
+    Ok(dir)
 }
 
 /// Loads the problem and applies the command line's overrides of its `[search]`.
@@ -255,8 +263,25 @@ fn study_setup(path: &Path, args: &StudyArgs) -> Result<(Problem, StudyOptions),
             problem.file.display()
         )));
     }
+    // the file's seed is a TOML integer: one range for both
+    if let Some(s) = seed.filter(|&s| s > i64::MAX as u64) {
+        return Err(Failure::bad_input(format!(
+            "{}: key `--seed`: must lie between 0 and {}, got {s}",
+            problem.file.display(),
+            i64::MAX
+        )));
+    }
     options.seed = seed.unwrap_or(options.seed);
     options.threads = threads.unwrap_or(options.threads);
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if options.threads > cores {
+        eprintln!(
+            "warning: {}: {} threads on {cores} cores: the starts run no faster than with \
+             {cores}, and many more threads than cores slow them down",
+            problem.file.display(),
+            options.threads
+        );
+    }
     Ok((problem, options))
 }
 
@@ -372,6 +397,7 @@ fn run_sweep(
     let (problem, base) = load_design(path, around)?;
     let result = sweep(&problem, spec, &base).map_err(Failure::bad_input)?;
     let dir = out.unwrap_or_else(|| problem.default_output_dir().join("sweep"));
+    check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
     let files = write_sweep(&dir, &result).map_err(Failure::write_failed)?;
     emit(&Wrote(&files));
     Ok(())

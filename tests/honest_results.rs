@@ -170,3 +170,120 @@ fn messages_show_the_bad_value() {
         "{e}"
     );
 }
+
+#[test]
+fn quantities_that_overflow_in_si_are_refused_in_short_form() {
+    for (from, to, key) in [
+        (
+            "preset = \"al7075-t6\"",
+            "preset = \"al7075-t6\"\nyoungs_modulus = \"1e300 GPa\"",
+            "material.youngs_modulus",
+        ),
+        (
+            "preset = \"al7075-t6\"",
+            "preset = \"al7075-t6\"\nyoungs_modulus = \"1e-300 GPa\"",
+            "material.youngs_modulus",
+        ),
+        (
+            "preset = \"al7075-t6\"",
+            "preset = \"al7075-t6\"\ndensity = \"1e300 kg/m3\"",
+            "material.density",
+        ),
+        ("width = \"10 mm\"", "width = \"1e-300 mm\"", "hinge.width"),
+        (
+            "lower = 0.5\nupper = 20",
+            "lower = 0.5\nupper = 1e300",
+            "variables[0].upper",
+        ),
+        ("upper = 7e6", "upper = 1e300", "constraints[3].upper"),
+    ] {
+        let e = Problem::parse(Path::new("t.toml"), &wei2017_with(from, to)).unwrap_err();
+        assert_eq!(e.key, key, "{e}");
+        let shown = e.to_string();
+        assert!(shown.len() < 300, "short form: {shown}");
+        assert!(!shown.contains("00000000"), "short form: {shown}");
+    }
+}
+
+#[test]
+fn an_output_folder_that_cannot_be_written_is_bad_input_before_the_work() {
+    let file = temp("a-file");
+    std::fs::write(&file, "").unwrap();
+    let long = temp(&"x".repeat(300));
+    for out in [file.to_str().unwrap(), "/dev/null", long.to_str().unwrap()] {
+        for args in [
+            vec!["run", FILE, "--out", out, "--quiet"],
+            vec![
+                "sweep", FILE, "--param", "l2", "--from", "1", "--to", "2", "--out", out,
+            ],
+        ] {
+            let started = std::time::Instant::now();
+            let o = flexopt(&args);
+            let stderr = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{out}: {stderr}");
+            assert!(
+                stderr.contains("`--out`") && stderr.contains("cannot write"),
+                "{stderr}"
+            );
+            // refused before the study: no summary printed
+            assert!(o.stdout.is_empty(), "{out}");
+            assert!(started.elapsed().as_secs() < 10);
+        }
+    }
+    std::fs::remove_file(&file).unwrap();
+}
+
+#[test]
+fn duplicate_constraints_and_thresholds_are_refused() {
+    let text = wei2017_with(
+        "[[constraints]]\noutput = \"k_out\"",
+        "[[constraints]]\noutput = \"k_in\"\nunit = \"N/m\"\nlower = 1e6\n\n[[constraints]]\noutput = \"k_out\"",
+    );
+    let e = Problem::parse(Path::new("t.toml"), &text).unwrap_err();
+    assert_eq!(e.key, "constraints[4].output", "{e}");
+    assert!(
+        e.to_string()
+            .contains("constrained already by constraints[3]"),
+        "{e}"
+    );
+    let text = wei2017_with(
+        "thresholds = [12.7, 12.0, 11.0]",
+        "thresholds = [12.7, 12.0, 12.7]",
+    );
+    let e = Problem::parse(Path::new("t.toml"), &text).unwrap_err();
+    assert_eq!(e.key, "zones.thresholds[2]", "{e}");
+    assert!(e.to_string().contains("12.7 repeats thresholds[0]"), "{e}");
+}
+
+#[test]
+fn the_seed_has_one_range_and_threads_above_the_cores_are_named() {
+    let o = flexopt(&["run", FILE, "--seed", "18446744073709551615", "--quiet"]);
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("`--seed`") && stderr.contains("9223372036854775807"),
+        "{stderr}"
+    );
+    let text = wei2017_with("seed = 2017", "seed = -1");
+    let e = Problem::parse(Path::new("t.toml"), &text).unwrap_err();
+    assert_eq!(e.key, "search.seed", "{e}");
+    let out_dir = temp("threads-out");
+    let o = flexopt(&[
+        "run",
+        FILE,
+        "--threads",
+        "1000",
+        "--starts",
+        "4",
+        "--quiet",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    std::fs::remove_dir_all(&out_dir).unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("warning") && stderr.contains("1000 threads"),
+        "{stderr}"
+    );
+}

@@ -44,6 +44,19 @@ const TOKENS: &[&str] = &[
     "0x10",
     "1_000",
     "\"\\u0000\"",
+    // quantities at the limits of f64, and units at every scale
+    "\"1e300 GPa\"",
+    "\"1e-300 GPa\"",
+    "\"1e308 kN\"",
+    "\"5e-324 mm\"",
+    "\"1e-300 nm\"",
+    "\"1e300 kg/m3\"",
+    "\"1e-300 g/cm3\"",
+    "\"1.7976931348623157e308 N/um\"",
+    "\"2.2250738585072014e-308 mN\"",
+    "1e300",
+    "-1e300",
+    "2.2250738585072014e-308",
 ];
 
 #[derive(Debug, Clone)]
@@ -116,6 +129,20 @@ fn check(text: &str) {
                 .map(|v| 0.5 * (v.lower + v.upper))
                 .collect();
             let _ = DesignReport::new(&p, &mid);
+            // every quantity past validation is a finite number of physical size
+            for v in &p.variables {
+                assert!(v.lower.is_finite() && v.upper.is_finite(), "{v:?}\n{text}");
+            }
+            for c in &p.constraints {
+                for l in c.lower.iter().chain(&c.upper) {
+                    assert!(l.is_finite(), "{c:?}\n{text}");
+                }
+            }
+            if let Some(m) = p.model().material() {
+                let all = [m.youngs_modulus, m.poisson_ratio, m.density];
+                assert!(all.iter().all(|v| v.is_finite()), "{m:?}\n{text}");
+                assert!(m.ultimate_strength.is_none_or(f64::is_finite), "{m:?}");
+            }
         }
         Err(e) => {
             assert!(

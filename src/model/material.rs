@@ -161,9 +161,10 @@ fn density(q: &Quantity) -> Result<f64, String> {
         }
     };
     match num.parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 => Ok(v * factor),
+        // from aerogels to osmium, with room
+        Ok(v) if v.is_finite() && (1e-3..=1e6).contains(&(v * factor)) => Ok(v * factor),
         _ => Err(format!(
-            "\"{t}\" is not a positive density, e.g. \"2810 kg/m3\""
+            "\"{t}\" is not a density between 1e-3 and 1e6 kg/m3, e.g. \"2810 kg/m3\""
         )),
     }
 }

@@ -124,7 +124,7 @@ impl Reader<'_, '_> {
         if v.is_finite() {
             Ok(v)
         } else {
-            Err(self.err(path, format!("{v} is not a finite number")))
+            Err(self.err(path, format!("{} is not a finite number", units::short(v))))
         }
     }
 

@@ -145,7 +145,66 @@ pub fn parse_quantity(text: &str, dimension: Dimension) -> Result<f64, String> {
         return Err(format!("\"{text}\" is not a finite number"));
     }
     let unit = Unit::parse(unit.trim(), dimension)?;
-    Ok(unit.to_si(value))
+    let si = unit.to_si(value);
+    physical(si, dimension).map_err(|why| format!("\"{text}\" {why}"))?;
+    Ok(si)
+}
+
+/// The sizes (SI) a non-zero value of each dimension may take: wide enough for any
+/// mechanism from a MEMS flexure to a machine frame, narrow enough that every product the
+/// models form stays finite and normal in f64.
+pub fn physical_range(dimension: Dimension) -> (f64, f64) {
+    match dimension {
+        Dimension::Ratio => (1e-12, 1e12),
+        Dimension::Length => (1e-12, 1e3),
+        Dimension::Angle => (1e-12, 1e3),
+        Dimension::Force => (1e-12, 1e9),
+        Dimension::Stress => (1e-3, 1e15),
+        Dimension::Stiffness => (1e-9, 1e15),
+        Dimension::Compliance => (1e-15, 1e9),
+        Dimension::Mass => (1e-15, 1e6),
+        Dimension::RotationalStiffness => (1e-12, 1e12),
+        Dimension::Frequency => (1e-9, 1e12),
+        Dimension::Time => (1e-15, 1e9),
+    }
+}
+
+/// Why the SI value `v` is no value a quantity of `dimension` can take, if it is not: zero,
+/// or a size within [`physical_range`].
+pub fn physical(v: f64, dimension: Dimension) -> Result<(), String> {
+    let (lo, hi) = physical_range(dimension);
+    if v == 0.0 || (v.is_finite() && (lo..=hi).contains(&v.abs())) {
+        return Ok(());
+    }
+    Err(format!(
+        "is {} {} in SI units, outside the sizes a {} can take ({} to {} {})",
+        short(v),
+        dimension.si_unit(),
+        dimension_word(dimension),
+        short(lo),
+        short(hi),
+        dimension.si_unit()
+    ))
+}
+
+/// A number for a message: plain where that is short, else in scientific form (no
+/// 300-digit decimals).
+pub fn short(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || (1e-4..1e7).contains(&a) {
+        return format!("{v}");
+    }
+    // seven significant digits, trailing zeros dropped: 1e-303, not 1.0000000000000001e-303
+    let s = format!("{v:.6e}");
+    match s.split_once('e') {
+        Some((mantissa, exponent)) if mantissa.contains('.') => {
+            format!(
+                "{}e{exponent}",
+                mantissa.trim_end_matches('0').trim_end_matches('.')
+            )
+        }
+        _ => s,
+    }
 }
 
 fn example(dimension: Dimension) -> &'static str {

@@ -7,7 +7,7 @@ use std::ops::Deref;
 use super::reader::{k, quoted, Reader, Res};
 use super::schema::{self, Number, RawProblem};
 use super::sections::Sections;
-use super::units::Unit;
+use super::units::{self, short, Unit};
 use super::{
     Constraint, Objective, Problem, Sampling, SearchSettings, Segment, Sense, Solver, Variable,
     ZoneSettings,
@@ -98,6 +98,19 @@ impl Validator<'_, '_> {
             .enumerate()
             .map(|(i, c)| self.constraint(model, i, c))
             .collect::<Res<Vec<_>>>()?;
+        // two constraints on one output are one range said twice, or a contradiction
+        for (j, c) in constraints.iter().enumerate() {
+            if let Some(i) = constraints[..j].iter().position(|d| d.index == c.index) {
+                return Err(self.err(
+                    &[k("constraints"), Segment::Index(j), k("output")],
+                    format!(
+                        "\"{}\" is constrained already by constraints[{i}]: give one constraint \
+                         per output, with `lower`, `upper` or both",
+                        c.output
+                    ),
+                ));
+            }
+        }
         Ok(Problem {
             file: self.loc.file().to_path_buf(),
             name,
@@ -147,19 +160,29 @@ impl Validator<'_, '_> {
                 if limit.is_some_and(|limit| unit.to_si(x).abs() >= limit) {
                     return Err(self.err(
                         &path(key),
-                        format!("{} is an angle: it must lie strictly between -90 and 90 deg, got {x} {}", v.name, unit.name),
+                        format!("{} is an angle: it must lie strictly between -90 and 90 deg, got {} {}", v.name, short(x), unit.name),
                     ));
                 }
                 if must_be_positive && x <= 0.0 {
                     return Err(self.err(
                         &path(key),
                         format!(
-                            "{} is a {}: it must be positive, got {x} {}",
-                            v.name, params[p].description, unit.name
+                            "{} is a {}: it must be positive, got {} {}",
+                            v.name,
+                            params[p].description,
+                            short(x),
+                            unit.name
                         ),
                     ));
                 }
-                Ok(unit.to_si(x))
+                let si = unit.to_si(x);
+                units::physical(si, dim).map_err(|why| {
+                    self.err(
+                        &path(key),
+                        format!("{} = {} {} {why}", v.name, short(x), unit.name),
+                    )
+                })?;
+                Ok(si)
             };
             let var = match (v.value, v.lower, v.upper) {
                 (Some(val), None, None) => {
@@ -311,8 +334,15 @@ impl Validator<'_, '_> {
             Unit::parse(&c.unit, dim).map_err(|m| self.err(&path("unit"), m))?
         };
         let limit = |key: &str, n: Option<Number>| -> Res<Option<f64>> {
-            n.map(|n| self.finite(&path(key), n).map(|v| unit.to_si(v)))
-                .transpose()
+            n.map(|n| {
+                let v = self.finite(&path(key), n)?;
+                let si = unit.to_si(v);
+                units::physical(si, dim).map_err(|why| {
+                    self.err(&path(key), format!("{} {} {why}", short(v), unit.name))
+                })?;
+                Ok(si)
+            })
+            .transpose()
         };
         let (lower, upper) = (limit("lower", c.lower)?, limit("upper", c.upper)?);
         match (lower, upper) {
@@ -412,10 +442,20 @@ impl Validator<'_, '_> {
         let path = |key: &str| [k("zones"), k(key)];
         let mut thresholds = Vec::new();
         for (i, n) in z.thresholds.iter().flatten().enumerate() {
-            thresholds.push(self.finite(&[k("zones"), k("thresholds"), Segment::Index(i)], *n)?);
+            let path = [k("zones"), k("thresholds"), Segment::Index(i)];
+            let t = self.finite(&path, *n)?;
+            if let Some(j) = thresholds.iter().position(|&u| u == t) {
+                return Err(self.err(
+                    &path,
+                    format!(
+                        "{} repeats thresholds[{j}]: each zone boundary once",
+                        short(t)
+                    ),
+                ));
+            }
+            thresholds.push(t);
         }
         thresholds.sort_by(|a, b| b.total_cmp(a));
-        thresholds.dedup();
         let tol = |key: &str, n: Option<Number>, default: f64| -> Res<f64> {
             match n {
                 None => Ok(default),

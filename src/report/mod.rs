@@ -48,6 +48,22 @@ pub fn temporary_path(path: &Path) -> PathBuf {
     }
 }
 
+/// Checks, before any computation, that `dir` can be created and written: a run whose
+/// results cannot be stored is bad input, not a failure found after the work is done.
+pub fn check_writable(dir: &Path) -> Result<(), WriteError> {
+    let fail = |e: &dyn std::fmt::Display| WriteError {
+        path: dir.to_path_buf(),
+        message: format!("cannot write results there: {e}"),
+    };
+    if dir.exists() && !dir.is_dir() {
+        return Err(fail(&"it is not a folder"));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| fail(&e))?;
+    let probe = dir.join(format!(".flexopt-probe-{}", std::process::id()));
+    std::fs::File::create(&probe).map_err(|e| fail(&e))?;
+    std::fs::remove_file(&probe).map_err(|e| fail(&e))
+}
+
 /// Writes `path` whole or not at all, creating its folder.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
     write_with(path, |tmp| {
