@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use flexopt::pareto::{pareto, ParetoSpec};
-use flexopt::problem::design::parse_design;
+use flexopt::problem::design::{default_design, parse_around, parse_design};
 use flexopt::problem::{Problem, Solver};
 use flexopt::report::pareto::write_pareto;
 use flexopt::report::study::write_all;
@@ -88,7 +88,9 @@ enum Command {
         /// Number of points.
         #[arg(long, default_value_t = 201)]
         steps: usize,
-        /// The design the other variables are held at (default: the middle of the bounds).
+        /// The design the other variables are held at, `name=value` pairs in the file's
+        /// units; variables left out (or all, without it) take the middle of their bounds,
+        /// an angle range that straddles zero the middle of its positive part.
         #[arg(long)]
         around: Option<String>,
         /// Outputs to record, comma-separated (default: all).
@@ -351,27 +353,36 @@ fn print_json(value: &impl serde::Serialize) -> Result<(), Failure> {
     Ok(())
 }
 
-fn load_design(path: &Path, design: Option<&str>) -> Result<(Problem, Vec<f64>), Failure> {
+fn load_design(path: &Path, design: &str) -> Result<(Problem, Vec<f64>), Failure> {
     let problem = Problem::load(path).map_err(Failure::bad_input)?;
-    let x = match design {
+    let parsed = parse_design(&problem, design).map_err(Failure::bad_input)?;
+    warn(path, &parsed.warnings);
+    Ok((problem, parsed.x))
+}
+
+/// The design a sweep runs around: `--around` (partial: the rest from the default), or the
+/// default of [`default_design`].
+fn load_around(path: &Path, around: Option<&str>) -> Result<(Problem, Vec<f64>), Failure> {
+    let problem = Problem::load(path).map_err(Failure::bad_input)?;
+    let x = match around {
         Some(text) => {
-            let parsed = parse_design(&problem, text).map_err(Failure::bad_input)?;
-            for w in &parsed.warnings {
-                eprintln!("warning: {}: {w}", path.display());
-            }
+            let parsed = parse_around(&problem, text).map_err(Failure::bad_input)?;
+            warn(path, &parsed.warnings);
             parsed.x
         }
-        None => problem
-            .variables
-            .iter()
-            .map(|v| 0.5 * (v.lower + v.upper))
-            .collect(),
+        None => default_design(&problem),
     };
     Ok((problem, x))
 }
 
+fn warn(path: &Path, warnings: &[String]) {
+    for w in warnings {
+        eprintln!("warning: {}: {w}", path.display());
+    }
+}
+
 fn eval(path: &Path, design: &str) -> Result<(), Failure> {
-    let (problem, x) = load_design(path, Some(design))?;
+    let (problem, x) = load_design(path, design)?;
     if let Some(why) = problem.model().domain_error(&x) {
         return Err(Failure::bad_input(format!(
             "{}: key `--design`: outside the model's domain: {why}",
@@ -394,7 +405,7 @@ fn run_sweep(
     around: Option<&str>,
     out: Option<PathBuf>,
 ) -> Result<(), Failure> {
-    let (problem, base) = load_design(path, around)?;
+    let (problem, base) = load_around(path, around)?;
     let result = sweep(&problem, spec, &base).map_err(Failure::bad_input)?;
     let dir = out.unwrap_or_else(|| problem.default_output_dir().join("sweep"));
     check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;

@@ -66,15 +66,20 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
     let var = &problem.variables[vi];
     let model = problem.model();
     check_range(spec.from, spec.to, spec.steps, MAX_STEPS).map_err(|(k, m)| err(k, m))?;
-    let positive = model.parameters()[var.parameter].dimension == crate::model::Dimension::Length;
-    if positive && spec.from.min(spec.to) <= 0.0 {
-        return Err(err(
-            "--from",
-            format!(
-                "{} is a length: the range {} to {} {} must stay positive",
-                var.name, spec.from, spec.to, var.unit.name
-            ),
-        ));
+    // one rule for every variable: each point of the range lies in the model's domain (a
+    // length past zero and an angle past a right angle alike), else nothing is computed
+    let mut x = base.to_vec();
+    for (key, v) in [("--from", spec.from), ("--to", spec.to)] {
+        x[var.parameter] = var.unit.to_si(v);
+        if let Some(why) = model.domain_error(&x) {
+            return Err(err(
+                key,
+                format!(
+                    "{} = {} {} lies outside the model's domain around this design: {why}",
+                    var.name, v, var.unit.name
+                ),
+            ));
+        }
     }
     let wanted: Vec<usize> = if spec.outputs.is_empty() {
         model.available_outputs()
@@ -103,12 +108,12 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
         .map(|i| spec.from + (spec.to - spec.from) * i as f64 / (spec.steps - 1) as f64)
         .collect();
     let mut curves = vec![Vec::with_capacity(values.len()); wanted.len()];
-    let mut x = base.to_vec();
     let mut out = vec![0.0; wanted.len()];
     for &v in &values {
         x[var.parameter] = var.unit.to_si(v);
         if model.domain_error(&x).is_some() {
-            // outside the model's domain: a gap in the curve, never a number
+            // a hole in the domain between the ends (a singular configuration): a gap in
+            // the curve, never a number
             out.fill(f64::NAN);
         } else {
             model.evaluate(&x, &wanted, &mut out);

@@ -287,3 +287,76 @@ fn the_seed_has_one_range_and_threads_above_the_cores_are_named() {
         "{stderr}"
     );
 }
+
+fn sweep_args<'a>(out: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut v = vec!["sweep", FILE, "--steps", "5", "--out", out];
+    v.extend_from_slice(extra);
+    v
+}
+
+#[test]
+fn a_sweep_range_past_the_domain_is_refused_for_angles_as_for_lengths() {
+    let out = temp("sweep-domain");
+    let out = out.to_str().unwrap();
+    for (extra, key, words) in [
+        (
+            ["--param", "delta2", "--from", "-100", "--to", "20"],
+            "`--from`",
+            "strictly between -90 and 90",
+        ),
+        (
+            ["--param", "delta3", "--from", "0", "--to", "95"],
+            "`--to`",
+            "strictly between",
+        ),
+        (
+            ["--param", "l2", "--from", "-1", "--to", "2"],
+            "`--from`",
+            "is negative",
+        ),
+    ] {
+        let o = flexopt(&sweep_args(out, &extra));
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains(key) && stderr.contains(words), "{stderr}");
+    }
+    let _ = std::fs::remove_dir_all(out);
+}
+
+#[test]
+fn around_names_itself_takes_a_partial_design_and_the_default_amplifies() {
+    let out = temp("sweep-around");
+    let out_s = out.to_str().unwrap();
+    let o = flexopt(&sweep_args(
+        out_s,
+        &[
+            "--param", "l2", "--from", "1", "--to", "2", "--around", "l9=1",
+        ],
+    ));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr.contains("`--around l9`"), "{stderr}");
+    // a partial design: the rest from the default
+    let o = flexopt(&sweep_args(
+        out_s,
+        &[
+            "--param", "l2", "--from", "1", "--to", "2", "--around", "l3=10",
+        ],
+    ));
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let sweep: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("l2.json")).unwrap()).unwrap();
+    assert_eq!(sweep["around"]["l3"], 10.0);
+    // the default: angles at the middle of their positive half (22.5 deg), not at 0 deg
+    // where the bridge is flat and amplifies nothing
+    assert_eq!(sweep["around"]["delta2"], 22.5);
+    assert!((sweep["around"]["t2"].as_f64().unwrap() - 1.2).abs() < 1e-12);
+    let da = sweep["outputs"]["amplification"].as_array().unwrap();
+    assert!(da.iter().all(|v| v.as_f64().unwrap().abs() > 0.1), "{da:?}");
+    std::fs::remove_dir_all(&out).unwrap();
+}

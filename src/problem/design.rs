@@ -10,12 +10,48 @@ pub struct ParsedDesign {
     pub warnings: Vec<String>,
 }
 
-/// Reads `text` against `problem`. Fixed variables may be left out; every free one must
-/// be given. Values are in the units the problem file gives each variable.
+/// Reads `text` (`--design`) against `problem`. Fixed variables may be left out; every free
+/// one must be given. Values are in the units the problem file gives each variable.
 pub fn parse_design(problem: &Problem, text: &str) -> Result<ParsedDesign, ProblemError> {
+    parse_design_with(problem, text, "--design", None)
+}
+
+/// Reads the design a sweep holds the other variables at (`--around`): any variable left
+/// out takes its value in [`default_design`].
+pub fn parse_around(problem: &Problem, text: &str) -> Result<ParsedDesign, ProblemError> {
+    let base = default_design(problem);
+    parse_design_with(problem, text, "--around", Some(&base))
+}
+
+/// The design a sweep runs around when none is given: fixed variables at their values, free
+/// ones at the middle of their bounds, except an angle whose bounds straddle zero, which
+/// takes the middle of its positive part. The middle of a symmetric angle range is zero,
+/// where a mechanism such as the bridge is flat and amplifies nothing.
+pub fn default_design(problem: &Problem) -> Vec<f64> {
+    let params = problem.model().parameters();
+    problem
+        .variables
+        .iter()
+        .map(|v| {
+            let angle = params[v.parameter].dimension == crate::model::Dimension::Angle;
+            if angle && v.lower < 0.0 && v.upper > 0.0 {
+                0.5 * v.upper
+            } else {
+                0.5 * (v.lower + v.upper)
+            }
+        })
+        .collect()
+}
+
+fn parse_design_with(
+    problem: &Problem,
+    text: &str,
+    option: &str,
+    defaults: Option<&[f64]>,
+) -> Result<ParsedDesign, ProblemError> {
     let err = |key: &str, message: String| ProblemError {
         file: problem.file.clone(),
-        key: format!("--design {key}").trim_end().to_string(),
+        key: format!("{option} {key}").trim_end().to_string(),
         position: None,
         message,
     };
@@ -47,10 +83,11 @@ pub fn parse_design(problem: &Problem, text: &str) -> Result<ParsedDesign, Probl
     }
     let mut x = Vec::with_capacity(given.len());
     let mut warnings = Vec::new();
-    for (var, g) in problem.variables.iter().zip(given) {
+    for (i, (var, g)) in problem.variables.iter().zip(given).enumerate() {
         let value = match (g, var.fixed) {
             (Some(v), _) => v,
             (None, true) => var.lower,
+            (None, false) if defaults.is_some() => defaults.map_or(var.lower, |d| d[i]),
             (None, false) => {
                 return Err(err(
                     &var.name,
