@@ -10,6 +10,7 @@ use crate::optim::multistart::{self, Sampling as StartSampling};
 use crate::optim::nelder_mead::{self, NelderMeadSettings};
 use crate::optim::sqp::{self, SqpSettings};
 use crate::optim::{Problem as _, Solution, Status};
+use crate::problem::epigraph::Epigraph;
 use crate::problem::nlp::{DesignNlp, FEASIBILITY_TOLERANCE};
 use crate::problem::{Problem, Sampling, Sense, Solver};
 
@@ -121,13 +122,33 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
                 max_iterations,
                 ..SqpSettings::default()
             };
-            multistart::run(
-                &nlp,
-                &starts,
-                |p, x0| sqp::solve(p, x0, &settings),
-                options.threads,
-                options.progress,
-            )
+            // a minimized maximum: its kinks removed by the epigraph form, whose extra
+            // variable is dropped again below
+            match Epigraph::new(&nlp) {
+                Some(ep) => {
+                    let starts: Vec<Vec<f64>> = starts.iter().map(|u| ep.start(u)).collect();
+                    multistart::run(
+                        &ep,
+                        &starts,
+                        |p, x0| sqp::solve(p, x0, &settings),
+                        options.threads,
+                        options.progress,
+                    )
+                    .into_iter()
+                    .map(|mut s| {
+                        s.x.truncate(n);
+                        s
+                    })
+                    .collect()
+                }
+                None => multistart::run(
+                    &nlp,
+                    &starts,
+                    |p, x0| sqp::solve(p, x0, &settings),
+                    options.threads,
+                    options.progress,
+                ),
+            }
         }
         Solver::NelderMead => {
             let settings = NelderMeadSettings {
@@ -156,7 +177,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
                 start: i,
                 x_start: nlp.full_design(&starts[i]),
                 x_end: nlp.full_design(&s.x),
-                objective: nlp.stated_objective(s.objective),
+                objective: nlp.objective_at(&s.x, s.objective),
                 feasible,
                 solution: s,
                 optimum: None,

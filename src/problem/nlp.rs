@@ -69,6 +69,12 @@ impl<'p> DesignNlp<'p> {
                 wanted.len() - 1
             })
         };
+        // a minimized maximum reaches the SQP through its parts (super::epigraph)
+        if let Some(parts) = super::epigraph::parts(problem) {
+            for &part in parts {
+                value_of(part);
+            }
+        }
         for c in &problem.constraints {
             let scale = |l: f64| if l == 0.0 { 1.0 } else { l.abs() };
             if let Some(lo) = c.lower {
@@ -197,6 +203,20 @@ impl<'p> DesignNlp<'p> {
         }
     }
 
+    /// The objective as the problem states it at the scaled design `u`, which the solver
+    /// ended at with objective `solver_objective`: that objective, unless the solver saw
+    /// the epigraph form ([`super::epigraph`]), whose `t` only bounds the objective until it
+    /// converges; then the objective computed afresh.
+    pub fn objective_at(&self, u: &[f64], solver_objective: f64) -> f64 {
+        if super::epigraph::parts(self.problem).is_none() {
+            return self.stated_objective(solver_objective);
+        }
+        let mut out = [0.0; MAX_WANTED];
+        let out = &mut out[..self.wanted.len()];
+        self.outputs(&self.unscale(u), out);
+        out[0]
+    }
+
     /// The mirror image of a scaled design (every angle negated), if it lies within the
     /// bounds; `None` for models without that symmetry.
     pub fn mirror(&self, u: &[f64]) -> Option<Vec<f64>> {
@@ -298,9 +318,26 @@ impl Problem for DesignNlp<'_> {
         for ((gj, rj), &p) in gradient.iter_mut().zip(&self.range).zip(&self.free) {
             *gj = model_jac[p] * (df * rj);
         }
+        self.rows_from(out, model_jac, c, jacobian, n);
+        merit(o.sense, o.absolute, f)
+    }
+}
+
+impl DesignNlp<'_> {
+    /// The constraint rows and their Jacobian (rows of `stride` entries, the first
+    /// `dimension()` of each written) from the wanted outputs and the model's Jacobian.
+    pub(crate) fn rows_from(
+        &self,
+        out: &[f64],
+        model_jac: &[f64],
+        c: &mut [f64],
+        jacobian: &mut [f64],
+        stride: usize,
+    ) {
+        let (n, np) = (self.range.len(), self.base.len());
         self.constraint_values(out, c);
         let rows = jacobian
-            .chunks_exact_mut(n)
+            .chunks_exact_mut(stride)
             .zip(self.jacobian_factor.chunks_exact(n));
         for ((row, factor), r) in rows.zip(&self.rows) {
             let grad = &model_jac[r.value * np..(r.value + 1) * np];
@@ -308,7 +345,24 @@ impl Problem for DesignNlp<'_> {
                 *o = grad[p] * f;
             }
         }
-        merit(o.sense, o.absolute, f)
+    }
+
+    /// The slot among the wanted outputs of each of `outputs`.
+    pub(crate) fn slots_of(&self, outputs: &[usize]) -> Option<Vec<usize>> {
+        outputs
+            .iter()
+            .map(|o| self.wanted.iter().position(|w| w == o))
+            .collect()
+    }
+
+    /// Model parameter index of each free variable, and the free variables' ranges.
+    pub(crate) fn free_and_range(&self) -> (&[usize], &[f64]) {
+        (&self.free, &self.range)
+    }
+
+    /// Number of model parameters.
+    pub(crate) fn parameter_count(&self) -> usize {
+        self.base.len()
     }
 }
 
