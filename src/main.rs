@@ -41,6 +41,14 @@ impl Failure {
         }
     }
 
+    /// Exit code 130, the shell's for an interrupt: the run was stopped by Ctrl-C.
+    fn interrupted(e: impl Display) -> Self {
+        Failure {
+            code: 130,
+            message: e.to_string(),
+        }
+    }
+
     /// Exit code 3: no feasible design; the results were written all the same. (Exit code
     /// 4, a feasible design that did not converge, is built where it arises.)
     fn no_feasible(e: impl Display) -> Self {
@@ -311,14 +319,31 @@ fn run_pareto(
 }
 
 fn run_study(problem: &Problem, options: &StudyOptions, dir: &Path) -> Result<(), Failure> {
+    // Ctrl-C stops the starts not yet begun; the finished ones are written, marked partial
+    let stop = options.stop.clone();
+    let _ = ctrlc::set_handler(move || stop.store(true, std::sync::atomic::Ordering::Relaxed));
     let study = study::run(problem, options);
+    if study.interrupted && study.runs.is_empty() {
+        return Err(Failure::interrupted(format!(
+            "{}: interrupted before any start finished; nothing was written",
+            problem.file.display()
+        )));
+    }
     let files = write_all(dir, problem, &study).map_err(Failure::write_failed)?;
     emit(&StudySummary {
         problem,
         study: &study,
         files: &files,
     });
-    if study.any_feasible && !study.best_converged {
+    if study.interrupted {
+        Err(Failure::interrupted(format!(
+            "{}: interrupted: {} of {} starts finished; the files written hold those \
+             (\"partial\": true in optimum.json)",
+            problem.file.display(),
+            study.runs.len(),
+            options.starts
+        )))
+    } else if study.any_feasible && !study.best_converged {
         Err(Failure {
             code: 4,
             message: format!(

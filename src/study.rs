@@ -1,6 +1,8 @@
 //! The multistart study of a design problem: local solves from many starts, every result
 //! kept, optima merged and sorted into zones, the best feasible design picked.
 
+use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use serde::Serialize;
@@ -22,6 +24,9 @@ pub struct StudyOptions {
     pub solver: Solver,
     pub threads: usize,
     pub progress: bool,
+    /// Set (by an interrupt) to stop: starts not begun are skipped, the study keeps the
+    /// finished ones and says so (`Study::interrupted`).
+    pub stop: Arc<AtomicBool>,
 }
 
 impl StudyOptions {
@@ -33,6 +38,7 @@ impl StudyOptions {
             solver: s.solver,
             threads: s.threads,
             progress: false,
+            stop: Arc::new(AtomicBool::new(false)),
         }
     }
 }
@@ -66,6 +72,8 @@ pub struct Study {
     pub any_feasible: bool,
     /// Whether `best` converged (KKT residual below the tolerance).
     pub best_converged: bool,
+    /// Stopped by an interrupt: `runs` holds the starts that finished.
+    pub interrupted: bool,
     /// How the local solves ended.
     pub ends: Ends,
     pub elapsed: Duration,
@@ -127,26 +135,30 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
             match Epigraph::new(&nlp) {
                 Some(ep) => {
                     let starts: Vec<Vec<f64>> = starts.iter().map(|u| ep.start(u)).collect();
-                    multistart::run(
+                    multistart::run_until(
                         &ep,
                         &starts,
                         |p, x0| sqp::solve(p, x0, &settings),
                         options.threads,
                         options.progress,
+                        &options.stop,
                     )
                     .into_iter()
-                    .map(|mut s| {
-                        s.x.truncate(n);
-                        s
+                    .map(|s| {
+                        s.map(|mut s| {
+                            s.x.truncate(n);
+                            s
+                        })
                     })
                     .collect()
                 }
-                None => multistart::run(
+                None => multistart::run_until(
                     &nlp,
                     &starts,
                     |p, x0| sqp::solve(p, x0, &settings),
                     options.threads,
                     options.progress,
+                    &options.stop,
                 ),
             }
         }
@@ -156,19 +168,22 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
                 max_iterations: max_iterations.min(60),
                 ..NelderMeadSettings::default()
             };
-            multistart::run(
+            multistart::run_until(
                 &nlp,
                 &starts,
                 |p, x0| nelder_mead::solve(p, x0, &settings),
                 options.threads,
                 options.progress,
+                &options.stop,
             )
         }
     };
     let elapsed = begin.elapsed();
+    let interrupted = solutions.iter().any(Option::is_none);
     let mut runs: Vec<Run> = solutions
         .into_iter()
         .enumerate()
+        .filter_map(|(i, s)| Some((i, s?)))
         .map(|(i, s)| {
             let feasible = s.objective.is_finite()
                 && s.max_violation <= FEASIBILITY_TOLERANCE
@@ -240,6 +255,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
     let ends = Ends::count(&runs);
     Study {
         best_converged: best_converged_run.is_some(),
+        interrupted,
         ends,
         runs,
         clustering,

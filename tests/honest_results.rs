@@ -443,3 +443,56 @@ fn the_epigraph_gradients_match_differences() {
         }
     }
 }
+
+#[test]
+fn key_paths_name_the_array_element() {
+    for (from, to) in [("name = \"l2\"\n", ""), ("name = \"l2\"\n", "name = 5\n")] {
+        let e = Problem::parse(Path::new("t.toml"), &wei2017_with(from, to)).unwrap_err();
+        assert_eq!(e.key, "variables[0].name", "{e}");
+        assert!(e.position.is_some(), "{e}");
+    }
+}
+
+#[test]
+fn an_interrupt_writes_what_finished_marked_partial_and_exits_130() {
+    let out_dir = temp("interrupt-out");
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_flexopt"))
+        .args([
+            "run",
+            FILE,
+            "--starts",
+            "1000000",
+            "--threads",
+            "1",
+            "--quiet",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let status = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted"), "{stderr}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("INTERRUPTED"));
+    let optimum: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("optimum.json")).unwrap())
+            .unwrap();
+    assert_eq!(optimum["partial"], true);
+    let starts = optimum["starts"].as_u64().unwrap();
+    assert!(starts > 0 && starts < 1_000_000, "{starts}");
+    // no temporary file left behind
+    for f in std::fs::read_dir(&out_dir).unwrap() {
+        let name = f.unwrap().file_name();
+        assert!(!name.to_string_lossy().contains("partial"), "{name:?}");
+    }
+    std::fs::remove_dir_all(&out_dir).unwrap();
+}

@@ -8,6 +8,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::problem::{Problem, Solution};
 
@@ -82,6 +83,26 @@ pub fn run<S>(
 where
     S: Fn(&dyn Problem, &[f64]) -> Solution + Sync,
 {
+    let never = AtomicBool::new(false);
+    run_until(problem, starts, solve, threads, progress, &never)
+        .into_iter()
+        .flatten()
+        .collect()
+}
+
+/// As [`run`], but a start not begun when `stop` is set is skipped: its entry is `None`.
+/// Solves under way finish.
+pub fn run_until<S>(
+    problem: &dyn Problem,
+    starts: &[Vec<f64>],
+    solve: S,
+    threads: usize,
+    progress: bool,
+    stop: &AtomicBool,
+) -> Vec<Option<Solution>>
+where
+    S: Fn(&dyn Problem, &[f64]) -> Solution + Sync,
+{
     let bar = if progress {
         let bar = ProgressBar::new(starts.len() as u64);
         if let Ok(style) =
@@ -97,9 +118,12 @@ where
         starts
             .par_iter()
             .map(|x0| {
+                if stop.load(Ordering::Relaxed) {
+                    return None;
+                }
                 let s = solve(problem, x0);
                 bar.inc(1);
-                s
+                Some(s)
             })
             .collect::<Vec<_>>()
     };

@@ -35,6 +35,9 @@ pub struct OptimumReport {
     pub converged: bool,
     /// How every start's solve ended.
     pub ends: Ends,
+    /// The run was interrupted: these results come from the starts that finished.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub partial: bool,
 }
 
 /// One line of `starts.json`.
@@ -125,6 +128,7 @@ pub fn optimum_report(problem: &Problem, study: &Study) -> OptimumReport {
         iterations: run.solution.iterations,
         converged: study.best_converged,
         ends: study.ends,
+        partial: study.interrupted,
     }
 }
 

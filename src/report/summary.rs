@@ -31,6 +31,12 @@ impl Display for StudySummary<'_> {
             study.elapsed.as_secs_f64() * 1e3,
             study.feasible_runs.len()
         )?;
+        if study.interrupted {
+            writeln!(
+                s,
+                "INTERRUPTED: only the starts that finished are counted and written"
+            )?;
+        }
         let e = &study.ends;
         writeln!(
             s,
