@@ -496,3 +496,92 @@ fn an_interrupt_writes_what_finished_marked_partial_and_exits_130() {
     }
     std::fs::remove_dir_all(&out_dir).unwrap();
 }
+
+/// Asserts that `dir` holds one whole set: every file the manifest lists, with its size and
+/// hash, and nothing left of other runs.
+fn assert_one_set(dir: &Path) {
+    use flexopt::report::folder::fnv1a64;
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("manifest.json")).unwrap()).unwrap();
+    for f in manifest["files"].as_array().unwrap() {
+        let bytes = std::fs::read(dir.join(f["name"].as_str().unwrap())).unwrap();
+        assert_eq!(bytes.len() as u64, f["bytes"].as_u64().unwrap(), "{f}");
+        assert_eq!(format!("{:016x}", fnv1a64(&bytes)), f["fnv1a64"], "{f}");
+    }
+}
+
+fn leftovers(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect()
+}
+
+#[test]
+fn two_runs_into_one_folder_leave_one_whole_set() {
+    let dir = temp("concurrent");
+    for round in 0..6 {
+        let seeds = [format!("{}", 2 * round), format!("{}", 2 * round + 1)];
+        let children: Vec<_> = seeds
+            .iter()
+            .map(|seed| {
+                std::process::Command::new(env!("CARGO_BIN_EXE_flexopt"))
+                    .args(["run", FILE, "--starts", "30", "--quiet", "--seed", seed])
+                    .args(["--out", dir.to_str().unwrap()])
+                    .stdout(std::process::Stdio::null())
+                    .stderr(std::process::Stdio::piped())
+                    .spawn()
+                    .unwrap()
+            })
+            .collect();
+        let outs: Vec<_> = children
+            .into_iter()
+            .map(|c| c.wait_with_output().unwrap())
+            .collect();
+        assert!(outs.iter().any(|o| o.status.success()));
+        for o in outs.iter().filter(|o| !o.status.success()) {
+            let stderr = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(1), "{stderr}");
+            assert!(stderr.contains("another flexopt run"), "{stderr}");
+        }
+        assert_one_set(&dir);
+        assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_run_killed_while_it_writes_leaves_no_mixed_set() {
+    let dir = temp("killed");
+    let run = |seed: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_flexopt"))
+            .args([
+                "run",
+                FILE,
+                "--quiet",
+                "--seed",
+                seed,
+                "--out",
+                dir.to_str().unwrap(),
+            ])
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap()
+    };
+    assert!(run("1").wait().unwrap().success());
+    for (k, delay) in [20u64, 60, 120, 200, 300, 450].into_iter().enumerate() {
+        let mut child = run(&format!("{}", 10 + k));
+        std::thread::sleep(std::time::Duration::from_millis(delay));
+        let _ = child.kill();
+        let _ = child.wait();
+        // whatever the moment, the files in place are one run's
+        assert_one_set(&dir);
+    }
+    // the next run clears what the killed ones left
+    assert!(run("2").wait().unwrap().success());
+    assert_one_set(&dir);
+    assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

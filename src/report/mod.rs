@@ -4,6 +4,7 @@
 //! Every file is written whole or not at all: it is written beside its target under a
 //! temporary name and renamed into place.
 
+pub mod folder;
 pub mod pareto;
 pub mod plot;
 pub mod study;

@@ -8,6 +8,7 @@ use indexmap::IndexMap;
 use plotters::prelude::*;
 use serde::Serialize;
 
+use super::folder::OutputSet;
 use super::plot::{draw_legend, format_tick, range, render_png, FAMILY};
 use super::{write_atomic, write_json, DesignReport, WriteError};
 use crate::model::Skeleton;
@@ -363,8 +364,11 @@ fn configurations_png(path: &Path, problem: &Problem, study: &Study) -> Result<(
     })
 }
 
-/// Writes every file of the study into `dir`, each whole or not at all; returns their paths.
+/// Writes every file of the study into `dir` as one set ([`super::folder`]): staged under a
+/// folder unique to the run, moved into place under the folder's lock, `manifest.json` last;
+/// returns the paths in place.
 pub fn write_all(dir: &Path, problem: &Problem, study: &Study) -> Result<Vec<PathBuf>, WriteError> {
+    let set = OutputSet::begin(dir)?;
     let records = start_records(problem, study);
     let files = [
         "optimum.json",
@@ -374,7 +378,7 @@ pub fn write_all(dir: &Path, problem: &Problem, study: &Study) -> Result<Vec<Pat
         "zones.png",
         "configurations.png",
     ];
-    let path = |name: &str| dir.join(name);
+    let path = |name: &str| set.path(name);
     write_json(&path(files[0]), &optimum_report(problem, study))?;
     write_json(&path(files[1]), &records)?;
     write_atomic(&path(files[2]), csv(problem, &records).as_bytes())?;
@@ -388,5 +392,5 @@ pub fn write_all(dir: &Path, problem: &Problem, study: &Study) -> Result<Vec<Pat
     } else {
         &files[..5]
     };
-    Ok(written.iter().map(|f| path(f)).collect())
+    set.commit(written)
 }
