@@ -64,9 +64,19 @@ impl OutputSet {
         if let Ok(entries) = std::fs::read_dir(dir) {
             for entry in entries.flatten() {
                 let name = entry.file_name().to_string_lossy().into_owned();
+                // a temporary file outside a staging folder belongs to a sweep or a front,
+                // which may be writing it now: removed only when an hour old
+                let old = || {
+                    entry
+                        .metadata()
+                        .and_then(|m| m.modified())
+                        .ok()
+                        .and_then(|t| t.elapsed().ok())
+                        .is_some_and(|age| age.as_secs() > 3600)
+                };
                 let stale = match owner(&name) {
                     Some(pid) => !alive(pid),
-                    None => name.contains(".partial"),
+                    None => name.contains(".partial") && old(),
                 };
                 if stale {
                     let p = entry.path();
