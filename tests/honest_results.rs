@@ -19,6 +19,16 @@ fn wei2017_with(from: &str, to: &str) -> String {
     text.replacen(from, to, 1)
 }
 
+/// Starts the `flexopt` binary with `args`, its output piped.
+fn spawn(args: &[&str]) -> std::process::Child {
+    std::process::Command::new(env!("CARGO_BIN_EXE_flexopt"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
 fn temp(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!("flexopt-honest-{}-{name}", std::process::id()))
 }
@@ -456,22 +466,17 @@ fn key_paths_name_the_array_element() {
 #[test]
 fn an_interrupt_writes_what_finished_marked_partial_and_exits_130() {
     let out_dir = temp("interrupt-out");
-    let child = std::process::Command::new(env!("CARGO_BIN_EXE_flexopt"))
-        .args([
-            "run",
-            FILE,
-            "--starts",
-            "1000000",
-            "--threads",
-            "1",
-            "--quiet",
-            "--out",
-            out_dir.to_str().unwrap(),
-        ])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
+    let child = spawn(&[
+        "run",
+        FILE,
+        "--starts",
+        "1000000",
+        "--threads",
+        "1",
+        "--quiet",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
     std::thread::sleep(std::time::Duration::from_millis(1500));
     let status = std::process::Command::new("kill")
         .args(["-INT", &child.id().to_string()])
@@ -526,13 +531,10 @@ fn two_runs_into_one_folder_leave_one_whole_set() {
         let children: Vec<_> = seeds
             .iter()
             .map(|seed| {
-                std::process::Command::new(env!("CARGO_BIN_EXE_flexopt"))
-                    .args(["run", FILE, "--starts", "30", "--quiet", "--seed", seed])
-                    .args(["--out", dir.to_str().unwrap()])
-                    .stdout(std::process::Stdio::null())
-                    .stderr(std::process::Stdio::piped())
-                    .spawn()
-                    .unwrap()
+                let out = dir.to_str().unwrap();
+                spawn(&[
+                    "run", FILE, "--starts", "30", "--quiet", "--seed", seed, "--out", out,
+                ])
             })
             .collect();
         let outs: Vec<_> = children
@@ -555,20 +557,15 @@ fn two_runs_into_one_folder_leave_one_whole_set() {
 fn a_run_killed_while_it_writes_leaves_no_mixed_set() {
     let dir = temp("killed");
     let run = |seed: &str| {
-        std::process::Command::new(env!("CARGO_BIN_EXE_flexopt"))
-            .args([
-                "run",
-                FILE,
-                "--quiet",
-                "--seed",
-                seed,
-                "--out",
-                dir.to_str().unwrap(),
-            ])
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::null())
-            .spawn()
-            .unwrap()
+        spawn(&[
+            "run",
+            FILE,
+            "--quiet",
+            "--seed",
+            seed,
+            "--out",
+            dir.to_str().unwrap(),
+        ])
     };
     assert!(run("1").wait().unwrap().success());
     for (k, delay) in [20u64, 60, 120, 200, 300, 450].into_iter().enumerate() {

@@ -105,9 +105,9 @@ impl Problem for Epigraph<'_, '_> {
         let n = self.nlp.dimension();
         let mut out = [0.0; MAX_WANTED];
         let out = &mut out[..self.nlp.wanted().len()];
-        // the design rows as the plain problem computes them, then one row per part
-        self.nlp.evaluate(&v[..n], &mut c[..self.rows()]);
+        // one model evaluation: the design rows from it, then one row per part
         self.nlp.outputs(&self.nlp.unscale(&v[..n]), out);
+        self.nlp.constraint_values(out, &mut c[..self.rows()]);
         let t = v[n];
         for (ci, &s) in c[self.rows()..].iter_mut().zip(&self.slots) {
             *ci = t - out[s] / self.scale;

@@ -246,7 +246,8 @@ impl<'p> DesignNlp<'p> {
             .then_some(m)
     }
 
-    fn constraint_values(&self, values: &[f64], c: &mut [f64]) {
+    /// The constraint rows from the wanted outputs `values`.
+    pub(crate) fn constraint_values(&self, values: &[f64], c: &mut [f64]) {
         for (ci, r) in c.iter_mut().zip(&self.rows) {
             *ci = r.sign * (values[r.value] - r.limit) / r.scale;
         }

@@ -12,10 +12,6 @@ use crate::optim::Problem;
 /// this times `alpha |d|` ([`Curvature::limit_next_step`]).
 const STEP_LIMIT_RATIO: f64 = 4.0;
 
-/// The kind of KKT residual below which the step limit is lifted (the same bound as the
-/// refresh's, [`super::REFRESH_UNTIL_KKT`]).
-const LIFT_LIMIT_BELOW_KKT: f64 = super::REFRESH_UNTIL_KKT;
-
 pub(super) struct Curvature {
     n: usize,
     /// `B`, row-major.
@@ -36,7 +32,7 @@ pub(super) struct Curvature {
 }
 
 impl Curvature {
-    pub fn new(n: usize, _m: usize) -> Self {
+    pub fn new(n: usize) -> Self {
         Curvature {
             n,
             b: identity(n),
@@ -190,7 +186,7 @@ impl Curvature {
     /// not to hold back the fast local convergence. Measured on the wei2017 study: 5 %
     /// fewer iterations, 9 % fewer evaluations.
     pub fn limit_next_step(&mut self, alpha: f64, step: f64, kkt: f64) {
-        if kkt < LIFT_LIMIT_BELOW_KKT {
+        if kkt < super::REFRESH_UNTIL_KKT {
             self.step_limit = f64::INFINITY;
         } else if alpha < 1.0 {
             self.step_limit = STEP_LIMIT_RATIO * alpha * step;

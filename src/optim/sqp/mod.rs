@@ -162,21 +162,20 @@ impl<'p> Sqp<'p> {
             },
             point: Iterate::new(x0, m),
             step: Step::new(n, m),
-            curvature: Curvature::new(n, m),
+            curvature: Curvature::new(n),
             subproblem: Subproblem::new(n),
             line_search: LineSearch::new(n, m),
             evaluations: 0,
         }
     }
 
-    /// Solves the QP at the iterate with the constraint values `rhs` (the iterate's own
-    /// unless a correction shifts them) into `self.step`.
-    fn solve_qp(&mut self, rhs: Option<&[f64]>) -> Option<QpKind> {
-        let rhs = rhs.unwrap_or(&self.point.c);
+    /// Solves the QP at the iterate into `self.step` (the second-order correction solves
+    /// its shifted QP through the subproblem directly).
+    fn solve_qp(&mut self) -> Option<QpKind> {
         self.subproblem.solve(
             &self.shape,
             &self.point,
-            rhs,
+            &self.point.c,
             &mut self.curvature,
             &mut self.step,
         )
@@ -227,7 +226,7 @@ impl<'p> Sqp<'p> {
                     &mut self.line_search.trial,
                 );
             }
-            let Some(kind) = self.solve_qp(None) else {
+            let Some(kind) = self.solve_qp() else {
                 return self.finish(
                     Status::Failed("the QP subproblem could not be solved".into()),
                     iteration,
@@ -299,7 +298,7 @@ impl<'p> Sqp<'p> {
                 }
             }
         }
-        if self.solve_qp(None).is_some() {
+        if self.solve_qp().is_some() {
             kkt = self.kkt_residual();
         }
         self.finish(Status::IterationLimit, settings.max_iterations, Some(kkt))
