@@ -356,11 +356,55 @@ fn run_study(problem: &Problem, options: &StudyOptions, dir: &Path) -> Result<()
     } else if study.any_feasible {
         Ok(())
     } else {
-        Err(Failure::no_feasible(format!(
-            "{}: no start ended at a feasible design; optimum.json holds the least violating one",
-            problem.file.display()
-        )))
+        Err(Failure::no_feasible(infeasible_message(problem, &study)))
     }
+}
+
+/// What a run without a feasible start tells: the constraints that cannot be met with the
+/// others, where the least violating design leaves them and what they ask.
+fn infeasible_message(problem: &Problem, study: &flexopt::study::Study) -> String {
+    let head = format!(
+        "{}: no start ended at a feasible design",
+        problem.file.display()
+    );
+    let Some(l) = &study.least_violating else {
+        return format!("{head}; optimum.json holds the least violating one");
+    };
+    let report = flexopt::report::DesignReport::new(problem, &l.x);
+    let unmet: Vec<String> = l
+        .unmet
+        .iter()
+        .filter_map(|&k| report.constraints.get(k))
+        .map(|c| {
+            // six significant digits, as a designer reads them
+            let show = |v: Option<f64>| {
+                v.map_or("-".to_string(), |v| {
+                    flexopt::problem::units::short(format!("{v:.5e}").parse().unwrap_or(v))
+                })
+            };
+            let u = if c.unit == "1" {
+                String::new()
+            } else {
+                format!(" {}", c.unit)
+            };
+            let wanted = match (c.lower, c.upper) {
+                (Some(_), Some(_)) => format!("between {} and {}", show(c.lower), show(c.upper)),
+                (Some(_), None) => format!(">= {}", show(c.lower)),
+                _ => format!("<= {}", show(c.upper)),
+            };
+            format!("{} = {}{u} (wanted {wanted}{u})", c.output, show(c.value))
+        })
+        .collect();
+    format!(
+        "{head}; no start met {} together with the other constraints: {}. optimum.json holds \
+         the design that meets the others and violates these least",
+        if unmet.len() == 1 {
+            "this one"
+        } else {
+            "these"
+        },
+        unmet.join("; ")
+    )
 }
 
 /// Writes to stdout; a reader that has gone away (a closed pipe) is not an error worth a

@@ -142,7 +142,11 @@ pub fn pareto(
             &mut stepped.constraints[ci].upper
         };
         *slot = Some(unit.to_si(limit));
-        let s = study::run(&stepped, options);
+        let options = StudyOptions {
+            explain_infeasible: false,
+            ..options.clone()
+        };
+        let s = study::run(&stepped, &options);
         let best = &s.runs[s.best];
         let mut value = [0.0];
         problem

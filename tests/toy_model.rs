@@ -205,3 +205,40 @@ fn its_section_is_read_and_checked_by_the_model() {
     let e = Problem::parse(Path::new("toy.toml"), FILE).unwrap_err();
     assert_eq!(e.key, "model", "{e}");
 }
+
+/// A frequency floor beyond reach (the stiffest spring on the lightest mass gives
+/// sqrt(1000 / 0.001) / 2 pi = 159.15 Hz) next to a deflection floor that can be met alone:
+/// the least violating design meets the deflection floor exactly (k = 2 N / 10 mm = 200 N/m),
+/// takes the highest frequency left (m = 1 g) and names the frequency, where a minimax
+/// compromise would break both.
+#[test]
+fn an_unreachable_floor_is_named_and_the_others_are_met() {
+    let text = FILE.replace(
+        "lower = 50\n\n[search]",
+        "lower = 200\n\n[[constraints]]\noutput = \"deflection\"\nunit = \"mm\"\nlower = 10\n\n[search]",
+    );
+    let problem = parse(&text).unwrap();
+    let s = study::run(&problem, &StudyOptions::from_problem(&problem));
+    assert!(!s.any_feasible);
+    let l = s.least_violating.as_ref().unwrap();
+    assert_eq!(l.unmet, vec![0], "frequency, the first constraint");
+    let (k, m) = (l.x[0], l.x[1]);
+    assert!((k - 200.0).abs() < 1e-6, "k {k}");
+    assert!((m - 1e-3).abs() < 1e-12, "m {m}");
+    let f = (k / m).sqrt() / (2.0 * std::f64::consts::PI);
+    assert!((f - 71.176_254).abs() < 1e-5, "{f}");
+    // the objective is the deflection: at its floor, 10 mm
+    assert!((s.reported_objective() - 0.01).abs() < 1e-10);
+
+    // with only the frequency floor, the design goes to the highest frequency there is
+    let text = FILE.replace("lower = 50\n\n[search]", "lower = 200\n\n[search]");
+    let problem = parse(&text).unwrap();
+    let s = study::run(&problem, &StudyOptions::from_problem(&problem));
+    let l = s.least_violating.as_ref().unwrap();
+    assert_eq!(l.unmet, vec![0]);
+    assert!(
+        (l.x[0] - 1000.0).abs() < 1e-6 && (l.x[1] - 1e-3).abs() < 1e-12,
+        "{:?}",
+        l.x
+    );
+}

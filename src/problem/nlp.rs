@@ -29,6 +29,8 @@ pub const ACTIVE_TOLERANCE: f64 = 1e-6;
 /// output among the wanted ones.
 #[derive(Debug, Clone, Copy)]
 struct Row {
+    /// The problem constraint the row belongs to.
+    constraint: usize,
     value: usize,
     sign: f64,
     limit: f64,
@@ -75,10 +77,11 @@ impl<'p> DesignNlp<'p> {
                 value_of(part);
             }
         }
-        for c in &problem.constraints {
+        for (k, c) in problem.constraints.iter().enumerate() {
             let scale = |l: f64| if l == 0.0 { 1.0 } else { l.abs() };
             if let Some(lo) = c.lower {
                 rows.push(Row {
+                    constraint: k,
                     value: value_of(c.index),
                     sign: 1.0,
                     limit: lo,
@@ -92,6 +95,7 @@ impl<'p> DesignNlp<'p> {
                     .unwrap_or_else(|| vec![c.index]);
                 for part in parts {
                     rows.push(Row {
+                        constraint: k,
                         value: value_of(part),
                         sign: -1.0,
                         limit: hi,
@@ -359,6 +363,11 @@ impl DesignNlp<'_> {
     /// Model parameter index of each free variable, and the free variables' ranges.
     pub(crate) fn free_and_range(&self) -> (&[usize], &[f64]) {
         (&self.free, &self.range)
+    }
+
+    /// The problem constraint of each row.
+    pub(crate) fn row_constraints(&self) -> impl Iterator<Item = usize> + '_ {
+        self.rows.iter().map(|r| r.constraint)
     }
 
     /// Number of model parameters.

@@ -39,6 +39,11 @@ pub struct OptimumReport {
     /// The run was interrupted: these results come from the starts that finished.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub partial: bool,
+    /// No start was feasible: the outputs of the constraints that no start met together with
+    /// the others. The design meets every other constraint and violates these least (sum of
+    /// relative violations), then has the best objective within those violations.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cannot_be_met: Option<Vec<String>>,
 }
 
 /// One line of `starts.json`.
@@ -116,20 +121,31 @@ fn finite(v: f64) -> Option<f64> {
 
 pub fn optimum_report(problem: &Problem, study: &Study) -> OptimumReport {
     let run = &study.runs[study.best];
+    let x = study.reported_design();
+    let (start, zone, solution) = match &study.least_violating {
+        Some(l) => (l.from, None, &l.solution),
+        None => (run.start, run.zone, &run.solution),
+    };
     OptimumReport {
-        design: DesignReport::new(problem, &run.x_end),
-        configuration: configuration(problem, &run.x_end),
+        design: DesignReport::new(problem, x),
+        configuration: configuration(problem, x),
         solver: study.options.solver,
         seed: study.options.seed,
         starts: study.runs.len(),
-        start: run.start,
-        zone: run.zone,
-        status: run.solution.status.clone(),
-        kkt_residual: run.solution.kkt_residual,
-        iterations: run.solution.iterations,
+        start,
+        zone,
+        status: solution.status.clone(),
+        kkt_residual: solution.kkt_residual,
+        iterations: solution.iterations,
         converged: study.best_converged,
         ends: study.ends,
         partial: study.interrupted,
+        cannot_be_met: study.least_violating.as_ref().map(|l| {
+            l.unmet
+                .iter()
+                .map(|&k| problem.constraints[k].output.clone())
+                .collect()
+        }),
     }
 }
 
@@ -385,7 +401,7 @@ pub fn write_all(dir: &Path, problem: &Problem, study: &Study) -> Result<Vec<Pat
     write_json(&path(files[3]), &zones_report(problem, study))?;
     zones_png(&path(files[4]), problem, study)?;
     // a model without a drawing of its configurations writes the first five
-    let best = &study.runs[study.best].x_end;
+    let best = study.reported_design();
     let written = if problem.model().skeleton(best).is_some() {
         configurations_png(&path(files[5]), problem, study)?;
         &files[..]

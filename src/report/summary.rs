@@ -17,7 +17,6 @@ pub struct StudySummary<'a> {
 impl Display for StudySummary<'_> {
     fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
         let (problem, study) = (self.problem, self.study);
-        let best = &study.runs[study.best];
         let solver = match study.options.solver {
             Solver::Sqp => "SQP",
             Solver::NelderMead => "Nelder-Mead",
@@ -52,13 +51,25 @@ impl Display for StudySummary<'_> {
             s,
             "{label} {} = {:.6} ({})",
             problem.objective.output,
-            best.objective,
-            problem.model().configuration(&best.x_end)
+            study.reported_objective(),
+            problem.model().configuration(study.reported_design())
         )?;
+        if let Some(l) = &study.least_violating {
+            let names: Vec<&str> = l
+                .unmet
+                .iter()
+                .map(|&k| problem.constraints[k].output.as_str())
+                .collect();
+            writeln!(
+                s,
+                "  cannot be met with the other constraints: {}",
+                names.join(", ")
+            )?;
+        }
         let design: Vec<String> = problem
             .variables
             .iter()
-            .zip(&best.x_end)
+            .zip(study.reported_design())
             .map(|(v, &x)| format!("{}={:.6}", v.name, v.unit.from_si(x)))
             .collect();
         writeln!(s, "  design {}", design.join(","))?;

@@ -16,6 +16,9 @@ use crate::problem::epigraph::Epigraph;
 use crate::problem::nlp::{DesignNlp, FEASIBILITY_TOLERANCE};
 use crate::problem::{Problem, Sampling, Sense, Solver};
 
+pub mod least_violating;
+pub use least_violating::LeastViolating;
+
 /// What a study runs with; the problem file's `[search]` gives the defaults.
 #[derive(Debug, Clone)]
 pub struct StudyOptions {
@@ -27,6 +30,10 @@ pub struct StudyOptions {
     /// Set (by an interrupt) to stop: starts not begun are skipped, the study keeps the
     /// finished ones and says so (`Study::interrupted`).
     pub stop: Arc<AtomicBool>,
+    /// When no start is feasible, search for the least violating design and the constraints
+    /// that cannot be met ([`least_violating`]); a Pareto front, which only marks such
+    /// points, turns it off.
+    pub explain_infeasible: bool,
 }
 
 impl StudyOptions {
@@ -39,6 +46,7 @@ impl StudyOptions {
             threads: s.threads,
             progress: false,
             stop: Arc::new(AtomicBool::new(false)),
+            explain_infeasible: true,
         }
     }
 }
@@ -76,6 +84,9 @@ pub struct Study {
     pub interrupted: bool,
     /// How the local solves ended.
     pub ends: Ends,
+    /// When no start is feasible (and the study was not interrupted): the design that meets
+    /// every constraint it can and violates the rest least, and which cannot be met.
+    pub least_violating: Option<LeastViolating>,
     pub elapsed: Duration,
     pub options: StudyOptions,
 }
@@ -88,6 +99,25 @@ pub struct Ends {
     /// Stopped at a point that minimizes the constraint violation but violates them.
     pub infeasible: usize,
     pub failed: usize,
+}
+
+impl Study {
+    /// The design the study reports, as the model's full parameter vector in SI: the best
+    /// run's end, or the least violating design when no start is feasible.
+    pub fn reported_design(&self) -> &[f64] {
+        match &self.least_violating {
+            Some(l) => &l.x,
+            None => &self.runs[self.best].x_end,
+        }
+    }
+
+    /// The objective, as the problem states it, at [`Self::reported_design`].
+    pub fn reported_objective(&self) -> f64 {
+        match &self.least_violating {
+            Some(l) => l.objective,
+            None => self.runs[self.best].objective,
+        }
+    }
 }
 
 impl Ends {
@@ -178,7 +208,6 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
             )
         }
     };
-    let elapsed = begin.elapsed();
     let interrupted = solutions.iter().any(Option::is_none);
     let mut runs: Vec<Run> = solutions
         .into_iter()
@@ -253,7 +282,26 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
             .unwrap_or(0)
     };
     let ends = Ends::count(&runs);
+    let least_violating = if any_feasible || interrupted || !options.explain_infeasible {
+        None
+    } else {
+        let settings = SqpSettings {
+            tolerance,
+            max_iterations,
+            ..SqpSettings::default()
+        };
+        let from: Vec<usize> = (0..runs.len())
+            .filter(|&i| runs[i].solution.x.iter().all(|x| x.is_finite()))
+            .collect();
+        let ends: Vec<Vec<f64>> = from.iter().map(|&i| runs[i].solution.x.clone()).collect();
+        least_violating::search(&nlp, &ends, &settings, options.threads).map(|mut l| {
+            l.from = runs[from[l.from]].start;
+            l
+        })
+    };
+    let elapsed = begin.elapsed();
     Study {
+        least_violating,
         best_converged: best_converged_run.is_some(),
         interrupted,
         ends,
