@@ -74,6 +74,7 @@ fn gradient_backends(c: &mut Criterion) {
             stiffness: None,
         },
         dynamics: None,
+        part: flexopt::model::bridge::part::PartSettings::default(),
     });
     let deg = std::f64::consts::PI / 180.0;
     let x = [

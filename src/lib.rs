@@ -12,6 +12,7 @@ pub mod dynamics;
 pub mod model;
 pub mod optim;
 pub mod pareto;
+pub mod part;
 pub mod problem;
 pub mod report;
 pub mod study;

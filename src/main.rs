@@ -8,9 +8,11 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use flexopt::pareto::{pareto, ParetoSpec};
-use flexopt::problem::design::{default_design, parse_around, parse_design};
+use flexopt::part::Part;
+use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
 use flexopt::problem::{Problem, Solver};
 use flexopt::report::pareto::write_pareto;
+use flexopt::report::part::write_part;
 use flexopt::report::study::write_all;
 use flexopt::report::summary::{ParetoSummary, StudySummary, Wrote};
 use flexopt::report::sweep::write_sweep;
@@ -81,6 +83,17 @@ enum Command {
         #[arg(long)]
         design: String,
     },
+    /// The part of one design: its outline for CAD and wire EDM (part.dxf, part.svg,
+    /// part.json) and a dimensioned drawing (part.png).
+    Export {
+        /// The problem file (TOML).
+        problem: PathBuf,
+        #[command(flatten)]
+        design: DesignArgs,
+        /// Folder to write into (default: results/<problem name>/export).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Curves of the outputs against one design variable (JSON and PNG).
     Sweep {
         problem: PathBuf,
@@ -144,6 +157,19 @@ enum Command {
     },
 }
 
+/// Where a command takes its one design from.
+#[derive(clap::Args)]
+#[group(required = true, multiple = false)]
+struct DesignArgs {
+    /// The design, `name=value` pairs in the problem file's units, comma-separated; fixed
+    /// variables may be left out.
+    #[arg(long)]
+    design: Option<String>,
+    /// A report of `flexopt run` whose design to take (its `design_si`).
+    #[arg(long)]
+    optimum: Option<PathBuf>,
+}
+
 /// The options of a multistart study, shared by `run` and `pareto`.
 #[derive(clap::Args)]
 struct StudyArgs {
@@ -174,6 +200,11 @@ fn main() -> ExitCode {
 fn run(command: Command) -> Result<(), Failure> {
     match command {
         Command::Eval { problem, design } => eval(&problem, &design),
+        Command::Export {
+            problem,
+            design,
+            out,
+        } => export(&problem, &design, out),
         Command::Sweep {
             problem,
             param,
@@ -329,10 +360,16 @@ fn run_study(problem: &Problem, options: &StudyOptions, dir: &Path) -> Result<()
             problem.file.display()
         )));
     }
-    let files = write_all(dir, problem, &study).map_err(Failure::write_failed)?;
+    // the optimum's part, for a feasible optimum of a model that has one
+    let part = study
+        .any_feasible
+        .then(|| Part::for_model(problem.model(), study.reported_design()))
+        .flatten();
+    let files = write_all(dir, problem, &study, part.as_ref()).map_err(Failure::write_failed)?;
     emit(&StudySummary {
         problem,
         study: &study,
+        part: part.as_ref(),
         files: &files,
     });
     if study.interrupted {
@@ -350,6 +387,16 @@ fn run_study(problem: &Problem, options: &StudyOptions, dir: &Path) -> Result<()
                 "{}: no feasible start converged; optimum.json holds the best feasible design, \
                  unconverged (\"converged\": false): raise search.max_iterations or check the \
                  tolerance",
+                problem.file.display()
+            ),
+        })
+    } else if let Some(Err(e)) = &part {
+        Err(Failure {
+            code: 5,
+            message: format!(
+                "{}: the optimum gives no part that can be made with the [part] sizes: {e}; \
+                 its analytic results are written, its part files are not \
+                 (optimum.json: part_problems)",
                 problem.file.display()
             ),
         })
@@ -466,6 +513,43 @@ fn eval(path: &Path, design: &str) -> Result<(), Failure> {
         );
     }
     print_json(&report)
+}
+
+/// The design of `--design` or `--optimum`, inside the model's domain.
+fn chosen_design(path: &Path, args: &DesignArgs) -> Result<(Problem, Vec<f64>), Failure> {
+    let problem = Problem::load(path).map_err(Failure::bad_input)?;
+    let (parsed, key) = match (&args.design, &args.optimum) {
+        (Some(text), _) => (parse_design(&problem, text), "--design"),
+        (None, Some(report)) => (design_from_optimum(&problem, report), "--optimum"),
+        (None, None) => unreachable!("clap requires one of --design and --optimum"),
+    };
+    let parsed = parsed.map_err(Failure::bad_input)?;
+    warn(path, &parsed.warnings);
+    if let Some(why) = problem.model().domain_error(&parsed.x) {
+        return Err(Failure::bad_input(format!(
+            "{}: key `{key}`: outside the model's domain: {why}",
+            path.display()
+        )));
+    }
+    Ok((problem, parsed.x))
+}
+
+fn export(path: &Path, design: &DesignArgs, out: Option<PathBuf>) -> Result<(), Failure> {
+    let (problem, x) = chosen_design(path, design)?;
+    let dir = out.unwrap_or_else(|| problem.default_output_dir().join("export"));
+    check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
+    let part = Part::of_design(problem.model(), &x).map_err(|e| {
+        Failure::bad_input(format!(
+            "{}: this design gives no part that can be made: {e}",
+            path.display()
+        ))
+    })?;
+    warn(path, &part.warnings);
+    let report = DesignReport::new(&problem, &x);
+    let files = write_part(|name| dir.join(name), &problem.name, &report.design, &part)
+        .map_err(Failure::write_failed)?;
+    emit(&Wrote(&files));
+    Ok(())
 }
 
 fn run_sweep(

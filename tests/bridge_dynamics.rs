@@ -313,14 +313,14 @@ fn the_dynamics_section_is_validated() {
         (
             "link_thickness = \"3 mm\"",
             "link_thickness = 3",
-            "dynamics.link_thickness",
+            "part.link_thickness",
             "no unit",
         ),
         (
-            "link_thickness = \"3 mm\"",
-            "",
+            "damping_ratio = 0.02",
+            "damping_ratio = 0.02\nlink_thickness = \"3 mm\"",
             "dynamics.link_thickness",
-            "missing",
+            "[part] link_thickness",
         ),
         (
             "damping_ratio = 0.02",
@@ -337,7 +337,7 @@ fn the_dynamics_section_is_validated() {
     }
     // the 3-PRR model takes no [dynamics]
     let prr3 = std::fs::read_to_string("problems/prr3_frequency.toml").unwrap()
-        + "\n[dynamics]\npayload_mass = \"1 g\"\ninput_link_mass = \"1 g\"\noutput_link_mass = \"1 g\"\nlink_thickness = \"1 mm\"\ndamping_ratio = 0.1\n";
+        + "\n[dynamics]\npayload_mass = \"1 g\"\ninput_link_mass = \"1 g\"\noutput_link_mass = \"1 g\"\ndamping_ratio = 0.1\n";
     let e = Problem::parse(Path::new("p.toml"), &prr3).expect_err("refused");
     assert_eq!(e.key, "dynamics");
 }

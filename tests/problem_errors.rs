@@ -365,3 +365,54 @@ fn sections_a_model_does_not_take_or_needs() {
     assert_eq!(e.key, "hinge", "{e}");
     assert!(e.message.contains("bridge"), "{e}");
 }
+
+#[test]
+fn part_keys_are_checked_like_every_other() {
+    let height = "height = \"5 mm\"";
+    let with_part = |part: &str| mutated(height, &format!("{height}\n\n[part]\n{part}"));
+    rejects(
+        with_part("fillet_radius = \"-0.1 mm\""),
+        "part.fillet_radius",
+        &["-0.1 mm", "negative"],
+    );
+    rejects(
+        with_part("link_thickness = \"0 mm\""),
+        "part.link_thickness",
+        &["positive"],
+    );
+    rejects(
+        with_part("input_block_width = 6"),
+        "part.input_block_width",
+        &["no unit"],
+    );
+    rejects(
+        with_part("output_block_height = \"6 N\""),
+        "part.output_block_height",
+        &["unit"],
+    );
+    rejects(
+        with_part("wall = \"1 mm\""),
+        "part.wall",
+        &["unknown field"],
+    );
+    rejects(
+        mutated(height, "height = \"-5 mm\""),
+        "actuator.height",
+        &["positive"],
+    );
+    rejects(
+        mutated("length = \"20 mm\"", "length = \"20 kg\""),
+        "actuator.length",
+        &["unit"],
+    );
+    // a fillet of zero is allowed: the part says what it costs when it is drawn
+    let p = with_part("fillet_radius = \"0 mm\"").unwrap();
+    let x = parse_design(
+        &p,
+        "l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07,t4=0.4",
+    )
+    .unwrap()
+    .x;
+    let part = flexopt::part::Part::of_design(p.model(), &x).unwrap();
+    assert!(part.warnings[0].contains("fillet_radius is 0"));
+}

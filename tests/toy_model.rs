@@ -156,7 +156,7 @@ fn a_model_from_outside_runs_the_whole_way() {
 
     // the study's files: a model without a drawing of configurations writes five
     let dir = std::env::temp_dir().join(format!("flexopt-toy-{}", std::process::id()));
-    let files = flexopt::report::study::write_all(&dir, &problem, &s).unwrap();
+    let files = flexopt::report::study::write_all(&dir, &problem, &s, None).unwrap();
     assert_eq!(files.len(), 6, "five files and the manifest");
     let optimum: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("optimum.json")).unwrap()).unwrap();

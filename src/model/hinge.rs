@@ -97,6 +97,14 @@ impl HingeKind {
         }
     }
 
+    /// The hinge's thickness where it meets the rigid bodies (m): the width of the faces
+    /// its part's outline attaches to, and of the fillets' corners.
+    pub fn root_thickness(self, dims: &[f64]) -> f64 {
+        match self {
+            HingeKind::Strip => dims[1],
+        }
+    }
+
     /// The hinge's area in the plane of the mechanism (m^2), for its mass.
     pub fn area<D: Scalar>(self, dims: &[D]) -> D {
         match self {

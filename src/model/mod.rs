@@ -235,6 +235,20 @@ pub trait Model: Send + Sync + std::fmt::Debug {
     fn skeleton_legend(&self) -> &'static str {
         ""
     }
+
+    /// Whether the mirror image of `x` (every angle negated), which the model evaluates to
+    /// the same outputs up to sign, is the orientation to report: a study that merges mirror
+    /// images reports its optimum in the orientation a designer draws (the bridge: output
+    /// blocks outward, as paper 004's Fig. 1 and 3 draw them).
+    fn prefers_mirror(&self, _x: &[f64]) -> bool {
+        false
+    }
+
+    /// The solids of the design `x` (SI) as a part ([`crate::part`]), or what makes the
+    /// part impossible; `None` for a model without a part.
+    fn part(&self, _x: &[f64]) -> Option<Result<crate::part::PartSpec, Vec<String>>> {
+        None
+    }
 }
 
 /// A model that computes all its outputs at once (a parallel mechanism's frequencies come

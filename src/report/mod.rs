@@ -6,6 +6,7 @@
 
 pub mod folder;
 pub mod pareto;
+pub mod part;
 pub mod plot;
 pub mod study;
 pub mod summary;

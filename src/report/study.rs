@@ -9,10 +9,12 @@ use plotters::prelude::*;
 use serde::Serialize;
 
 use super::folder::OutputSet;
+use super::part::{write_part, PART_FILES};
 use super::plot::{draw_legend, format_tick, range, render_png, FAMILY};
 use super::{write_atomic, write_json, DesignReport, WriteError};
 use crate::model::Skeleton;
 use crate::optim::Status;
+use crate::part::{Part, PartError};
 use crate::problem::{Problem, Solver};
 use crate::study::{Ends, Run, Study};
 
@@ -36,6 +38,10 @@ pub struct OptimumReport {
     pub converged: bool,
     /// How every start's solve ended.
     pub ends: Ends,
+    /// The design is the mirror image (every angle negated) of the start's end: the same
+    /// geometry, in the orientation the model draws ([`crate::model::Model::prefers_mirror`]).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub mirrored: bool,
     /// The run was interrupted: these results come from the starts that finished.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub partial: bool,
@@ -44,6 +50,10 @@ pub struct OptimumReport {
     /// relative violations), then has the best objective within those violations.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cannot_be_met: Option<Vec<String>>,
+    /// Why the design gives no part that can be made with the problem's `[part]` sizes;
+    /// then no part files are written.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub part_problems: Option<Vec<String>>,
 }
 
 /// One line of `starts.json`.
@@ -119,7 +129,11 @@ fn finite(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
 }
 
-pub fn optimum_report(problem: &Problem, study: &Study) -> OptimumReport {
+pub fn optimum_report(
+    problem: &Problem,
+    study: &Study,
+    part: Option<&Result<Part, PartError>>,
+) -> OptimumReport {
     let run = &study.runs[study.best];
     let x = study.reported_design();
     let (start, zone, solution) = match &study.least_violating {
@@ -139,6 +153,7 @@ pub fn optimum_report(problem: &Problem, study: &Study) -> OptimumReport {
         iterations: solution.iterations,
         converged: study.best_converged,
         ends: study.ends,
+        mirrored: study.mirrored.is_some() && study.least_violating.is_none(),
         partial: study.interrupted,
         cannot_be_met: study.least_violating.as_ref().map(|l| {
             l.unmet
@@ -146,6 +161,10 @@ pub fn optimum_report(problem: &Problem, study: &Study) -> OptimumReport {
                 .map(|&k| problem.constraints[k].output.clone())
                 .collect()
         }),
+        part_problems: match part {
+            Some(Err(e)) => Some(e.problems.clone()),
+            _ => None,
+        },
     }
 }
 
@@ -382,8 +401,14 @@ fn configurations_png(path: &Path, problem: &Problem, study: &Study) -> Result<(
 
 /// Writes every file of the study into `dir` as one set ([`super::folder`]): staged under a
 /// folder unique to the run, moved into place under the folder's lock, `manifest.json` last;
-/// returns the paths in place.
-pub fn write_all(dir: &Path, problem: &Problem, study: &Study) -> Result<Vec<PathBuf>, WriteError> {
+/// returns the paths in place. With `part` (the optimum's, where the model has one) the set
+/// holds the part's files too, or `optimum.json` says why there is no part.
+pub fn write_all(
+    dir: &Path,
+    problem: &Problem,
+    study: &Study,
+    part: Option<&Result<Part, PartError>>,
+) -> Result<Vec<PathBuf>, WriteError> {
     let set = OutputSet::begin(dir)?;
     let records = start_records(problem, study);
     let files = [
@@ -395,18 +420,22 @@ pub fn write_all(dir: &Path, problem: &Problem, study: &Study) -> Result<Vec<Pat
         "configurations.png",
     ];
     let path = |name: &str| set.path(name);
-    write_json(&path(files[0]), &optimum_report(problem, study))?;
+    let optimum = optimum_report(problem, study, part);
+    write_json(&path(files[0]), &optimum)?;
     write_json(&path(files[1]), &records)?;
     write_atomic(&path(files[2]), csv(problem, &records).as_bytes())?;
     write_json(&path(files[3]), &zones_report(problem, study))?;
     zones_png(&path(files[4]), problem, study)?;
     // a model without a drawing of its configurations writes the first five
     let best = study.reported_design();
-    let written = if problem.model().skeleton(best).is_some() {
+    let mut written: Vec<&str> = files[..5].to_vec();
+    if problem.model().skeleton(best).is_some() {
         configurations_png(&path(files[5]), problem, study)?;
-        &files[..]
-    } else {
-        &files[..5]
-    };
-    set.commit(written)
+        written.push(files[5]);
+    }
+    if let Some(Ok(part)) = part {
+        write_part(path, &problem.name, &optimum.design.design, part)?;
+        written.extend(PART_FILES);
+    }
+    set.commit(&written)
 }

@@ -4,6 +4,7 @@ use std::fmt::{self, Display};
 use std::path::PathBuf;
 
 use crate::pareto::Pareto;
+use crate::part::{Part, PartError};
 use crate::problem::{Problem, Solver};
 use crate::study::Study;
 
@@ -11,6 +12,8 @@ use crate::study::Study;
 pub struct StudySummary<'a> {
     pub problem: &'a Problem,
     pub study: &'a Study,
+    /// The optimum's part, where the model has one and the optimum is feasible.
+    pub part: Option<&'a Result<Part, PartError>>,
     pub files: &'a [PathBuf],
 }
 
@@ -91,6 +94,20 @@ impl Display for StudySummary<'_> {
                 f(z.best),
                 f(z.worst)
             )?;
+        }
+        match self.part {
+            Some(Ok(part)) => {
+                for w in &part.warnings {
+                    writeln!(s, "part: warning: {w}")?;
+                }
+            }
+            Some(Err(e)) => {
+                writeln!(s, "part: the optimum gives no part that can be made:")?;
+                for p in &e.problems {
+                    writeln!(s, "  - {p}")?;
+                }
+            }
+            None => {}
         }
         let missing = study.runs.len() - study.feasible_runs.len();
         if missing > 0 {

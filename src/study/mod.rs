@@ -87,6 +87,10 @@ pub struct Study {
     /// When no start is feasible (and the study was not interrupted): the design that meets
     /// every constraint it can and violates the rest least, and which cannot be met.
     pub least_violating: Option<LeastViolating>,
+    /// The mirror image of the best run's end (full design, SI), when the study merges
+    /// mirror images, the model prefers that orientation ([`crate::model::Model::prefers_mirror`])
+    /// and the mirror is as feasible and as good: the design reported.
+    pub mirrored: Option<Vec<f64>>,
     pub elapsed: Duration,
     pub options: StudyOptions,
 }
@@ -105,9 +109,10 @@ impl Study {
     /// The design the study reports, as the model's full parameter vector in SI: the best
     /// run's end, or the least violating design when no start is feasible.
     pub fn reported_design(&self) -> &[f64] {
-        match &self.least_violating {
-            Some(l) => &l.x,
-            None => &self.runs[self.best].x_end,
+        match (&self.least_violating, &self.mirrored) {
+            (Some(l), _) => &l.x,
+            (None, Some(m)) => m,
+            (None, None) => &self.runs[self.best].x_end,
         }
     }
 
@@ -133,6 +138,37 @@ impl Ends {
         }
         e
     }
+}
+
+/// The mirror image of `run`'s end (full design, SI) when the model prefers it and it
+/// lies within the bounds, meets the constraints and has the same objective (relative
+/// `1e-12`): the same geometry, drawn the other way round.
+fn preferred_mirror(problem: &Problem, nlp: &DesignNlp, run: &Run) -> Option<Vec<f64>> {
+    if !problem.model().prefers_mirror(&run.x_end) {
+        return None;
+    }
+    let u = nlp.mirror(&run.solution.x)?;
+    let mut c = vec![0.0; nlp.constraint_count()];
+    let f = nlp.evaluate(&u, &mut c);
+    let same =
+        (nlp.objective_at(&u, f) - run.objective).abs() <= 1e-12 * run.objective.abs().max(1e-300);
+    let feasible =
+        crate::optim::problem::max_violation(&c, nlp.equality_count()) <= FEASIBILITY_TOLERANCE;
+    // the end's angles negated exactly, not through the scaling's rounding
+    let params = problem.model().parameters();
+    (same && feasible).then(|| {
+        run.x_end
+            .iter()
+            .zip(params)
+            .map(|(&x, p)| {
+                if p.dimension == crate::model::Dimension::Angle {
+                    -x
+                } else {
+                    x
+                }
+            })
+            .collect()
+    })
 }
 
 /// Runs the study of `problem`.
@@ -299,9 +335,13 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
             l
         })
     };
+    let mirrored = (any_feasible && z.merge_mirror_images)
+        .then(|| preferred_mirror(problem, &nlp, &runs[best]))
+        .flatten();
     let elapsed = begin.elapsed();
     Study {
         least_violating,
+        mirrored,
         best_converged: best_converged_run.is_some(),
         interrupted,
         ends,

@@ -5,6 +5,7 @@ pub mod exact;
 pub mod hs;
 
 use flexopt::model::bridge::dynamics::DynamicsSettings;
+use flexopt::model::bridge::part::PartSettings;
 use flexopt::model::bridge::{Actuator, Bridge, BridgeSettings, Geometry};
 use flexopt::model::hinge::HingeKind;
 use flexopt::model::material::Material;
@@ -28,6 +29,7 @@ pub fn wei2017_settings() -> BridgeSettings {
         },
         // the stage of problems/wei2017_dynamic.toml, so that every output has a value
         dynamics: Some(DynamicsSettings::new(10e-3, 3e-3, 3e-3, 3e-3, 0.02)),
+        part: PartSettings::default(),
     }
 }
 

@@ -1,11 +1,12 @@
 //! The bridge's sections of a problem file: `[material]`, `[hinge]`, `[actuator]` and the
-//! optional `[dynamics]`, read and validated into a [`Bridge`].
+//! optional `[dynamics]` and `[part]`, read and validated into a [`Bridge`].
 
 use std::sync::Arc;
 
 use serde::Deserialize;
 
 use super::dynamics::DynamicsSettings;
+use super::part::PartSettings;
 use super::{Actuator, Bridge, BridgeSettings};
 use crate::model::hinge::HingeKind;
 use crate::model::material::{Material, RawMaterial};
@@ -15,7 +16,7 @@ use crate::problem::schema::{Number, Quantity};
 use crate::problem::sections::Sections;
 
 /// The sections the bridge reads.
-pub const SECTIONS: &[&str] = &["material", "hinge", "actuator", "dynamics"];
+pub const SECTIONS: &[&str] = &["material", "hinge", "actuator", "dynamics", "part"];
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -30,6 +31,8 @@ struct RawActuator {
     nominal_stroke: Quantity,
     preload: Quantity,
     stiffness: Option<Quantity>,
+    length: Option<Quantity>,
+    height: Option<Quantity>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -38,8 +41,21 @@ struct RawDynamics {
     payload_mass: Quantity,
     input_link_mass: Quantity,
     output_link_mass: Quantity,
-    link_thickness: Quantity,
+    /// Moved to `[part]`: read only to say so.
+    link_thickness: Option<Quantity>,
     damping_ratio: Number,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPart {
+    link_thickness: Option<Quantity>,
+    fillet_radius: Option<Quantity>,
+    input_block_width: Option<Quantity>,
+    input_block_height: Option<Quantity>,
+    output_block_width: Option<Quantity>,
+    output_block_height: Option<Quantity>,
+    min_slot: Option<Quantity>,
 }
 
 /// Reads the bridge's sections and builds the model.
@@ -48,15 +64,27 @@ pub fn build(s: &mut Sections) -> Res<Arc<dyn Model>> {
     let h: RawHinge = s.required("hinge")?;
     let a: RawActuator = s.required("actuator")?;
     let d: Option<RawDynamics> = s.optional("dynamics")?;
+    let p: RawPart = s.optional("part")?.unwrap_or_default();
     let material = Material::from_section(s, &m)?;
     let kind = hinge_kind(s, &h.kind)?;
+    let size = |key: &str, q: &Option<Quantity>| -> Res<Option<f64>> {
+        q.as_ref()
+            .map(|q| s.positive(&[k("actuator"), k(key)], q, Dimension::Length))
+            .transpose()
+    };
+    let actuator_size = [size("length", &a.length)?, size("height", &a.height)?];
+    let part = part_settings(s, &p, actuator_size)?;
     let settings = BridgeSettings {
         hinge_b: kind,
         hinge_d: kind,
         width: s.positive(&[k("hinge"), k("width")], &h.width, Dimension::Length)?,
         material,
         actuator: actuator(s, &a)?,
-        dynamics: d.as_ref().map(|d| dynamics(s, d)).transpose()?,
+        dynamics: d
+            .as_ref()
+            .map(|d| dynamics(s, d, part.link_thickness))
+            .transpose()?,
+        part,
     };
     Ok(Arc::new(Bridge::new(settings)))
 }
@@ -89,8 +117,64 @@ fn actuator(s: &Sections, a: &RawActuator) -> Res<Actuator> {
     })
 }
 
-fn dynamics(s: &Sections, d: &RawDynamics) -> Res<DynamicsSettings> {
+/// `[part]`, each key with its default ([`PartSettings::default`]).
+fn part_settings(
+    s: &Sections,
+    p: &RawPart,
+    [actuator_length, actuator_height]: [Option<f64>; 2],
+) -> Res<PartSettings> {
+    let d = PartSettings::default();
+    let length = |key: &str, q: &Option<Quantity>, default: f64, zero: bool| -> Res<f64> {
+        let path = [k("part"), k(key)];
+        match q {
+            None => Ok(default),
+            Some(q) if zero => s.non_negative(&path, q, Dimension::Length),
+            Some(q) => s.positive(&path, q, Dimension::Length),
+        }
+    };
+    Ok(PartSettings {
+        link_thickness: length("link_thickness", &p.link_thickness, d.link_thickness, false)?,
+        fillet_radius: length("fillet_radius", &p.fillet_radius, d.fillet_radius, true)?,
+        input_block_width: length(
+            "input_block_width",
+            &p.input_block_width,
+            d.input_block_width,
+            false,
+        )?,
+        input_block_height: length(
+            "input_block_height",
+            &p.input_block_height,
+            d.input_block_height,
+            false,
+        )?,
+        output_block_width: length(
+            "output_block_width",
+            &p.output_block_width,
+            d.output_block_width,
+            false,
+        )?,
+        output_block_height: length(
+            "output_block_height",
+            &p.output_block_height,
+            d.output_block_height,
+            false,
+        )?,
+        min_slot: length("min_slot", &p.min_slot, d.min_slot, true)?,
+        actuator_length,
+        actuator_height,
+    })
+}
+
+fn dynamics(s: &Sections, d: &RawDynamics, link_thickness: f64) -> Res<DynamicsSettings> {
     let path = |key: &str| [k("dynamics"), k(key)];
+    if d.link_thickness.is_some() {
+        return Err(s.err(
+            &path("link_thickness"),
+            "the middle links' thickness is a size of the part: give it as \
+             `[part] link_thickness` (one key for the dynamics and the part)"
+                .to_string(),
+        ));
+    }
     let mass = |key: &str, q: &Quantity| s.non_negative(&path(key), q, Dimension::Mass);
     let zeta = s.finite(&path("damping_ratio"), d.damping_ratio)?;
     // the settling time is that of an oscillator: it needs some damping, and above
@@ -105,11 +189,7 @@ fn dynamics(s: &Sections, d: &RawDynamics) -> Res<DynamicsSettings> {
         mass("payload_mass", &d.payload_mass)?,
         mass("input_link_mass", &d.input_link_mass)?,
         mass("output_link_mass", &d.output_link_mass)?,
-        s.non_negative(
-            &path("link_thickness"),
-            &d.link_thickness,
-            Dimension::Length,
-        )?,
+        link_thickness,
         zeta,
     ))
 }

@@ -16,6 +16,7 @@ pub mod dynamics;
 pub mod file;
 pub mod geometry;
 pub mod outputs;
+pub mod part;
 pub mod quarter;
 
 use serde::Serialize;
@@ -61,6 +62,8 @@ pub struct BridgeSettings {
     pub actuator: Actuator,
     /// Masses and damping for the dynamic outputs; `None` when the problem gives none.
     pub dynamics: Option<DynamicsSettings>,
+    /// The part's sizes (`[part]`).
+    pub part: part::PartSettings,
 }
 
 /// The general bridge model: settings plus the evaluation of named outputs.
@@ -207,5 +210,16 @@ impl Model for Bridge {
 
     fn skeleton_legend(&self) -> &'static str {
         configuration::SKELETON_LEGEND
+    }
+
+    /// The span along the output negative: the arm runs from the input block towards the
+    /// actuator's axis and the output blocks sit inward, pinching the actuator's pocket.
+    fn prefers_mirror(&self, x: &[f64]) -> bool {
+        x.len() == self.layout.parameters().len() && self.layout.geometry(x).span_y() < 0.0
+    }
+
+    fn part(&self, x: &[f64]) -> Option<Result<crate::part::PartSpec, Vec<String>>> {
+        (x.len() == self.layout.parameters().len())
+            .then(|| part::spec(&self.layout, &self.settings.part, x))
     }
 }

@@ -1,0 +1,526 @@
+//! The whole bridge as a part: four quarters mirrored about the input (x) and output (y)
+//! axes as in paper 004's Fig. 1 and 3, two input blocks the actuator pushes apart, two
+//! output blocks (the upper one carries the output, the lower one is clamped). The origin is
+//! the part's centre, x along the actuator, y along the output.
+//!
+//! The model's quarter (nodes 2 to 5) is the upper left one: hinge b from the left input
+//! block to the middle link c, hinge d from c to the upper output block. Where each solid
+//! starts and ends (r the fillet radius, u a hinge's direction from node 2 or 4 onwards):
+//!
+//! - hinge b's thin section runs from node 2 to node 3, exactly the model's `l2`; the rigid
+//!   bodies' faces stand `r` beyond its ends, perpendicular to it: the input block's at node
+//!   2 - r u, the link's at node 3 + r u. Each face is `2 h = max(link_thickness, t + 2 r)`
+//!   wide, centred on the hinge, so the fillets (radius r, tangent to the hinge where its thin
+//!   section ends and to the face) land on it. Hinge d likewise between the link's face at
+//!   node 4 - r u and the output block's at node 5 + r u. The hinge's solid runs from face
+//!   to face; its corners are vertices of the faces too, so that the union joins them
+//!   exactly.
+//! - the middle link is the convex hull of its two faces: `link_thickness` wide (or `t + 2 r`
+//!   where that is wider), rigid between the hinges as the model has it. The fillets take
+//!   `r` of its length at each end: the part's link between the faces is `l3 - 2 r` long
+//!   along the model's line, where the model has a rigid link of `l3` from node 3 to node 4.
+//! - the left input block: its outer side `input_block_width` from the centre of hinge b's
+//!   face, `input_block_height` tall, centred on the actuator's axis; the faces of the upper
+//!   and lower hinges b on its inner side, each with its centre `h` below the block's top (or
+//!   above its bottom). Between them, the inner side is the face the actuator pushes
+//!   (`input_left`; `input_right` on the other block).
+//! - the upper output block: `output_block_width` between the centres of the faces of the
+//!   left and right hinges d, which stand on its sides (its sides continue the faces: a
+//!   trapezoid when they are tilted); its inner side flush with the faces' lower ends, and
+//!   `output_block_height` tall from there outward, away from the actuator. Its top is the
+//!   output face (`output_top`); the bottom of the lower block is where the part is clamped
+//!   (`clamp_bottom`).
+//!
+//! So the part's overall width is twice `output_block_width / 2 + span_x +
+//! r (cos d2 + cos d4) + input_block_width`, and its height the larger of the input blocks'
+//! and the output blocks' extents (or of an arm's, where one rises above both).
+
+use serde::Serialize;
+
+use super::geometry::{Geometry, Layout};
+use crate::part::{Actuator, Annotation, Face, HingeSite, PartSpec, Solid};
+
+/// The `[part]` settings of a bridge (SI).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PartSettings {
+    /// In-plane thickness of the middle links (m); the dynamics' link mass uses it too.
+    pub link_thickness: f64,
+    /// Radius of the fillets at the hinge roots (m).
+    pub fillet_radius: f64,
+    pub input_block_width: f64,
+    pub input_block_height: f64,
+    pub output_block_width: f64,
+    pub output_block_height: f64,
+    /// The narrowest slot the wire cuts (m): solids not joined keep at least this apart.
+    pub min_slot: f64,
+    /// The actuator's length and height, if given (`[actuator] length`, `height`): the
+    /// pocket between the blocks must hold it.
+    pub actuator_length: Option<f64>,
+    pub actuator_height: Option<f64>,
+}
+
+impl Default for PartSettings {
+    /// Wire EDM with a 0.25 mm wire and a spark gap of about 0.04 mm cuts inner corners of
+    /// about 0.17 mm radius and slots of about 0.33 mm: 0.2 mm fillets and 0.4 mm slots
+    /// leave a margin. Links 3 mm wide are 7.5 times as thick as Table 1's 0.4 mm hinges,
+    /// so about 400 times as stiff in bending per length; blocks of 6 x 12 mm (input) and
+    /// 10 x 6 mm (output) are the size of a small stage's.
+    fn default() -> Self {
+        PartSettings {
+            link_thickness: 3e-3,
+            fillet_radius: 0.2e-3,
+            input_block_width: 6e-3,
+            input_block_height: 12e-3,
+            output_block_width: 10e-3,
+            output_block_height: 6e-3,
+            min_slot: 0.4e-3,
+            actuator_length: None,
+            actuator_height: None,
+        }
+    }
+}
+
+type P = [f64; 2];
+
+fn add(a: P, b: P) -> P {
+    [a[0] + b[0], a[1] + b[1]]
+}
+
+fn scale(a: P, k: f64) -> P {
+    [a[0] * k, a[1] * k]
+}
+
+fn mirror_x(p: P) -> P {
+    [-p[0], p[1]]
+}
+
+fn mirror_y(p: P) -> P {
+    [p[0], -p[1]]
+}
+
+fn mirror_xy(p: P) -> P {
+    [-p[0], -p[1]]
+}
+
+/// A polygon mirrored: its points mirrored and reversed, so it stays counterclockwise.
+fn mirrored(points: &[P], m: fn(P) -> P) -> Vec<P> {
+    points.iter().rev().map(|&p| m(p)).collect()
+}
+
+fn hull(points: &[P]) -> Vec<P> {
+    use geo::{ConvexHull, MultiPoint, Point};
+    let mp: MultiPoint<f64> = points.iter().map(|p| Point::new(p[0], p[1])).collect();
+    let h = mp.convex_hull();
+    let mut out: Vec<P> = h.exterior().0.iter().map(|c| [c.x, c.y]).collect();
+    out.pop();
+    out
+}
+
+/// `polygon` with each of `points` inserted into the edge it lies on (within 1e-15 m of
+/// the edge's line, between its ends): the corners of a hinge on a body's face.
+fn on_edges(mut polygon: Vec<P>, points: &[P]) -> Vec<P> {
+    for &p in points {
+        let n = polygon.len();
+        let found = (0..n).find(|&i| {
+            let (a, b) = (polygon[i], polygon[(i + 1) % n]);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let len = d[0].hypot(d[1]);
+            let along = ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len;
+            let off = ((p[0] - a[0]) * d[1] - (p[1] - a[1]) * d[0]).abs() / len;
+            off < 1e-15 && along > 0.0 && along < len
+        });
+        if let Some(i) = found {
+            polygon.insert(i + 1, p);
+        }
+    }
+    polygon
+}
+
+/// A length for a drawing or message: mm, at most three decimals.
+fn mm(v: f64) -> String {
+    format!("{} mm", trimmed(v * 1e3, 3))
+}
+
+fn deg(v: f64) -> String {
+    format!("{}°", trimmed(v.to_degrees(), 2))
+}
+
+/// `v` with at most `decimals` decimals, no trailing zeros, and no sign on a zero.
+fn trimmed(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.into()
+    }
+}
+
+/// The upper left quarter placed in the part: its nodes, the faces at the hinges' ends, the
+/// hinges' directions and normals, and the half widths of the faces.
+struct Quarter {
+    n: [P; 4],
+    /// Centres of the faces: input block, link (b end), link (d end), output block.
+    f: [P; 4],
+    nb: P,
+    ud: P,
+    nd: P,
+    hb: f64,
+    hd: f64,
+}
+
+impl Quarter {
+    fn new(g: &Geometry<f64>, s: &PartSettings, tb: f64, td: f64) -> Self {
+        let r = s.fillet_radius;
+        let t = g.trig();
+        let (ub, ud) = ([t.c[0], t.s[0]], [t.c[2], t.s[2]]);
+        let (nb, nd) = ([-ub[1], ub[0]], [-ud[1], ud[0]]);
+        let hb = (0.5 * s.link_thickness).max(0.5 * tb + r);
+        let hd = (0.5 * s.link_thickness).max(0.5 * td + r);
+        let nodes = g.nodes();
+        // hinge d's face on the output block's side, hinge b's face centre `hb` below the
+        // input block's top
+        let offset = [
+            -0.5 * s.output_block_width - (nodes[3][0] + r * ud[0]),
+            0.5 * s.input_block_height - hb + r * ub[1],
+        ];
+        let n = nodes.map(|p| add(p, offset));
+        let f = [
+            add(n[0], scale(ub, -r)),
+            add(n[1], scale(ub, r)),
+            add(n[2], scale(ud, -r)),
+            add(n[3], scale(ud, r)),
+        ];
+        Quarter {
+            n,
+            f,
+            nb,
+            ud,
+            nd,
+            hb,
+            hd,
+        }
+    }
+}
+
+/// The two ends of a face of half width `half` centred at `c`, across direction `dir`.
+fn across(c: P, dir: P, half: f64) -> [P; 2] {
+    [add(c, scale(dir, -half)), add(c, scale(dir, half))]
+}
+
+/// A rectangle from `a` to `b`, `half` to each side along `dir`, counterclockwise when
+/// `dir` is the left normal of `a -> b`.
+fn band(a: P, b: P, dir: P, half: f64) -> Vec<P> {
+    vec![
+        add(a, scale(dir, -half)),
+        add(b, scale(dir, -half)),
+        add(b, scale(dir, half)),
+        add(a, scale(dir, half)),
+    ]
+}
+
+/// The part of design `x`, or what makes it impossible before any solid is joined.
+pub fn spec(layout: &Layout, s: &PartSettings, x: &[f64]) -> Result<PartSpec, Vec<String>> {
+    let g: Geometry<f64> = layout.geometry(x);
+    let tb = layout.hinge_b.root_thickness(g.b.dims());
+    let td = layout.hinge_d.root_thickness(g.d.dims());
+    let r = s.fillet_radius;
+    let q = Quarter::new(&g, s, tb, td);
+    let mut problems = size_problems(s, &q, tb.max(td));
+    let [f2, f3, f4, f5] = q.f;
+
+    // each hinge's solid runs from face to face; its corners are vertices of the bodies'
+    // faces too, the very same numbers, so that the union joins them exactly
+    let hinge_b = band(f2, f3, q.nb, 0.5 * tb);
+    let hinge_d = band(f4, f5, q.nd, 0.5 * td);
+    let [l3a, l3b] = across(f3, q.nb, q.hb);
+    let [l4a, l4b] = across(f4, q.nd, q.hd);
+    let link = on_edges(
+        hull(&[l3a, l3b, l4a, l4b]),
+        &[hinge_b[1], hinge_b[2], hinge_d[0], hinge_d[3]],
+    );
+
+    // the left input block: the faces of the upper and lower hinges b on its inner side
+    let [a, b] = across(f2, q.nb, q.hb); // a: the face's lower end, b: its upper end
+    let (in_h, in_far) = (0.5 * s.input_block_height, f2[0] - s.input_block_width);
+    let input_left = vec![
+        [in_far, -in_h],
+        mirror_y(b),
+        mirror_y(hinge_b[3]),
+        mirror_y(hinge_b[0]),
+        mirror_y(a),
+        a,
+        hinge_b[0],
+        hinge_b[3],
+        b,
+        [in_far, in_h],
+    ];
+    // the upper output block: the faces of the left and right hinges d on its sides
+    // flush with the lower ends of the faces, extending outward
+    let out_bottom = f5[1] - q.hd * q.nd[1];
+    let out_top = out_bottom + s.output_block_height;
+    // its sides continue the faces of hinges d: a trapezoid when the faces are tilted
+    let side = |y: f64| f5[0] + (y - f5[1]) / q.nd[1] * q.nd[0];
+    let output_top = vec![
+        [side(out_bottom), out_bottom],
+        [-side(out_bottom), out_bottom],
+        mirror_x(hinge_d[1]),
+        mirror_x(hinge_d[2]),
+        [-side(out_top), out_top],
+        [side(out_top), out_top],
+        hinge_d[2],
+        hinge_d[1],
+    ];
+    let pocket = -2.0 * a[0];
+    if let Some(len) = s.actuator_length {
+        if pocket < len {
+            problems.push(format!(
+                "the actuator's pocket between the input blocks is {} long, shorter than \
+                 actuator.length ({})",
+                mm(pocket),
+                mm(len)
+            ));
+        }
+    }
+    if !problems.is_empty() {
+        return Err(problems);
+    }
+
+    let mut solids = Vec::new();
+    let mut hinges = Vec::new();
+    let mut joints = Vec::new();
+    // each quarter: its name, its mirror, and whether the mirror reverses the sense
+    type Placement = (&'static str, fn(P) -> P, bool);
+    let quarters: [Placement; 4] = [
+        ("upper left", |p| p, false),
+        ("upper right", mirror_x, true),
+        ("lower left", mirror_y, true),
+        ("lower right", mirror_xy, false),
+    ];
+    // the blocks first: solids 0-3
+    let blocks = [
+        ("the left input block", input_left.clone()),
+        ("the right input block", mirrored(&input_left, mirror_x)),
+        ("the upper output block", output_top.clone()),
+        ("the lower output block", mirrored(&output_top, mirror_y)),
+    ];
+    for (name, points) in blocks {
+        solids.push(Solid {
+            name: name.into(),
+            points,
+        });
+    }
+    for (k, (name, m, flips)) in quarters.into_iter().enumerate() {
+        let place = |points: &[P]| {
+            if flips {
+                mirrored(points, m)
+            } else {
+                points.iter().map(|&p| m(p)).collect()
+            }
+        };
+        let first = solids.len();
+        for (part, points) in [
+            ("hinge b", &hinge_b),
+            ("the middle link c", &link),
+            ("hinge d", &hinge_d),
+        ] {
+            solids.push(Solid {
+                name: format!("{part} ({name})"),
+                points: place(points),
+            });
+        }
+        // the input block on the quarter's side, the output block on its half
+        let (input, output) = (k % 2, 2 + k / 2);
+        joints.extend([
+            (first, input),
+            (first, first + 1),
+            (first + 1, first + 2),
+            (first + 2, output),
+        ]);
+        for (hinge, start, end, thick, solid) in [
+            ("hinge b", q.n[0], q.n[1], tb, first),
+            ("hinge d", q.n[2], q.n[3], td, first + 2),
+        ] {
+            hinges.push(HingeSite {
+                name: format!("{hinge} ({name})"),
+                start: m(start),
+                end: m(end),
+                thickness: thick,
+                fillet: r,
+                solid,
+            });
+        }
+    }
+
+    let faces = vec![
+        Face {
+            name: "input_left".into(),
+            a: mirror_y(a),
+            b: a,
+        },
+        Face {
+            name: "input_right".into(),
+            a: mirror_x(a),
+            b: mirror_xy(a),
+        },
+        Face {
+            name: "output_top".into(),
+            a: [-side(out_top), out_top],
+            b: [side(out_top), out_top],
+        },
+        Face {
+            name: "clamp_bottom".into(),
+            a: [side(out_top), -out_top],
+            b: [-side(out_top), -out_top],
+        },
+    ];
+    let mut warnings = Vec::new();
+    if r == 0.0 {
+        warnings.push(
+            "part.fillet_radius is 0: the hinge roots are sharp inner corners, which wire \
+             EDM cannot cut (its smallest inner radius is about 0.1-0.2 mm) and whose elastic \
+             stress is singular"
+                .to_string(),
+        );
+    }
+    Ok(PartSpec {
+        caption: format!(
+            "fillets r {}, links {} thick",
+            mm(s.fillet_radius),
+            mm(s.link_thickness)
+        ),
+        annotations: annotations(&g, &q, tb, td, [in_far, in_h, out_top, pocket]),
+        solids,
+        joints,
+        hinges,
+        faces,
+        min_slot: s.min_slot,
+        actuator: s.actuator_length.map(|length| Actuator {
+            length,
+            height: s.actuator_height,
+        }),
+        warnings,
+    })
+}
+
+/// Sizes that leave no part: bodies thinner than the hinges they carry, blocks too small
+/// for the faces the hinges need.
+fn size_problems(s: &PartSettings, q: &Quarter, t: f64) -> Vec<String> {
+    let mut problems = Vec::new();
+    for (key, v) in [
+        ("link_thickness", s.link_thickness),
+        ("input_block_width", s.input_block_width),
+        ("output_block_height", s.output_block_height),
+    ] {
+        if v < t {
+            problems.push(format!(
+                "part.{key} ({}) is thinner than the hinges ({}): a wall thinner than a \
+                 hinge bends more than the hinge it carries",
+                mm(v),
+                mm(t)
+            ));
+        }
+    }
+    let [a, _] = across(q.f[0], q.nb, q.hb);
+    if a[1] <= 0.0 {
+        problems.push(format!(
+            "part.input_block_height ({}) leaves no room between the faces of the upper and \
+             lower hinges b ({} wide each); make it at least {}",
+            mm(s.input_block_height),
+            mm(2.0 * q.hb),
+            mm(s.input_block_height - 2.0 * a[1] + s.min_slot)
+        ));
+    }
+    let face_height = 2.0 * q.hd * q.nd[1];
+    if s.output_block_height <= face_height {
+        problems.push(format!(
+            "part.output_block_height ({}) does not hold the faces of hinges d ({} wide, \
+             tilted {}): make it more than {}",
+            mm(s.output_block_height),
+            mm(2.0 * q.hd),
+            deg(q.ud[1].atan2(q.ud[0])),
+            mm(face_height)
+        ));
+    }
+    let out_bottom = q.f[3][1] - q.hd * q.nd[1];
+    let out_top = out_bottom + s.output_block_height;
+    let side = |y: f64| q.f[3][0] + (y - q.f[3][1]) / q.nd[1] * q.nd[0];
+    if [out_top, out_bottom]
+        .iter()
+        .any(|&y| side(y) >= -0.5 * s.min_slot)
+    {
+        problems.push(format!(
+            "part.output_block_width ({}) is too narrow for the faces of hinges d tilted {}: \
+             the block's sides, which continue them, cross",
+            mm(s.output_block_width),
+            deg(q.ud[1].atan2(q.ud[0]))
+        ));
+    }
+    problems
+}
+
+/// The drawing's dimensions: overall size, pocket, the upper left quarter's hinges and link.
+fn annotations(
+    g: &Geometry<f64>,
+    q: &Quarter,
+    tb: f64,
+    td: f64,
+    [in_far, in_h, out_top, pocket]: [f64; 4],
+) -> Vec<Annotation> {
+    let mid = |p: P, q: P| scale(add(p, q), 0.5);
+    let top = in_h.max(out_top);
+    let [a, _] = across(q.f[0], q.nb, q.hb);
+    vec![
+        Annotation::Length {
+            a: [in_far, -top],
+            b: [-in_far, -top],
+            offset: -3e-3,
+            label: mm(-2.0 * in_far),
+        },
+        Annotation::Length {
+            a: [-in_far, -top],
+            b: [-in_far, top],
+            offset: -3e-3,
+            label: mm(2.0 * top),
+        },
+        Annotation::Length {
+            a: [a[0], 0.0],
+            b: [-a[0], 0.0],
+            offset: 0.0,
+            label: format!("pocket {}", mm(pocket)),
+        },
+        Annotation::Length {
+            a: q.n[0],
+            b: q.n[1],
+            offset: 1.2e-3,
+            label: format!("l2 {}", mm(g.l2())),
+        },
+        Annotation::Length {
+            a: q.n[2],
+            b: q.n[3],
+            offset: 1.2e-3,
+            label: format!("l4 {}", mm(g.l4())),
+        },
+        Annotation::Length {
+            a: q.n[1],
+            b: q.n[2],
+            offset: -(q.hb.max(q.hd) + 1.5e-3),
+            label: format!("l3 {}", mm(g.l3)),
+        },
+        Annotation::Note {
+            at: mid(q.n[0], q.n[1]),
+            label_at: [mid(q.n[0], q.n[1])[0], top + 2e-3],
+            label: format!("t2 {}, δ2 {}", mm(tb), deg(g.delta2)),
+        },
+        Annotation::Note {
+            at: mid(q.n[1], q.n[2]),
+            label_at: [mid(q.n[1], q.n[2])[0], top + 4e-3],
+            label: format!("δ3 {}", deg(g.delta3)),
+        },
+        Annotation::Note {
+            at: mid(q.n[2], q.n[3]),
+            label_at: [mid(q.n[2], q.n[3])[0], top + 6e-3],
+            label: format!("t4 {}, δ4 {}", mm(td), deg(g.delta4)),
+        },
+    ]
+}

@@ -1,0 +1,119 @@
+//! What a wire-EDM shop cannot make, found before the part is exported.
+//!
+//! - Beside every hinge's thin section, a keep-out band as wide as the fillet or the
+//!   narrowest slot the wire cuts (whichever is wider): any other solid reaching into it
+//!   cuts into the hinge or leaves a slot too narrow to cut. This holds for the bodies the
+//!   hinge joins too, which must stay behind their faces.
+//! - Every two solids that are not joined keep at least the narrowest slot apart: closer,
+//!   they touch once cut (or overlap already: an arm through another, a block through a
+//!   link).
+//! - The actuator's rectangle, where the model gives it, stays clear of every solid but the
+//!   two it pushes.
+//!
+//! Each problem names both parties and the distance found.
+
+use geo::{Area, BooleanOps, Distance, Euclidean, MultiPolygon, Polygon};
+
+use super::outline::polygon_mm as polygon;
+
+use super::{HingeSite, PartSpec, MM};
+
+/// The band beside the thin section of `h` (metres, counterclockwise), `slot` wide on
+/// each side, kept `1e-9` m short of the faces at both ends, where the bodies begin.
+pub fn keep_out(h: &HingeSite, slot: f64) -> Vec<[f64; 2]> {
+    let len = (h.end[0] - h.start[0]).hypot(h.end[1] - h.start[1]);
+    let u = [(h.end[0] - h.start[0]) / len, (h.end[1] - h.start[1]) / len];
+    let n = [-u[1], u[0]];
+    let w = 0.5 * h.thickness + slot;
+    let inset = 1e-9;
+    let (a, b) = (-h.fillet + inset, len + h.fillet - inset);
+    let at = |s: f64, t: f64| {
+        [
+            h.start[0] + s * u[0] + t * n[0],
+            h.start[1] + s * u[1] + t * n[1],
+        ]
+    };
+    vec![at(a, -w), at(b, -w), at(b, w), at(a, w)]
+}
+
+/// A distance for a message: mm, four decimals.
+fn short_mm(v: f64) -> String {
+    format!("{v:.4} mm")
+}
+
+/// The problems found on the solids themselves, before their union.
+pub fn before_union(spec: &PartSpec) -> Vec<String> {
+    let mut problems = Vec::new();
+    let solids: Vec<Polygon<f64>> = spec.solids.iter().map(|s| polygon(&s.points)).collect();
+    let name = |k: usize| spec.solids[k].name.as_str();
+    // pairs already named, so that one collision gives one message
+    let mut named = std::collections::BTreeSet::new();
+    for h in &spec.hinges {
+        let slot = h.fillet.max(spec.min_slot);
+        let band = polygon(&keep_out(h, slot));
+        for (k, s) in solids.iter().enumerate() {
+            if k == h.solid {
+                continue;
+            }
+            let overlap: MultiPolygon<f64> = band.intersection(s);
+            if overlap.unsigned_area() > 1e-12 {
+                named.insert((k.min(h.solid), k.max(h.solid)));
+                let gap = Euclidean.distance(&solids[h.solid], s);
+                problems.push(format!(
+                    "{} reaches within {} of {} (its thin section needs {} free on each \
+                     side: the fillet or the narrowest slot)",
+                    name(k),
+                    short_mm(gap),
+                    h.name,
+                    short_mm(slot * MM)
+                ));
+            }
+        }
+    }
+    let joined = |i: usize, j: usize| {
+        spec.joints
+            .iter()
+            .any(|&(a, b)| (a, b) == (i, j) || (a, b) == (j, i))
+    };
+    let slot = spec.min_slot * MM;
+    for i in 0..solids.len() {
+        for j in i + 1..solids.len() {
+            if joined(i, j) || named.contains(&(i, j)) {
+                continue;
+            }
+            let gap = Euclidean.distance(&solids[i], &solids[j]);
+            if gap < slot {
+                problems.push(if gap == 0.0 {
+                    format!("{} and {} overlap", name(i), name(j))
+                } else {
+                    format!(
+                        "{} and {} are {} apart, less than the narrowest slot the wire cuts \
+                         ({})",
+                        name(i),
+                        name(j),
+                        short_mm(gap),
+                        short_mm(slot)
+                    )
+                });
+            }
+        }
+    }
+    if let Some((a, height)) = spec.actuator.as_ref().and_then(|a| Some((a, a.height?))) {
+        // the actuator's body, a hair inside its length so that it only touches the faces
+        // it pushes
+        let (hl, hh) = (0.5 * a.length - 1e-9, 0.5 * height);
+        let body = polygon(&[[-hl, -hh], [hl, -hh], [hl, hh], [-hl, hh]]);
+        for (k, s) in solids.iter().enumerate() {
+            let overlap: MultiPolygon<f64> = body.intersection(s);
+            if overlap.unsigned_area() > 1e-12 {
+                problems.push(format!(
+                    "the actuator ({} long, {} high) overlaps {}",
+                    short_mm(a.length * MM),
+                    short_mm(height * MM),
+                    name(k)
+                ));
+            }
+        }
+    }
+    problems
+}

@@ -1,0 +1,231 @@
+//! The part: the closed outline of a monolithic mechanism, built from the solids a model
+//! describes, checked for what a wire-EDM shop cannot make, and exported.
+//!
+//! A model gives a [`PartSpec`] (SI, metres): convex solids (hinges, links, blocks), the
+//! hinges' sites (where their thin sections start and end, for the fillets and the checks),
+//! groups of solids that form separate arms, named faces for load cases, and annotations for
+//! the drawing. [`Part::build`] joins the solids (georust `geo`'s Boolean union), restores the
+//! exact coordinates the union snapped to its integer grid, rounds every hinge root with its
+//! fillet (an arc, kept as an arc in every export), orders the loops and runs the checks.
+//! Coordinates in a [`Part`] are millimetres, the unit of the exported files.
+//!
+//! Files: `outline.rs` (union, exact coordinates, fillets, loops), `checks.rs` (what cannot
+//! be made), `dxf.rs`, `svg.rs` (the writers).
+
+pub mod checks;
+pub mod dxf;
+pub mod outline;
+pub mod svg;
+
+use serde::Serialize;
+
+pub use outline::{Loop, Vertex};
+
+/// A convex solid of the part, counterclockwise, in metres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solid {
+    pub name: String,
+    pub points: Vec<[f64; 2]>,
+}
+
+/// A hinge's thin section: its centre line from `start` to `end` (the model's hinge, length
+/// l), its thickness, and the fillet radius at its four roots. The solid of the hinge runs
+/// `fillet` beyond both ends, where the rigid bodies' faces are.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HingeSite {
+    pub name: String,
+    pub start: [f64; 2],
+    pub end: [f64; 2],
+    pub thickness: f64,
+    pub fillet: f64,
+    /// The index of the hinge's own solid among [`PartSpec::solids`].
+    pub solid: usize,
+}
+
+/// A named straight face (a load case's surface), in metres.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Face {
+    pub name: String,
+    pub a: [f64; 2],
+    pub b: [f64; 2],
+}
+
+/// A dimension for the drawing, in metres.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Annotation {
+    /// The distance from `a` to `b`, drawn offset by `offset` to the left of a->b.
+    Length {
+        a: [f64; 2],
+        b: [f64; 2],
+        offset: f64,
+        label: String,
+    },
+    /// A label at `label_at` with a leader to the point `at` (thicknesses, angles).
+    Note {
+        at: [f64; 2],
+        label_at: [f64; 2],
+        label: String,
+    },
+}
+
+/// The actuator's place: a rectangle `length` by `height` centred at the origin, along x
+/// (its height unchecked when not given).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Actuator {
+    pub length: f64,
+    pub height: Option<f64>,
+}
+
+/// What a model gives to build its part.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PartSpec {
+    /// Convex solids, counterclockwise (metres).
+    pub solids: Vec<Solid>,
+    /// The pairs of solids (indices) that are joined; every other pair keeps `min_slot`
+    /// apart.
+    pub joints: Vec<(usize, usize)>,
+    pub hinges: Vec<HingeSite>,
+    pub faces: Vec<Face>,
+    pub annotations: Vec<Annotation>,
+    /// A line for the drawing's title: the sizes the annotations do not show.
+    pub caption: String,
+    /// The narrowest slot the wire can cut (m).
+    pub min_slot: f64,
+    pub actuator: Option<Actuator>,
+    /// What the part can be made with but a designer should know.
+    pub warnings: Vec<String>,
+}
+
+/// A hinge's thin section in a [`Part`] (mm).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HingeMm {
+    pub name: String,
+    pub start: [f64; 2],
+    pub end: [f64; 2],
+    pub thickness: f64,
+    pub fillet: f64,
+}
+
+/// A part: its outline loops and faces in millimetres.
+#[derive(Debug, Clone, Serialize)]
+pub struct Part {
+    /// The outer loop first (counterclockwise), then the inner ones (clockwise), each
+    /// starting at its lowest, then leftmost vertex.
+    pub loops: Vec<Loop>,
+    pub faces: Vec<Face>,
+    /// The hinges' thin sections: their centre lines, thicknesses and fillets.
+    pub hinges: Vec<HingeMm>,
+    /// Area of the outline (mm^2), arcs included.
+    pub area: f64,
+    /// Bounding box `[x_min, y_min, x_max, y_max]` (mm), arcs included.
+    pub bounding_box: [f64; 4],
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
+    #[serde(skip)]
+    pub annotations: Vec<Annotation>,
+    #[serde(skip)]
+    pub caption: String,
+}
+
+/// Why a design gives no part that can be made.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PartError {
+    /// Every problem found, each naming what collides with what.
+    pub problems: Vec<String>,
+}
+
+/// How many problems a message lists; the rest are counted.
+const SHOWN: usize = 6;
+
+impl std::fmt::Display for PartError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let shown = self.problems.len().min(SHOWN);
+        write!(f, "{}", self.problems[..shown].join("; "))?;
+        if self.problems.len() > shown {
+            write!(f, "; and {} more", self.problems.len() - shown)?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for PartError {}
+
+/// Millimetres per metre: the part's files are in mm.
+pub const MM: f64 = 1e3;
+
+impl Part {
+    /// The part of `model` at the design `x` (SI): its solids joined, rounded and checked.
+    pub fn of_design(model: &dyn crate::model::Model, x: &[f64]) -> Result<Part, PartError> {
+        Part::for_model(model, x).unwrap_or_else(|| {
+            Err(PartError {
+                problems: vec![format!("the {} model has no part to draw", model.name())],
+            })
+        })
+    }
+
+    /// As [`Part::of_design`]; `None` for a model without a part.
+    pub fn for_model(
+        model: &dyn crate::model::Model,
+        x: &[f64],
+    ) -> Option<Result<Part, PartError>> {
+        Some(match model.part(x)? {
+            Err(problems) => Err(PartError { problems }),
+            Ok(spec) => Part::build(&spec),
+        })
+    }
+
+    /// Joins, rounds and checks the solids of `spec`.
+    pub fn build(spec: &PartSpec) -> Result<Part, PartError> {
+        let problems = checks::before_union(spec);
+        if !problems.is_empty() {
+            return Err(PartError { problems });
+        }
+        let loops = outline::outline(spec).map_err(|problems| PartError { problems })?;
+        let area = loops.iter().map(Loop::signed_area).sum();
+        let bounding_box = loops.iter().map(Loop::bounding_box).fold(
+            [
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            ],
+            |a, b| {
+                [
+                    a[0].min(b[0]),
+                    a[1].min(b[1]),
+                    a[2].max(b[2]),
+                    a[3].max(b[3]),
+                ]
+            },
+        );
+        let mm = |p: [f64; 2]| [p[0] * MM, p[1] * MM];
+        Ok(Part {
+            loops,
+            faces: spec
+                .faces
+                .iter()
+                .map(|f| Face {
+                    name: f.name.clone(),
+                    a: mm(f.a),
+                    b: mm(f.b),
+                })
+                .collect(),
+            hinges: spec
+                .hinges
+                .iter()
+                .map(|h| HingeMm {
+                    name: h.name.clone(),
+                    start: mm(h.start),
+                    end: mm(h.end),
+                    thickness: h.thickness * MM,
+                    fillet: h.fillet * MM,
+                })
+                .collect(),
+            area,
+            bounding_box,
+            warnings: spec.warnings.clone(),
+            annotations: spec.annotations.clone(),
+            caption: spec.caption.clone(),
+        })
+    }
+}

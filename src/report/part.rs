@@ -1,0 +1,225 @@
+//! The part's files: `part.dxf`, `part.svg`, `part.json` and `part.png`, the drawing a
+//! designer checks before sending a file to the shop (the outline at equal scale on both
+//! axes, the load faces in colour, the main dimensions annotated).
+
+use std::path::{Path, PathBuf};
+
+use plotters::prelude::*;
+use serde::Serialize;
+
+use super::plot::{render_png, FAMILY};
+use super::{write_atomic, write_json, WriteError};
+use crate::part::{dxf, svg, Annotation, Part, MM};
+
+/// The names of the part's files, in the order they are written.
+pub const PART_FILES: [&str; 4] = ["part.dxf", "part.svg", "part.json", "part.png"];
+
+/// `part.json`: the outline and faces (mm) and what they were made from.
+#[derive(Debug, Serialize)]
+struct PartJson<'a> {
+    problem: &'a str,
+    units: &'static str,
+    /// The design in the problem file's units.
+    design: &'a indexmap::IndexMap<String, f64>,
+    #[serde(flatten)]
+    part: &'a Part,
+}
+
+/// Writes the four part files through `path` (which maps a file name to where it goes).
+pub fn write_part(
+    path: impl Fn(&str) -> PathBuf,
+    problem: &str,
+    design: &indexmap::IndexMap<String, f64>,
+    part: &Part,
+) -> Result<Vec<PathBuf>, WriteError> {
+    let files: Vec<PathBuf> = PART_FILES.iter().map(|f| path(f)).collect();
+    let bytes = dxf::to_bytes(part).map_err(|e| WriteError {
+        path: files[0].clone(),
+        message: e,
+    })?;
+    write_atomic(&files[0], &bytes)?;
+    write_atomic(&files[1], svg::document(part).to_string().as_bytes())?;
+    write_json(
+        &files[2],
+        &PartJson {
+            problem,
+            units: "mm",
+            design,
+            part,
+        },
+    )?;
+    drawing_png(&files[3], problem, part)?;
+    Ok(files)
+}
+
+/// The colour of a named face in the drawing.
+fn face_colour(k: usize) -> RGBColor {
+    [RED, BLUE, GREEN, MAGENTA, CYAN][k % 5]
+}
+
+/// `part.png`: the outline at true proportions, the faces, and the annotations.
+fn drawing_png(path: &Path, problem: &str, part: &Part) -> Result<(), WriteError> {
+    let [x0, y0, x1, y1] = part.bounding_box;
+    // room around the part for the dimension lines and labels
+    let pad = 0.18 * (x1 - x0).max(y1 - y0);
+    let (xr, yr) = ((x0 - pad, x1 + pad), (y0 - pad, y1 + pad));
+    // equal scale on both axes: the plotting area takes the range's proportions
+    let width = 1400u32;
+    let (left, bottom, top, margin) = (60u32, 44u32, 40u32, 10u32);
+    let plot_w = (width - left - 2 * margin) as f64;
+    let plot_h = plot_w * (yr.1 - yr.0) / (xr.1 - xr.0);
+    let height = (plot_h.round() as u32) + bottom + top + 2 * margin;
+    let title = format!(
+        "{problem}: the part (mm); {}; faces in colour",
+        part.caption
+    );
+    render_png(path, (width, height), |root| {
+        let root = root.titled(&title, (FAMILY, 22))?;
+        let mut chart = ChartBuilder::on(&root)
+            .margin(margin)
+            .x_label_area_size(bottom - 4)
+            .y_label_area_size(left)
+            .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("x (mm)")
+            .y_desc("y (mm)")
+            .label_style((FAMILY, 13))
+            .draw()?;
+        for l in &part.loops {
+            let pts: Vec<(f64, f64)> = l.points(24).iter().map(|p| (p[0], p[1])).collect();
+            let fill = if l.outer {
+                RGBColor(200, 208, 216).filled()
+            } else {
+                WHITE.filled()
+            };
+            chart.draw_series(std::iter::once(Polygon::new(pts.clone(), fill)))?;
+            let mut closed = pts;
+            closed.push(closed[0]);
+            chart.draw_series(std::iter::once(PathElement::new(
+                closed,
+                BLACK.stroke_width(2),
+            )))?;
+        }
+        for (k, f) in part.faces.iter().enumerate() {
+            let c = face_colour(k);
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(f.a[0], f.a[1]), (f.b[0], f.b[1])],
+                    c.stroke_width(5),
+                )))?
+                .label(&f.name)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(5))
+                });
+        }
+        for a in &part.annotations {
+            draw_annotation(&mut chart, a)?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font((FAMILY, 14))
+            .draw()?;
+        Ok(())
+    })
+}
+
+type Chart<'a, 'b> = ChartContext<
+    'a,
+    BitMapBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// A dimension line with arrows and extension lines, or a label with a leader.
+fn draw_annotation(
+    chart: &mut Chart<'_, '_>,
+    a: &Annotation,
+) -> Result<(), super::plot::DrawError> {
+    let style = RGBColor(40, 40, 40);
+    match a {
+        Annotation::Length {
+            a,
+            b,
+            offset,
+            label,
+        } => {
+            let (a, b) = ([a[0] * MM, a[1] * MM], [b[0] * MM, b[1] * MM]);
+            let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+            if len == 0.0 {
+                return Ok(());
+            }
+            let u = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
+            let n = [-u[1], u[0]];
+            let off = offset * MM;
+            let pa = (a[0] + off * n[0], a[1] + off * n[1]);
+            let pb = (b[0] + off * n[0], b[1] + off * n[1]);
+            if off != 0.0 {
+                for (p, q) in [((a[0], a[1]), pa), ((b[0], b[1]), pb)] {
+                    chart.draw_series(std::iter::once(PathElement::new(
+                        vec![p, q],
+                        style.mix(0.5).stroke_width(1),
+                    )))?;
+                }
+            }
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![pa, pb],
+                style.stroke_width(1),
+            )))?;
+            // arrowheads: short strokes 25 degrees off the line
+            let head = 0.06 * len.min(4.0);
+            for (tip, dir) in [(pa, u), (pb, [-u[0], -u[1]])] {
+                for s in [1.0f64, -1.0] {
+                    let (c, si) = (25f64.to_radians().cos(), s * 25f64.to_radians().sin());
+                    let d = [dir[0] * c - dir[1] * si, dir[0] * si + dir[1] * c];
+                    chart.draw_series(std::iter::once(PathElement::new(
+                        vec![tip, (tip.0 + head * d[0], tip.1 + head * d[1])],
+                        style.stroke_width(1),
+                    )))?;
+                }
+            }
+            let mid = (0.5 * (pa.0 + pb.0), 0.5 * (pa.1 + pb.1));
+            let side = if off < 0.0 { -1.0 } else { 1.0 };
+            let at = (mid.0 + side * 0.35 * n[0], mid.1 + side * 0.35 * n[1]);
+            chart.draw_series(std::iter::once(Text::new(
+                label.clone(),
+                at,
+                (FAMILY, 14)
+                    .into_font()
+                    .color(&style)
+                    .pos(plotters::style::text_anchor::Pos::new(
+                        plotters::style::text_anchor::HPos::Center,
+                        plotters::style::text_anchor::VPos::Center,
+                    )),
+            )))?;
+        }
+        Annotation::Note {
+            at,
+            label_at,
+            label,
+        } => {
+            let p = (at[0] * MM, at[1] * MM);
+            let q = (label_at[0] * MM, label_at[1] * MM);
+            chart.draw_series(std::iter::once(Circle::new(p, 3, style.filled())))?;
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![p, q],
+                style.mix(0.5).stroke_width(1),
+            )))?;
+            chart.draw_series(std::iter::once(Text::new(
+                label.clone(),
+                q,
+                (FAMILY, 14)
+                    .into_font()
+                    .color(&style)
+                    .pos(plotters::style::text_anchor::Pos::new(
+                        plotters::style::text_anchor::HPos::Center,
+                        plotters::style::text_anchor::VPos::Bottom,
+                    )),
+            )))?;
+        }
+    }
+    Ok(())
+}
