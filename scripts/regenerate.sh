@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates every committed file of results/ but the benchmarks': the study of each problem
-# in problems/ (but the sweep-only wei2017_fig9), the trade-off front of wei2017_dynamic, and
-# the sweeps of the three sweep scripts. With a folder as argument it writes there instead
+# in problems/ (but the sweep-only wei2017_fig9), the finite-element checks of wei2017's
+# optimum and printed design, the trade-off front of wei2017_dynamic, and the sweeps of the
+# three sweep scripts. With a folder as argument it writes there instead
 # of results/ (scripts/check_results.sh compares such a copy with the committed files).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,6 +11,11 @@ cargo build --release --quiet
 for p in wei2017 wei2017_dynamic bridge_stress prr3_frequency pss3_frequency; do
   ./target/release/flexopt run "problems/$p.toml" --quiet --out "$RESULTS/$p" >/dev/null
 done
+# the finite-element check of the optimum and of paper 004's printed design (Table 1)
+./target/release/flexopt verify problems/wei2017.toml --optimum "$RESULTS/wei2017/optimum.json" \
+  --out "$RESULTS/wei2017/verify" >/dev/null
+./target/release/flexopt verify problems/wei2017.toml --out "$RESULTS/wei2017/verify_printed" \
+  --design l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07,t4=0.4 >/dev/null
 ./target/release/flexopt pareto problems/wei2017_dynamic.toml --vary natural_frequency \
   --from 400 --to 2000 --steps 17 --out "$RESULTS/wei2017_dynamic" >/dev/null
 for s in fig9 prr3_sweeps pss3_sweeps; do

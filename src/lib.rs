@@ -9,6 +9,7 @@
 //! - [`dynamics`]: Runge-Kutta step responses of single-degree-of-freedom systems.
 
 pub mod dynamics;
+pub mod fe;
 pub mod model;
 pub mod optim;
 pub mod pareto;

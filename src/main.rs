@@ -7,6 +7,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use flexopt::fe::verify::{verify_design, VerifySettings};
 use flexopt::pareto::{pareto, ParetoSpec};
 use flexopt::part::Part;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
@@ -16,6 +17,7 @@ use flexopt::report::part::write_part;
 use flexopt::report::study::write_all;
 use flexopt::report::summary::{ParetoSummary, StudySummary, Wrote};
 use flexopt::report::sweep::write_sweep;
+use flexopt::report::verify::{write_verify, VerifyReport, VerifyTable};
 use flexopt::report::{check_writable, DesignReport};
 use flexopt::study::{self, StudyOptions};
 use flexopt::sweep::{sweep, SweepSpec};
@@ -94,6 +96,21 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Check one design on its part by finite elements: paper 004's load cases in plane
+    /// stress and plane strain, each output's discretization error estimated (verify.json,
+    /// stress.png, deformed.png, CalculiX decks part.inp and part3d.inp).
+    Verify {
+        /// The problem file (TOML).
+        problem: PathBuf,
+        #[command(flatten)]
+        design: DesignArgs,
+        /// Folder to write into (default: results/<problem name>/verify).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// The relative error every output must be estimated below (default 0.005).
+        #[arg(long)]
+        tolerance: Option<f64>,
+    },
     /// Curves of the outputs against one design variable (JSON and PNG).
     Sweep {
         problem: PathBuf,
@@ -134,6 +151,9 @@ enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Check the optimum on its part by finite elements too (into DIR/verify).
+        #[arg(long)]
+        verify: bool,
     },
     /// Trade-off front by the epsilon-constraint method: the limit of the problem's
     /// one-sided constraint on OUTPUT is stepped from A to B and the study run at each
@@ -205,6 +225,18 @@ fn run(command: Command) -> Result<(), Failure> {
             design,
             out,
         } => export(&problem, &design, out),
+        Command::Verify {
+            problem,
+            design,
+            out,
+            tolerance,
+        } => {
+            let (problem_loaded, x) = chosen_design(&problem, &design)?;
+            let settings = verify_settings(&problem, tolerance)?;
+            let dir = out.unwrap_or_else(|| problem_loaded.default_output_dir().join("verify"));
+            check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
+            run_verify(&problem_loaded, &x, &settings, &dir)
+        }
         Command::Sweep {
             problem,
             param,
@@ -229,6 +261,7 @@ fn run(command: Command) -> Result<(), Failure> {
             study,
             solver,
             quiet,
+            verify,
         } => {
             let (problem, mut options) = study_setup(&problem, &study)?;
             if let Some(s) = solver {
@@ -240,7 +273,7 @@ fn run(command: Command) -> Result<(), Failure> {
             }
             options.progress = !quiet && std::io::stderr().is_terminal();
             let dir = output_dir(&problem, study.out)?;
-            run_study(&problem, &options, &dir)
+            run_study(&problem, &options, &dir, verify)
         }
         Command::Pareto {
             problem,
@@ -349,7 +382,12 @@ fn run_pareto(
     }
 }
 
-fn run_study(problem: &Problem, options: &StudyOptions, dir: &Path) -> Result<(), Failure> {
+fn run_study(
+    problem: &Problem,
+    options: &StudyOptions,
+    dir: &Path,
+    verify: bool,
+) -> Result<(), Failure> {
     // Ctrl-C stops the starts not yet begun; the finished ones are written, marked partial
     let stop = options.stop.clone();
     let _ = ctrlc::set_handler(move || stop.store(true, std::sync::atomic::Ordering::Relaxed));
@@ -372,6 +410,17 @@ fn run_study(problem: &Problem, options: &StudyOptions, dir: &Path) -> Result<()
         part: part.as_ref(),
         files: &files,
     });
+    if verify && study.any_feasible && !study.interrupted {
+        if let Some(Ok(_)) = &part {
+            let settings = VerifySettings::default();
+            run_verify(
+                problem,
+                study.reported_design(),
+                &settings,
+                &dir.join("verify"),
+            )?;
+        }
+    }
     if study.interrupted {
         Err(Failure::interrupted(format!(
             "{}: interrupted: {} of {} starts finished; the files written hold those \
@@ -548,6 +597,41 @@ fn export(path: &Path, design: &DesignArgs, out: Option<PathBuf>) -> Result<(), 
     let report = DesignReport::new(&problem, &x);
     let files = write_part(|name| dir.join(name), &problem.name, &report.design, &part)
         .map_err(Failure::write_failed)?;
+    emit(&Wrote(&files));
+    Ok(())
+}
+
+/// The settings of a verification: the defaults, the tolerance from `--tolerance`.
+fn verify_settings(path: &Path, tolerance: Option<f64>) -> Result<VerifySettings, Failure> {
+    let mut settings = VerifySettings::default();
+    if let Some(t) = tolerance {
+        if !(1e-6..=0.1).contains(&t) {
+            return Err(Failure::bad_input(format!(
+                "{}: key `--tolerance`: must lie between 1e-6 and 0.1, got {t}",
+                path.display()
+            )));
+        }
+        settings.tolerance = t;
+    }
+    Ok(settings)
+}
+
+/// Checks the design `x` on its part, writes the files into `dir` and prints the table.
+fn run_verify(
+    problem: &Problem,
+    x: &[f64],
+    settings: &VerifySettings,
+    dir: &Path,
+) -> Result<(), Failure> {
+    let v = verify_design(problem.model(), x, settings).map_err(|e| {
+        Failure::bad_input(format!(
+            "{}: cannot check this design: {e}",
+            problem.file.display()
+        ))
+    })?;
+    let report = VerifyReport::new(problem, x, &v);
+    let files = write_verify(|name| dir.join(name), &report, &v).map_err(Failure::write_failed)?;
+    emit(&VerifyTable(&report));
     emit(&Wrote(&files));
     Ok(())
 }

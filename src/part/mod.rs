@@ -14,6 +14,7 @@
 
 pub mod checks;
 pub mod dxf;
+pub mod half;
 pub mod outline;
 pub mod svg;
 
@@ -76,9 +77,26 @@ pub struct Actuator {
     pub height: Option<f64>,
 }
 
+/// How a model drives its part, for an analysis of it (SI).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Actuation {
+    /// The actuator's nominal stroke (m) and preload (N): the largest input force is
+    /// `nominal_stroke * k_in + preload`.
+    pub nominal_stroke: f64,
+    pub preload: f64,
+    /// The actuator's stiffness (N/m); `None` for one much stiffer than the part.
+    pub stiffness: Option<f64>,
+    /// The mass the output face carries (kg).
+    pub payload_mass: f64,
+}
+
 /// What a model gives to build its part.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PartSpec {
+    /// The plate's width, through which the outline is cut (m): the out-of-plane size of an
+    /// analysis.
+    pub width: f64,
+    pub actuation: Option<Actuation>,
     /// Convex solids, counterclockwise (metres).
     pub solids: Vec<Solid>,
     /// The pairs of solids (indices) that are joined; every other pair keeps `min_slot`
@@ -109,6 +127,8 @@ pub struct HingeMm {
 /// A part: its outline loops and faces in millimetres.
 #[derive(Debug, Clone, Serialize)]
 pub struct Part {
+    /// The plate's width (mm).
+    pub width: f64,
     /// The outer loop first (counterclockwise), then the inner ones (clockwise), each
     /// starting at its lowest, then leftmost vertex.
     pub loops: Vec<Loop>,
@@ -200,6 +220,7 @@ impl Part {
         );
         let mm = |p: [f64; 2]| [p[0] * MM, p[1] * MM];
         Ok(Part {
+            width: spec.width * MM,
             loops,
             faces: spec
                 .faces

@@ -11,6 +11,7 @@ pub mod plot;
 pub mod study;
 pub mod summary;
 pub mod sweep;
+pub mod verify;
 
 use indexmap::IndexMap;
 use std::io::Write;

@@ -220,6 +220,6 @@ impl Model for Bridge {
 
     fn part(&self, x: &[f64]) -> Option<Result<crate::part::PartSpec, Vec<String>>> {
         (x.len() == self.layout.parameters().len())
-            .then(|| part::spec(&self.layout, &self.settings.part, x))
+            .then(|| part::spec(&self.settings, &self.layout, x))
     }
 }

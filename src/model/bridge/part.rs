@@ -38,7 +38,8 @@
 use serde::Serialize;
 
 use super::geometry::{Geometry, Layout};
-use crate::part::{Actuator, Annotation, Face, HingeSite, PartSpec, Solid};
+use super::BridgeSettings;
+use crate::part::{Actuation, Actuator, Annotation, Face, HingeSite, PartSpec, Solid};
 
 /// The `[part]` settings of a bridge (SI).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -220,7 +221,12 @@ fn band(a: P, b: P, dir: P, half: f64) -> Vec<P> {
 }
 
 /// The part of design `x`, or what makes it impossible before any solid is joined.
-pub fn spec(layout: &Layout, s: &PartSettings, x: &[f64]) -> Result<PartSpec, Vec<String>> {
+pub fn spec(
+    settings: &BridgeSettings,
+    layout: &Layout,
+    x: &[f64],
+) -> Result<PartSpec, Vec<String>> {
+    let s = &settings.part;
     let g: Geometry<f64> = layout.geometry(x);
     let tb = layout.hinge_b.root_thickness(g.b.dims());
     let td = layout.hinge_d.root_thickness(g.d.dims());
@@ -384,6 +390,13 @@ pub fn spec(layout: &Layout, s: &PartSettings, x: &[f64]) -> Result<PartSpec, Ve
         );
     }
     Ok(PartSpec {
+        width: settings.width,
+        actuation: Some(Actuation {
+            nominal_stroke: settings.actuator.nominal_stroke,
+            preload: settings.actuator.preload,
+            stiffness: settings.actuator.stiffness,
+            payload_mass: settings.dynamics.as_ref().map_or(0.0, |d| d.payload_mass),
+        }),
         caption: format!(
             "fillets r {}, links {} thick",
             mm(s.fillet_radius),

@@ -1,0 +1,286 @@
+//! The analysis as CalculiX input decks, so that the open-source solver `ccx` can check it:
+//! the 2D mesh as CPS6 (plane stress) or CPE6 (plane strain) elements, and the same mesh
+//! extruded through the width into 15-node wedges (C3D15), the 3D model a designer would
+//! otherwise build in another program. Units: mm, N, MPa, tonne/mm^3 (ccx takes any
+//! consistent set).
+//!
+//! Each load case is a step of its own: the clamping face held, the forces of the case as
+//! nodal loads in 2D (`*CLOAD`, the very consistent loads flexopt applies) and as pressures
+//! on the wedges' faces in 3D (`*DLOAD`, so that ccx integrates them itself),
+//! displacements printed for every node.
+//! ccx expands 2D elements into one layer of 3D elements as thick as the section: plane
+//! strain exactly (it holds the third direction), plane stress only when the section is thin
+//! against the elements (see [`Deck::thickness_scale`]).
+
+use std::fmt::Write as _;
+
+use super::element::{Elastic, Idealization};
+use super::mesh::Mesh;
+
+/// A load case: its name, its nodal forces (N, two a node) for the 2D deck, and the same
+/// loads as uniform tractions on boundary edges (Pa) for the 3D deck.
+#[derive(Debug, Clone)]
+pub struct LoadCase {
+    pub name: String,
+    pub forces: Vec<f64>,
+    pub tractions: Vec<(Vec<[usize; 3]>, [f64; 2])>,
+}
+
+/// What a deck describes, in metres and newtons (written in mm).
+pub struct Deck<'a> {
+    pub title: String,
+    pub mesh: &'a Mesh,
+    pub material: Elastic,
+    pub width: f64,
+    /// Node sets to write, by name (the faces).
+    pub sets: Vec<(String, Vec<usize>)>,
+    /// The nodes held in both directions.
+    pub clamp: Vec<usize>,
+    pub cases: Vec<LoadCase>,
+    /// The 2D section's thickness and the loads multiplied by this (1 for the part as it
+    /// is): with a small factor ccx's one layer of 3D elements is plane stress and the
+    /// displacements are unchanged.
+    pub thickness_scale: f64,
+}
+
+const MM: f64 = 1e3;
+
+fn node_line(out: &mut String, id: usize, x: f64, y: f64, z: Option<f64>) {
+    match z {
+        Some(z) => {
+            let _ = writeln!(
+                out,
+                "{id}, {:.10e}, {:.10e}, {:.10e}",
+                x * MM,
+                y * MM,
+                z * MM
+            );
+        }
+        None => {
+            let _ = writeln!(out, "{id}, {:.10e}, {:.10e}", x * MM, y * MM);
+        }
+    }
+}
+
+fn sets(out: &mut String, name: &str, ids: impl Iterator<Item = usize>) {
+    let _ = writeln!(out, "*NSET, NSET={}", name.to_uppercase());
+    let ids: Vec<String> = ids.map(|i| i.to_string()).collect();
+    for chunk in ids.chunks(12) {
+        let _ = writeln!(out, "{}", chunk.join(", "));
+    }
+}
+
+fn material(out: &mut String, m: &Elastic) {
+    let _ = writeln!(out, "*MATERIAL, NAME=PART");
+    let _ = writeln!(out, "*ELASTIC");
+    // Pa -> MPa; kg/m^3 -> tonne/mm^3
+    let _ = writeln!(
+        out,
+        "{:.10e}, {:.10e}",
+        m.youngs_modulus * 1e-6,
+        m.poisson_ratio
+    );
+    let _ = writeln!(out, "*DENSITY");
+    let _ = writeln!(out, "{:.10e}", m.density * 1e-12);
+}
+
+impl Deck<'_> {
+    /// The 2D deck (CPS6 or CPE6).
+    pub fn two_d(&self, idealization: Idealization) -> String {
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            "*HEADING\n{} ({}, flexopt)",
+            self.title,
+            idealization.name()
+        );
+        let _ = writeln!(out, "*NODE, NSET=NALL");
+        for (i, p) in self.mesh.nodes.iter().enumerate() {
+            node_line(&mut out, i + 1, p[0], p[1], None);
+        }
+        let kind = match idealization {
+            Idealization::PlaneStress => "CPS6",
+            Idealization::PlaneStrain => "CPE6",
+        };
+        let _ = writeln!(out, "*ELEMENT, TYPE={kind}, ELSET=EALL");
+        for (e, el) in self.mesh.elements.iter().enumerate() {
+            let ids: Vec<String> = el.iter().map(|n| (n + 1).to_string()).collect();
+            let _ = writeln!(out, "{}, {}", e + 1, ids.join(", "));
+        }
+        for (name, nodes) in &self.sets {
+            sets(&mut out, name, nodes.iter().map(|n| n + 1));
+        }
+        sets(&mut out, "clamp", self.clamp.iter().map(|n| n + 1));
+        material(&mut out, &self.material);
+        let _ = writeln!(out, "*SOLID SECTION, ELSET=EALL, MATERIAL=PART");
+        let _ = writeln!(out, "{:.10e}", self.width * self.thickness_scale * MM);
+        let _ = writeln!(out, "*BOUNDARY\nCLAMP, 1, 2");
+        for case in &self.cases {
+            let _ = writeln!(out, "** load case: {}", case.name);
+            let _ = writeln!(out, "*STEP\n*STATIC\n*CLOAD, OP=NEW");
+            for (d, &f) in case.forces.iter().enumerate() {
+                if f != 0.0 {
+                    let _ = writeln!(
+                        out,
+                        "{}, {}, {:.10e}",
+                        d / 2 + 1,
+                        d % 2 + 1,
+                        f * self.thickness_scale
+                    );
+                }
+            }
+            let _ = writeln!(out, "*NODE PRINT, NSET=NALL\nU\n*END STEP");
+        }
+        out
+    }
+
+    /// The 3D deck: the mesh extruded through the width in `layers` layers of C3D15 wedges,
+    /// the clamping face held on its whole surface, the loads as pressures on the faces
+    /// (the faces of a load must be normal to its traction, as the bridge's are).
+    pub fn three_d(&self, layers: usize) -> String {
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            "*HEADING\n{} (3D, {layers} layers of C3D15, flexopt)",
+            self.title
+        );
+        let n2 = self.mesh.nodes.len();
+        let planes = 2 * layers + 1;
+        let h = self.width / (2 * layers) as f64;
+        let id = |plane: usize, node: usize| plane * n2 + node + 1;
+        // corner nodes of the 2D mesh appear on every plane; midside ones on the even planes
+        let mut corner = vec![false; n2];
+        for el in &self.mesh.elements {
+            for &c in &el[..3] {
+                corner[c] = true;
+            }
+        }
+        let used = |plane: usize, node: usize| plane.is_multiple_of(2) || corner[node];
+        let _ = writeln!(out, "*NODE, NSET=NALL");
+        for plane in 0..planes {
+            for (i, p) in self.mesh.nodes.iter().enumerate() {
+                if used(plane, i) {
+                    node_line(&mut out, id(plane, i), p[0], p[1], Some(plane as f64 * h));
+                }
+            }
+        }
+        let _ = writeln!(out, "*ELEMENT, TYPE=C3D15, ELSET=EALL");
+        let mut e3 = 0;
+        for layer in 0..layers {
+            let (b, m, t) = (2 * layer, 2 * layer + 1, 2 * layer + 2);
+            for el in &self.mesh.elements {
+                e3 += 1;
+                let n: Vec<usize> = vec![
+                    id(b, el[0]),
+                    id(b, el[1]),
+                    id(b, el[2]),
+                    id(t, el[0]),
+                    id(t, el[1]),
+                    id(t, el[2]),
+                    id(b, el[3]),
+                    id(b, el[4]),
+                    id(b, el[5]),
+                    id(t, el[3]),
+                    id(t, el[4]),
+                    id(t, el[5]),
+                    id(m, el[0]),
+                    id(m, el[1]),
+                    id(m, el[2]),
+                ];
+                let s: Vec<String> = n.iter().map(|v| v.to_string()).collect();
+                // ccx reads at most 16 entries a line
+                let _ = writeln!(out, "{e3}, {},\n{}", s[..10].join(", "), s[10..].join(", "));
+            }
+        }
+        let through = |nodes: &[usize]| -> Vec<usize> {
+            let mut ids = Vec::new();
+            for plane in 0..planes {
+                for &n in nodes {
+                    if used(plane, n) {
+                        ids.push(id(plane, n));
+                    }
+                }
+            }
+            ids
+        };
+        for (name, nodes) in &self.sets {
+            sets(&mut out, name, through(nodes).into_iter());
+        }
+        sets(&mut out, "clamp", through(&self.clamp).into_iter());
+        material(&mut out, &self.material);
+        let _ = writeln!(out, "*SOLID SECTION, ELSET=EALL, MATERIAL=PART");
+        let _ = writeln!(out, "*BOUNDARY\nCLAMP, 1, 3");
+        // each boundary edge's element and its side: wedge faces 3, 4, 5 stand on the
+        // triangle's sides 1-2, 2-3, 3-1
+        let mut side = std::collections::HashMap::new();
+        for (e, el) in self.mesh.elements.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (el[k], el[(k + 1) % 3]);
+                side.insert((a.min(b), a.max(b)), (e, k));
+            }
+        }
+        let count = self.mesh.elements.len();
+        for case in &self.cases {
+            let _ = writeln!(out, "** load case: {}", case.name);
+            let _ = writeln!(out, "*STEP\n*STATIC\n*DLOAD, OP=NEW");
+            for (edges, traction) in &case.tractions {
+                for edge in edges {
+                    let (a, b) = (edge[0], edge[2]);
+                    let Some(&(e, k)) = side.get(&(a.min(b), a.max(b))) else {
+                        continue;
+                    };
+                    // the outward normal: the element's interior lies left of its sides
+                    let el = self.mesh.elements[e];
+                    let (p, q) = (self.mesh.nodes[el[k]], self.mesh.nodes[el[(k + 1) % 3]]);
+                    let len = (q[0] - p[0]).hypot(q[1] - p[1]);
+                    let normal = [(q[1] - p[1]) / len, -(q[0] - p[0]) / len];
+                    // a pressure pushes against the outward normal
+                    let pressure = -(traction[0] * normal[0] + traction[1] * normal[1]);
+                    for layer in 0..layers {
+                        let _ = writeln!(
+                            out,
+                            "{}, P{}, {:.10e}",
+                            layer * count + e + 1,
+                            k + 3,
+                            pressure * 1e-6
+                        );
+                    }
+                }
+            }
+            let _ = writeln!(out, "*NODE PRINT, NSET=NALL\nU\n*END STEP");
+        }
+        out
+    }
+}
+
+/// The displacements of every step in a `.dat` file of ccx (mm, per node id), in metres:
+/// for each step, `(node id, [ux, uy, uz])`.
+pub fn read_displacements(dat: &str) -> Vec<Vec<(usize, [f64; 3])>> {
+    let mut steps = Vec::new();
+    let mut current: Option<Vec<(usize, [f64; 3])>> = None;
+    for line in dat.lines() {
+        if line.trim_start().starts_with("displacements") {
+            if let Some(c) = current.take() {
+                steps.push(c);
+            }
+            current = Some(Vec::new());
+            continue;
+        }
+        let Some(c) = current.as_mut() else { continue };
+        let f: Vec<&str> = line.split_whitespace().collect();
+        if f.len() == 4 {
+            if let (Ok(id), Ok(x), Ok(y), Ok(z)) = (
+                f[0].parse::<usize>(),
+                f[1].parse::<f64>(),
+                f[2].parse::<f64>(),
+                f[3].parse::<f64>(),
+            ) {
+                c.push((id, [x / MM, y / MM, z / MM]));
+            }
+        }
+    }
+    if let Some(c) = current {
+        steps.push(c);
+    }
+    steps
+}

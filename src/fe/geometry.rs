@@ -1,0 +1,260 @@
+//! The region a finite-element model meshes: a part's outline as lines and arcs, its named
+//! faces and its hinges, in metres (the part's files are in millimetres).
+
+use crate::part::outline::Arc as BulgeArc;
+use crate::part::{Part, MM};
+
+/// One edge of an outline loop.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Edge {
+    Line {
+        a: [f64; 2],
+        b: [f64; 2],
+    },
+    /// An arc from `start` sweeping `sweep` (radians, counterclockwise positive) around
+    /// `centre`.
+    Arc {
+        centre: [f64; 2],
+        radius: f64,
+        start: f64,
+        sweep: f64,
+    },
+}
+
+impl Edge {
+    /// The point a fraction `f` along the edge.
+    pub fn at(&self, f: f64) -> [f64; 2] {
+        match *self {
+            Edge::Line { a, b } => [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])],
+            Edge::Arc {
+                centre,
+                radius,
+                start,
+                sweep,
+            } => {
+                let phi = start + f * sweep;
+                [
+                    centre[0] + radius * phi.cos(),
+                    centre[1] + radius * phi.sin(),
+                ]
+            }
+        }
+    }
+
+    pub fn length(&self) -> f64 {
+        match *self {
+            Edge::Line { a, b } => (b[0] - a[0]).hypot(b[1] - a[1]),
+            Edge::Arc { radius, sweep, .. } => radius * sweep.abs(),
+        }
+    }
+
+    /// The distance from `p` to the edge, and the point of the edge nearest to it.
+    pub fn nearest(&self, p: [f64; 2]) -> (f64, [f64; 2]) {
+        let q = match *self {
+            Edge::Line { a, b } => {
+                let d = [b[0] - a[0], b[1] - a[1]];
+                let len2 = d[0] * d[0] + d[1] * d[1];
+                let t = (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0);
+                [a[0] + t * d[0], a[1] + t * d[1]]
+            }
+            Edge::Arc { centre, radius, .. } => {
+                let (dx, dy) = (p[0] - centre[0], p[1] - centre[1]);
+                let r = dx.hypot(dy);
+                let on = if r > 0.0 {
+                    [centre[0] + radius * dx / r, centre[1] + radius * dy / r]
+                } else {
+                    self.at(0.0)
+                };
+                // the nearest point of the circle, if it lies on the arc; else an end
+                let within = self.contains_angle(dy.atan2(dx));
+                if within {
+                    on
+                } else {
+                    let (a, b) = (self.at(0.0), self.at(1.0));
+                    let da = (a[0] - p[0]).hypot(a[1] - p[1]);
+                    let db = (b[0] - p[0]).hypot(b[1] - p[1]);
+                    if da <= db {
+                        a
+                    } else {
+                        b
+                    }
+                }
+            }
+        };
+        ((q[0] - p[0]).hypot(q[1] - p[1]), q)
+    }
+
+    /// Whether the direction `phi` from the centre lies within the arc's sweep.
+    fn contains_angle(&self, phi: f64) -> bool {
+        let Edge::Arc { start, sweep, .. } = *self else {
+            return false;
+        };
+        let tau = std::f64::consts::TAU;
+        let rel = if sweep >= 0.0 {
+            (phi - start).rem_euclid(tau)
+        } else {
+            (start - phi).rem_euclid(tau)
+        };
+        rel <= sweep.abs() + 1e-12
+    }
+
+    /// `p` moved onto the edge: onto the circle for an arc (the point on an arc's chord that
+    /// stands for a point of the arc), unchanged for a line.
+    pub fn project(&self, p: [f64; 2]) -> [f64; 2] {
+        match *self {
+            Edge::Line { .. } => p,
+            Edge::Arc { centre, radius, .. } => {
+                let (dx, dy) = (p[0] - centre[0], p[1] - centre[1]);
+                let r = dx.hypot(dy);
+                [centre[0] + radius * dx / r, centre[1] + radius * dy / r]
+            }
+        }
+    }
+}
+
+/// A named straight face of the region (a load case's surface).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Face {
+    pub name: String,
+    pub a: [f64; 2],
+    pub b: [f64; 2],
+}
+
+impl Face {
+    /// Whether `p` lies on the face, within `tol` (m).
+    pub fn contains(&self, p: [f64; 2], tol: f64) -> bool {
+        Edge::Line {
+            a: self.a,
+            b: self.b,
+        }
+        .nearest(p)
+        .0 <= tol
+    }
+
+    pub fn length(&self) -> f64 {
+        (self.b[0] - self.a[0]).hypot(self.b[1] - self.a[1])
+    }
+}
+
+/// A hinge's thin section: centre line, thickness (m).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hinge {
+    pub name: String,
+    pub start: [f64; 2],
+    pub end: [f64; 2],
+    pub thickness: f64,
+}
+
+/// The region to mesh, in metres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Domain {
+    /// The loops of the outline, the outer one first.
+    pub loops: Vec<Vec<Edge>>,
+    pub faces: Vec<Face>,
+    pub hinges: Vec<Hinge>,
+}
+
+impl Domain {
+    /// The region of a part.
+    pub fn of_part(part: &Part) -> Self {
+        let m = |p: [f64; 2]| [p[0] / MM, p[1] / MM];
+        let loops = part
+            .loops
+            .iter()
+            .map(|l| {
+                let n = l.vertices.len();
+                (0..n)
+                    .map(|i| {
+                        let (a, b) = (l.vertices[i], l.vertices[(i + 1) % n]);
+                        match BulgeArc::from_bulge(a, b) {
+                            Some(arc) => Edge::Arc {
+                                centre: m(arc.centre),
+                                radius: arc.radius / MM,
+                                start: arc.start,
+                                sweep: arc.sweep,
+                            },
+                            None => Edge::Line {
+                                a: m([a.x, a.y]),
+                                b: m([b.x, b.y]),
+                            },
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        Domain {
+            loops,
+            faces: part
+                .faces
+                .iter()
+                .map(|f| Face {
+                    name: f.name.clone(),
+                    a: m(f.a),
+                    b: m(f.b),
+                })
+                .collect(),
+            hinges: part
+                .hinges
+                .iter()
+                .map(|h| Hinge {
+                    name: h.name.clone(),
+                    start: m(h.start),
+                    end: m(h.end),
+                    thickness: h.thickness / MM,
+                })
+                .collect(),
+        }
+    }
+
+    /// A rectangle `[x0, x1] x [y0, y1]` with no faces, for tests and checks.
+    pub fn rectangle(x0: f64, y0: f64, x1: f64, y1: f64) -> Self {
+        let c = [[x0, y0], [x1, y0], [x1, y1], [x0, y1]];
+        Domain {
+            loops: vec![(0..4)
+                .map(|i| Edge::Line {
+                    a: c[i],
+                    b: c[(i + 1) % 4],
+                })
+                .collect()],
+            faces: Vec::new(),
+            hinges: Vec::new(),
+        }
+    }
+
+    /// The face called `name`.
+    pub fn face(&self, name: &str) -> Option<&Face> {
+        self.faces.iter().find(|f| f.name == name)
+    }
+
+    /// The edge of the outline nearest to `p`, with its distance.
+    pub fn nearest_edge(&self, p: [f64; 2]) -> (f64, Edge) {
+        self.loops
+            .iter()
+            .flatten()
+            .map(|e| (e.nearest(p).0, *e))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .expect("a domain has edges")
+    }
+
+    /// The size of the region: the longer side of its bounding box (m).
+    pub fn size(&self) -> f64 {
+        let mut bb = [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for e in self.loops.iter().flatten() {
+            for k in 0..=8 {
+                let p = e.at(k as f64 / 8.0);
+                bb = [
+                    bb[0].min(p[0]),
+                    bb[1].min(p[1]),
+                    bb[2].max(p[0]),
+                    bb[3].max(p[1]),
+                ];
+            }
+        }
+        (bb[2] - bb[0]).max(bb[3] - bb[1])
+    }
+}

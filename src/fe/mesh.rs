@@ -1,0 +1,436 @@
+//! Meshes of six-node triangles: the first from a constrained Delaunay triangulation of the
+//! outline with Ruppert refinement (the `spade` crate), each next one by splitting every
+//! triangle into four, so that a sequence of meshes refines uniformly (element size halved)
+//! for the error estimate's extrapolation.
+//!
+//! Element sizes follow a size function: the outline is split into segments of the local
+//! size, and the refinement (minimum angle 25 degrees, largest area that of the coarsest
+//! element) grades the interior from them. Nodes on arcs are put on the arc, so the
+//! elements' edges there are curved (isoparametric) and stay on the outline at every level.
+
+use std::collections::{HashMap, HashSet};
+
+use spade::handles::{FixedFaceHandle, InnerTag};
+use spade::{
+    AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
+};
+
+use super::element;
+use super::geometry::{Domain, Edge};
+use super::FeError;
+
+/// A mesh of six-node triangles (node order of [`element`]), in metres.
+#[derive(Debug, Clone)]
+pub struct Mesh {
+    pub nodes: Vec<[f64; 2]>,
+    pub elements: Vec<[usize; 6]>,
+    /// The edges on the outline: corner, midside, corner; with the index of the outline
+    /// edge (in the order of [`Domain::loops`], flattened) they lie on.
+    pub boundary: Vec<BoundaryEdge>,
+    /// How many times the first mesh was split into four to give this one.
+    pub level: usize,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoundaryEdge {
+    pub nodes: [usize; 3],
+    pub edge: usize,
+}
+
+impl Mesh {
+    /// The coordinates of element `e`'s nodes.
+    pub fn element_nodes(&self, e: usize) -> [[f64; 2]; 6] {
+        self.elements[e].map(|n| self.nodes[n])
+    }
+
+    /// The total area of the elements.
+    pub fn area(&self) -> f64 {
+        (0..self.elements.len())
+            .map(|e| element::area(&self.element_nodes(e)))
+            .sum()
+    }
+
+    /// The boundary edges whose three nodes lie on the segment `a`-`b` (within `tol`).
+    pub fn edges_on(&self, a: [f64; 2], b: [f64; 2], tol: f64) -> Vec<[usize; 3]> {
+        let line = Edge::Line { a, b };
+        self.boundary
+            .iter()
+            .filter(|e| {
+                e.nodes
+                    .iter()
+                    .all(|&n| line.nearest(self.nodes[n]).0 <= tol)
+            })
+            .map(|e| e.nodes)
+            .collect()
+    }
+
+    /// The nodes on the segment `a`-`b` of the boundary, sorted, without repeats.
+    pub fn nodes_on(&self, a: [f64; 2], b: [f64; 2], tol: f64) -> Vec<usize> {
+        let mut n: Vec<usize> = self.edges_on(a, b, tol).into_iter().flatten().collect();
+        n.sort_unstable();
+        n.dedup();
+        n
+    }
+}
+
+/// The outline split into segments no longer than `size` where they lie, and arcs into
+/// pieces of at most 15 degrees: each loop's points in order.
+fn boundary_points(domain: &Domain, size: &dyn Fn([f64; 2]) -> f64) -> Vec<Vec<([f64; 2], usize)>> {
+    let max_turn = 15f64.to_radians();
+    let mut flat = 0;
+    domain
+        .loops
+        .iter()
+        .map(|l| {
+            let mut points = Vec::new();
+            for e in l {
+                // the number of segments: the integral of 1/h along the edge, by 64 samples
+                const SAMPLES: usize = 64;
+                let len = e.length();
+                let turn = match *e {
+                    Edge::Arc { sweep, .. } => sweep.abs(),
+                    Edge::Line { .. } => 0.0,
+                };
+                let density: Vec<f64> = (0..=SAMPLES)
+                    .map(|k| {
+                        let h = size(e.at(k as f64 / SAMPLES as f64));
+                        len / h
+                    })
+                    .collect();
+                let mut cumulative = vec![0.0; SAMPLES + 1];
+                for k in 1..=SAMPLES {
+                    cumulative[k] =
+                        cumulative[k - 1] + 0.5 * (density[k - 1] + density[k]) / SAMPLES as f64;
+                }
+                let total = cumulative[SAMPLES];
+                let n = (total.ceil() as usize)
+                    .max((turn / max_turn).ceil() as usize)
+                    .max(1);
+                points.push((e.at(0.0), flat));
+                for s in 1..n {
+                    // the fraction of the edge where the integral reaches s/n of its total
+                    let target = total * s as f64 / n as f64;
+                    let k = cumulative
+                        .partition_point(|&c| c < target)
+                        .clamp(1, SAMPLES);
+                    let (c0, c1) = (cumulative[k - 1], cumulative[k]);
+                    let frac = if c1 > c0 {
+                        (target - c0) / (c1 - c0)
+                    } else {
+                        0.0
+                    };
+                    let f = ((k - 1) as f64 + frac) / SAMPLES as f64;
+                    // with the integral flat (uniform size), fractions are exactly s/n
+                    let f = if total > 0.0 { f } else { s as f64 / n as f64 };
+                    points.push((e.at(f), flat));
+                }
+                flat += 1;
+            }
+            points
+        })
+        .collect()
+}
+
+/// The first mesh of `domain`, elements sized by `size` (m, a function of the place), never
+/// larger than `max_size`.
+pub fn mesh(
+    domain: &Domain,
+    size: &dyn Fn([f64; 2]) -> f64,
+    max_size: f64,
+) -> Result<Mesh, FeError> {
+    let loops = boundary_points(domain, size);
+    let mut vertices = Vec::new();
+    let mut constraints = Vec::new();
+    for l in &loops {
+        let first = vertices.len();
+        for (i, (p, _)) in l.iter().enumerate() {
+            vertices.push(Point2::new(p[0], p[1]));
+            let next = if i + 1 == l.len() {
+                first
+            } else {
+                first + i + 1
+            };
+            constraints.push([first + i, next]);
+        }
+    }
+    let input = vertices.len();
+    let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
+        ConstrainedDelaunayTriangulation::bulk_load_cdt(vertices, constraints)
+            .map_err(|e| FeError::Mesh(format!("the outline cannot be triangulated: {e:?}")))?;
+    if cdt.num_vertices() != input {
+        return Err(FeError::Mesh(
+            "the outline touches itself: two of its points coincide".into(),
+        ));
+    }
+    let smallest = loops
+        .iter()
+        .flatten()
+        .map(|(p, _)| size(*p))
+        .fold(max_size, f64::min);
+    let area = |h: f64| 0.25 * 3f64.sqrt() * h * h;
+    let result = cdt.refine(
+        RefinementParameters::new()
+            .exclude_outer_faces(true)
+            .with_angle_limit(AngleLimit::from_deg(25.0))
+            .with_max_allowed_area(area(max_size))
+            .with_min_required_area(0.05 * area(smallest))
+            .with_max_additional_vertices(2_000_000),
+    );
+    if !result.refinement_complete {
+        return Err(FeError::Mesh("the refinement did not complete".into()));
+    }
+    let excluded: HashSet<FixedFaceHandle<InnerTag>> = result.excluded_faces.into_iter().collect();
+
+    // the inner triangles, their corners renumbered densely
+    let mut index: HashMap<usize, usize> = HashMap::new();
+    let mut nodes: Vec<[f64; 2]> = Vec::new();
+    let mut corners: Vec<[usize; 3]> = Vec::new();
+    for face in cdt.inner_faces() {
+        if excluded.contains(&face.fix()) {
+            continue;
+        }
+        let v = face.vertices();
+        let mut tri = [0; 3];
+        for (k, vh) in v.iter().enumerate() {
+            let id = vh.fix().index();
+            let n = *index.entry(id).or_insert_with(|| {
+                let p = vh.position();
+                nodes.push([p.x, p.y]);
+                nodes.len() - 1
+            });
+            tri[k] = n;
+        }
+        corners.push(tri);
+    }
+    if corners.is_empty() {
+        return Err(FeError::Mesh("the outline encloses no area".into()));
+    }
+    // edges with one triangle lie on the outline
+    let mut count: HashMap<(usize, usize), usize> = HashMap::new();
+    for t in &corners {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            *count.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    // the refinement splits arcs' chords: put their points back on the arcs
+    let on_outline: HashSet<usize> = count
+        .iter()
+        .filter(|(_, &c)| c == 1)
+        .flat_map(|(&(a, b), _)| [a, b])
+        .collect();
+    for &n in &on_outline {
+        let (_, e) = domain.nearest_edge(nodes[n]);
+        nodes[n] = e.project(nodes[n]);
+    }
+    let flat: Vec<Edge> = domain.loops.iter().flatten().copied().collect();
+    let mut mids: HashMap<(usize, usize), usize> = HashMap::new();
+    let mut boundary = Vec::new();
+    let mut elements = Vec::with_capacity(corners.len());
+    for t in &corners {
+        let mut el = [t[0], t[1], t[2], 0, 0, 0];
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let key = (a.min(b), a.max(b));
+            let m = *mids.entry(key).or_insert_with(|| {
+                let mut p = [
+                    0.5 * (nodes[a][0] + nodes[b][0]),
+                    0.5 * (nodes[a][1] + nodes[b][1]),
+                ];
+                if count[&key] == 1 {
+                    let (edge, _) = nearest_flat(&flat, p);
+                    p = flat[edge].project(p);
+                    boundary.push(BoundaryEdge {
+                        nodes: [a, nodes.len(), b],
+                        edge,
+                    });
+                }
+                nodes.push(p);
+                nodes.len() - 1
+            });
+            el[3 + k] = m;
+        }
+        elements.push(el);
+    }
+    let mesh = Mesh {
+        nodes,
+        elements,
+        boundary,
+        level: 0,
+    };
+    check_elements(&mesh)?;
+    Ok(mesh)
+}
+
+/// The index of the outline edge nearest to `p`, and its distance.
+fn nearest_flat(flat: &[Edge], p: [f64; 2]) -> (usize, f64) {
+    flat.iter()
+        .enumerate()
+        .map(|(i, e)| (i, e.nearest(p).0))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((0, f64::INFINITY))
+}
+
+/// Every element's map must be one to one at its integration points.
+fn check_elements(mesh: &Mesh) -> Result<(), FeError> {
+    for e in 0..mesh.elements.len() {
+        let x = mesh.element_nodes(e);
+        for l in element::NODE_COORDINATES {
+            if element::gradients(&x, l).is_none() {
+                return Err(FeError::Mesh(format!(
+                    "element {e} near ({:.4}, {:.4}) mm is inverted",
+                    x[0][0] * 1e3,
+                    x[0][1] * 1e3
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The area coordinates, in the parent, of the nodes of its four children: the parent's
+/// corners and midsides, then the midpoints of the children's edges.
+const CHILD_POINTS: [[f64; 3]; 9] = [
+    // on the parent's edges: halves of 0-1, 1-2, 2-0
+    [0.75, 0.25, 0.0],
+    [0.25, 0.75, 0.0],
+    [0.0, 0.75, 0.25],
+    [0.0, 0.25, 0.75],
+    [0.25, 0.0, 0.75],
+    [0.75, 0.0, 0.25],
+    // inside: the midsides of the inner child
+    [0.25, 0.5, 0.25],
+    [0.25, 0.25, 0.5],
+    [0.5, 0.25, 0.25],
+];
+
+impl Mesh {
+    /// The mesh with every triangle split into four (element size halved); new nodes on the
+    /// outline put on it exactly.
+    pub fn refined(&self, domain: &Domain) -> Mesh {
+        let flat: Vec<Edge> = domain.loops.iter().flatten().copied().collect();
+        let mut nodes = self.nodes.clone();
+        // the boundary edge (corner, corner) -> its outline edge
+        let outline: HashMap<(usize, usize), usize> = self
+            .boundary
+            .iter()
+            .flat_map(|b| {
+                let [a, m, c] = b.nodes;
+                [
+                    ((a.min(m), a.max(m)), b.edge),
+                    ((m.min(c), m.max(c)), b.edge),
+                ]
+            })
+            .collect();
+        let mut shared: HashMap<(usize, usize), usize> = HashMap::new();
+        let mut elements = Vec::with_capacity(4 * self.elements.len());
+        for (e, el) in self.elements.iter().enumerate() {
+            let x = self.element_nodes(e);
+            let [c0, c1, c2, m01, m12, m20] = *el;
+            // the parent's half edges, each with its new midpoint
+            let halves = [
+                (c0, m01),
+                (m01, c1),
+                (c1, m12),
+                (m12, c2),
+                (c2, m20),
+                (m20, c0),
+            ];
+            let mut q = [0usize; 9];
+            for (k, &(a, b)) in halves.iter().enumerate() {
+                let key = (a.min(b), a.max(b));
+                q[k] = *shared.entry(key).or_insert_with(|| {
+                    let mut p = element::point(&x, CHILD_POINTS[k]);
+                    if let Some(&edge) = outline.get(&key) {
+                        p = flat[edge].project(p);
+                    }
+                    nodes.push(p);
+                    nodes.len() - 1
+                });
+            }
+            for k in 6..9 {
+                nodes.push(element::point(&x, CHILD_POINTS[k]));
+                q[k] = nodes.len() - 1;
+            }
+            // children: (corner, corner, corner, mid 01, mid 12, mid 20)
+            elements.push([c0, m01, m20, q[0], q[8], q[5]]);
+            elements.push([m01, c1, m12, q[1], q[2], q[6]]);
+            elements.push([m20, m12, c2, q[7], q[3], q[4]]);
+            elements.push([m01, m12, m20, q[6], q[7], q[8]]);
+        }
+        let boundary = self
+            .boundary
+            .iter()
+            .flat_map(|b| {
+                let [a, m, c] = b.nodes;
+                [
+                    BoundaryEdge {
+                        nodes: [a, shared[&(a.min(m), a.max(m))], m],
+                        edge: b.edge,
+                    },
+                    BoundaryEdge {
+                        nodes: [m, shared[&(m.min(c), m.max(c))], c],
+                        edge: b.edge,
+                    },
+                ]
+            })
+            .collect();
+        Mesh {
+            nodes,
+            elements,
+            boundary,
+            level: self.level + 1,
+        }
+    }
+}
+
+impl Mesh {
+    /// The whole of a mesh of the half `x >= 0` of a part symmetric about the y axis: the
+    /// half and its mirror image, sharing the nodes on the axis (within `tol`).
+    pub fn mirrored_about_y(&self, tol: f64) -> Mesh {
+        let n = self.nodes.len();
+        let on_axis: Vec<bool> = self.nodes.iter().map(|p| p[0].abs() <= tol).collect();
+        let mut nodes = self.nodes.clone();
+        let mut image = vec![0usize; n];
+        for (i, p) in self.nodes.iter().enumerate() {
+            image[i] = if on_axis[i] {
+                i
+            } else {
+                nodes.push([-p[0], p[1]]);
+                nodes.len() - 1
+            };
+        }
+        let mut elements = self.elements.clone();
+        // mirrored, and reversed to stay counterclockwise
+        elements.extend(self.elements.iter().map(|e| {
+            [
+                image[e[0]],
+                image[e[2]],
+                image[e[1]],
+                image[e[5]],
+                image[e[4]],
+                image[e[3]],
+            ]
+        }));
+        let mut boundary: Vec<BoundaryEdge> = self
+            .boundary
+            .iter()
+            .filter(|b| !b.nodes.iter().all(|&k| on_axis[k]))
+            .copied()
+            .collect();
+        let mirrored: Vec<BoundaryEdge> = boundary
+            .iter()
+            .map(|b| BoundaryEdge {
+                nodes: [image[b.nodes[2]], image[b.nodes[1]], image[b.nodes[0]]],
+                edge: b.edge,
+            })
+            .collect();
+        boundary.extend(mirrored);
+        Mesh {
+            nodes,
+            elements,
+            boundary,
+            level: self.level,
+        }
+    }
+}

@@ -1,0 +1,487 @@
+//! The files of a finite-element check ([`crate::fe::verify`]): `verify.json`, `stress.png`
+//! (von Mises stress on the part, its largest value marked), `deformed.png` (the deformed
+//! shape, scaled, over the undeformed outline), the CalculiX decks `part.inp` (2D, plane
+//! strain) and `part3d.inp` (the same mesh extruded through the width), and the table in the
+//! style of paper 004's Table 2 that the command line prints.
+
+use std::fmt::{self, Display};
+use std::path::{Path, PathBuf};
+
+use indexmap::IndexMap;
+use plotters::prelude::*;
+use serde::Serialize;
+
+use super::plot::{render_png, FAMILY};
+use super::{write_atomic, write_json, WriteError};
+use crate::fe::richardson::Estimate;
+use crate::fe::verify::{Level, Verification, OUTPUTS};
+use crate::fe::Idealization;
+use crate::problem::Problem;
+
+/// The files a verification writes, in order.
+pub const VERIFY_FILES: [&str; 5] = [
+    "verify.json",
+    "stress.png",
+    "deformed.png",
+    "part.inp",
+    "part3d.inp",
+];
+
+/// The mesh level of `part.inp` and of `part3d.inp` (the first mesh: its outputs are within
+/// about 0.5 % of the extrapolated ones, `verify.json` lists them by level), and the 3D
+/// deck's layers through the width.
+const DECK_LEVEL: usize = 0;
+const DECK_3D_LAYERS: usize = 2;
+
+/// The analytic output each FE output is compared with, by the model's output names: `x_in`
+/// and `y_out` come from `k_in` and `amplification` at the test force.
+fn analytic(problem: &Problem, x: &[f64], test_force: f64) -> IndexMap<&'static str, f64> {
+    let model = problem.model();
+    let get = |name: &str| -> Option<f64> {
+        let i = model.output_index(name)?;
+        model.unavailable(i).is_none().then(|| {
+            let mut v = [0.0];
+            model.evaluate(x, &[i], &mut v);
+            v[0]
+        })
+    };
+    let mut out = IndexMap::new();
+    let (k_in, amp) = (get("k_in"), get("amplification"));
+    if let Some(k) = k_in {
+        out.insert("x_in", test_force / k);
+        out.insert("k_in", k);
+        if let Some(a) = amp {
+            out.insert("y_out", a * test_force / k);
+        }
+    }
+    if let Some(a) = amp {
+        out.insert("amplification", a);
+    }
+    if let Some(k) = get("k_out") {
+        out.insert("k_out", k);
+    }
+    if let Some(s) = get("stress_max") {
+        out.insert("stress_section", s);
+        out.insert("stress_peak", s);
+    }
+    if let Some(f) = get("natural_frequency") {
+        out.insert("frequency_output", f);
+    }
+    out
+}
+
+/// One FE output in `verify.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct OutputReport {
+    pub unit: &'static str,
+    pub meaning: &'static str,
+    #[serde(flatten)]
+    pub estimate: Estimate,
+    /// The values on each mesh of the sequence, coarsest first.
+    pub values: Vec<f64>,
+    pub analytic: Option<f64>,
+    /// `(analytic - FE) / FE`, in percent: how far the analytic model is from the FE.
+    pub deviation_percent: Option<f64>,
+    /// For the stresses: the value at the analytic actuation force (`force_in_max`), the
+    /// FE's own force being `nominal_stroke * fe k_in + preload`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at_analytic_force: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub location_mm: Option<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at: Option<String>,
+}
+
+/// `verify.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct VerifyReport {
+    pub problem: String,
+    /// The design in the problem file's units.
+    pub design: IndexMap<String, f64>,
+    pub tolerance: f64,
+    /// Every output meant to converge (all but the peak stress) did, within the tolerance.
+    pub converged: bool,
+    pub test_force: f64,
+    /// The actuation force on each input face, per idealization (N).
+    pub actuation_force: IndexMap<&'static str, f64>,
+    /// The analytic actuation force `force_in_max` (N), where the model has one.
+    pub analytic_actuation_force: Option<f64>,
+    pub levels: Vec<Level>,
+    pub outputs: IndexMap<&'static str, IndexMap<&'static str, OutputReport>>,
+    /// The whole check's time (s).
+    pub seconds: f64,
+}
+
+fn key(i: Idealization) -> &'static str {
+    match i {
+        Idealization::PlaneStress => "plane_stress",
+        Idealization::PlaneStrain => "plane_strain",
+    }
+}
+
+impl VerifyReport {
+    pub fn new(problem: &Problem, x: &[f64], v: &Verification) -> Self {
+        let a = analytic(problem, x, v.test_force);
+        let model = problem.model();
+        let force_in_max = model.output_index("force_in_max").map(|i| {
+            let mut f = [0.0];
+            model.evaluate(x, &[i], &mut f);
+            f[0]
+        });
+        let mut outputs = IndexMap::new();
+        for (r, &own_force) in v.results.iter().zip(&v.actuation_force) {
+            let mut map = IndexMap::new();
+            for o in &r.outputs {
+                let meaning = OUTPUTS.iter().find(|m| m.0 == o.name).map_or("", |m| m.2);
+                let analytic = a.get(o.name).copied();
+                let fe = o.estimate.value;
+                let stress = o.name.starts_with("stress");
+                map.insert(
+                    o.name,
+                    OutputReport {
+                        unit: o.unit,
+                        meaning,
+                        estimate: o.estimate,
+                        values: o.values.clone(),
+                        analytic,
+                        deviation_percent: analytic.map(|an| 100.0 * (an - fe) / fe),
+                        at_analytic_force: force_in_max
+                            .filter(|_| stress)
+                            .map(|f| fe * f / own_force),
+                        location_mm: o.location_mm,
+                        at: o.at.clone(),
+                    },
+                );
+            }
+            outputs.insert(key(r.idealization), map);
+        }
+        VerifyReport {
+            problem: problem.name.clone(),
+            design: problem
+                .variables
+                .iter()
+                .zip(x)
+                .map(|(var, &xi)| (var.name.clone(), var.unit.from_si(xi)))
+                .collect(),
+            tolerance: v.tolerance,
+            converged: v.converged,
+            test_force: v.test_force,
+            actuation_force: v
+                .results
+                .iter()
+                .zip(&v.actuation_force)
+                .map(|(r, &f)| (key(r.idealization), f))
+                .collect(),
+            analytic_actuation_force: force_in_max,
+            levels: v.levels.clone(),
+            outputs,
+            seconds: v.seconds,
+        }
+    }
+}
+
+/// Writes the verification's files through `path` (a file name to where it goes).
+pub fn write_verify(
+    path: impl Fn(&str) -> PathBuf,
+    report: &VerifyReport,
+    v: &Verification,
+) -> Result<Vec<PathBuf>, WriteError> {
+    let files: Vec<PathBuf> = VERIFY_FILES.iter().map(|f| path(f)).collect();
+    write_json(&files[0], report)?;
+    stress_png(&files[1], &report.problem, v)?;
+    deformed_png(&files[2], &report.problem, v)?;
+    let fail = |p: &Path, e: &dyn Display| WriteError {
+        path: p.to_path_buf(),
+        message: e.to_string(),
+    };
+    let title = format!("{}: the part of flexopt verify", report.problem);
+    let model = v.full_model(DECK_LEVEL).map_err(|e| fail(&files[3], &e))?;
+    let deck = model.deck(&title, &v.material, v.width, 1.0);
+    write_atomic(&files[3], deck.two_d(Idealization::PlaneStrain).as_bytes())?;
+    write_atomic(&files[4], deck.three_d(DECK_3D_LAYERS).as_bytes())?;
+    Ok(files)
+}
+
+/// A colour of the scale from blue (low) to red (high), `t` in [0, 1].
+fn heat(t: f64) -> RGBColor {
+    let t = t.clamp(0.0, 1.0);
+    let (r, g, b) = if t < 0.5 {
+        let s = t / 0.5;
+        (0.0, s, 1.0 - s)
+    } else {
+        let s = (t - 0.5) / 0.5;
+        (s, 1.0 - s, 0.0)
+    };
+    RGBColor((255.0 * r) as u8, (255.0 * g) as u8, (255.0 * b) as u8)
+}
+
+/// The panels' common frame (mm): the whole part with a margin, and the image's size at
+/// equal scale on both axes.
+fn frame(v: &Verification, panels: u32) -> ((f64, f64), (f64, f64), (u32, u32)) {
+    let [x0, y0, x1, y1] = v.part.bounding_box;
+    let pad = 0.08 * (x1 - x0).max(y1 - y0);
+    let (xr, yr) = ((x0 - pad, x1 + pad), (y0 - pad, y1 + pad));
+    let panel_w = 900u32;
+    let plot_w = (panel_w - 80) as f64;
+    let plot_h = plot_w * (yr.1 - yr.0) / (xr.1 - xr.0);
+    (xr, yr, (panel_w * panels, plot_h as u32 + 130))
+}
+
+type Chart<'a, 'b> = ChartContext<
+    'a,
+    BitMapBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// Each element of the half mesh and its mirror image as a triangle of its corners, mm,
+/// with a value per element; `shift` moves each node (m).
+fn triangles(
+    v: &Verification,
+    k: usize,
+    shift: &dyn Fn(usize) -> [f64; 2],
+) -> Vec<([(f64, f64); 3], f64)> {
+    let f = &v.results[k].fields;
+    let m = &f.mesh;
+    let mut out = Vec::with_capacity(2 * m.elements.len());
+    for el in &m.elements {
+        let value = el.iter().map(|&n| f.von_mises[n]).sum::<f64>() / 6.0;
+        let corners = [el[0], el[1], el[2]].map(|n| {
+            let d = shift(n);
+            (m.nodes[n][0] + d[0], m.nodes[n][1] + d[1])
+        });
+        let mm = |p: (f64, f64)| (p.0 * 1e3, p.1 * 1e3);
+        out.push((corners.map(mm), value));
+        out.push((corners.map(|p| mm((-p.0, p.1))), value));
+    }
+    out
+}
+
+fn panel<'a, 'b>(
+    area: &'a DrawingArea<BitMapBackend<'b>, plotters::coord::Shift>,
+    caption: &str,
+    xr: (f64, f64),
+    yr: (f64, f64),
+) -> Result<Chart<'a, 'b>, super::plot::DrawError> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, (FAMILY, 17))
+        .margin(10)
+        .x_label_area_size(36)
+        .y_label_area_size(44)
+        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x (mm)")
+        .y_desc("y (mm)")
+        .label_style((FAMILY, 12))
+        .draw()?;
+    Ok(chart)
+}
+
+/// `stress.png`: the von Mises stress under the actuation, each idealization a panel.
+fn stress_png(path: &Path, problem: &str, v: &Verification) -> Result<(), WriteError> {
+    let (xr, yr, size) = frame(v, v.results.len() as u32);
+    let title = format!("{problem}: von Mises stress under the actuation (MPa), largest marked");
+    render_png(path, size, |root| {
+        let root = root.titled(&title, (FAMILY, 20))?;
+        let areas = root.split_evenly((1, v.results.len()));
+        for (k, (area, r)) in areas.iter().zip(&v.results).enumerate() {
+            let tris = triangles(v, k, &|_| [0.0, 0.0]);
+            let top = r.fields.von_mises.iter().copied().fold(0.0, f64::max);
+            let peak = r.outputs.iter().find(|o| o.name == "stress_peak");
+            let caption = format!(
+                "{} (largest {:.1} MPa{})",
+                r.idealization.name(),
+                top * 1e-6,
+                if peak.is_some_and(|p| p.estimate.converging) {
+                    ""
+                } else {
+                    ", not converging"
+                }
+            );
+            let mut chart = panel(area, &caption, xr, yr)?;
+            chart.draw_series(tris.iter().map(|(t, val)| {
+                Polygon::new(t.to_vec(), heat(val / top.max(f64::MIN_POSITIVE)).filled())
+            }))?;
+            if let Some(at) = peak.and_then(|p| p.location_mm) {
+                for p in [at, [-at[0], at[1]]] {
+                    chart.draw_series(std::iter::once(Cross::new(
+                        (p[0], p[1]),
+                        9,
+                        BLACK.stroke_width(3),
+                    )))?;
+                }
+            }
+            // the colour scale along the bottom
+            let steps = 20;
+            let (x0, x1) = (xr.0 + 0.05 * (xr.1 - xr.0), xr.0 + 0.45 * (xr.1 - xr.0));
+            let y = yr.0 + 0.03 * (yr.1 - yr.0);
+            let h = 0.025 * (yr.1 - yr.0);
+            for s in 0..steps {
+                let a = x0 + (x1 - x0) * s as f64 / steps as f64;
+                let b = x0 + (x1 - x0) * (s + 1) as f64 / steps as f64;
+                chart.draw_series(std::iter::once(Rectangle::new(
+                    [(a, y), (b, y + h)],
+                    heat((s as f64 + 0.5) / steps as f64).filled(),
+                )))?;
+            }
+            for (x, label) in [(x0, "0".to_string()), (x1, format!("{:.0}", top * 1e-6))] {
+                chart.draw_series(std::iter::once(Text::new(
+                    label,
+                    (x, y + 2.0 * h),
+                    (FAMILY, 13),
+                )))?;
+            }
+        }
+        Ok(())
+    })
+}
+
+/// `deformed.png`: the deformed outline under the actuation, scaled, over the undeformed.
+fn deformed_png(path: &Path, problem: &str, v: &Verification) -> Result<(), WriteError> {
+    let (xr, yr, size) = frame(v, v.results.len() as u32);
+    let [x0, _, x1, _] = v.part.bounding_box;
+    let title = format!("{problem}: deformed shape under the actuation (grey: undeformed)");
+    render_png(path, size, |root| {
+        let root = root.titled(&title, (FAMILY, 20))?;
+        let areas = root.split_evenly((1, v.results.len()));
+        for (area, r) in areas.iter().zip(&v.results) {
+            let f = &r.fields;
+            let largest = f
+                .displacement
+                .chunks(2)
+                .map(|d| d[0].hypot(d[1]))
+                .fold(0.0, f64::max);
+            // the largest displacement drawn as a twentieth of the part's width
+            let scale = if largest > 0.0 {
+                0.05 * (x1 - x0) * 1e-3 / largest
+            } else {
+                1.0
+            };
+            let caption = format!("{} (displacements x {:.0})", r.idealization.name(), scale);
+            let mut chart = panel(area, &caption, xr, yr)?;
+            let m = &f.mesh;
+            for (k, style) in [(0.0, RGBColor(170, 170, 170)), (scale, BLUE)] {
+                for b in &m.boundary {
+                    // the half's edges and their mirror images; the cut is not outline
+                    if b.nodes.iter().all(|&n| m.nodes[n][0].abs() < 1e-12) {
+                        continue;
+                    }
+                    let pts: Vec<(f64, f64)> = b
+                        .nodes
+                        .iter()
+                        .map(|&n| {
+                            let p = m.nodes[n];
+                            let d = [f.displacement[2 * n], f.displacement[2 * n + 1]];
+                            ((p[0] + k * d[0]) * 1e3, (p[1] + k * d[1]) * 1e3)
+                        })
+                        .collect();
+                    let mirrored: Vec<(f64, f64)> = pts.iter().map(|p| (-p.0, p.1)).collect();
+                    chart.draw_series(std::iter::once(PathElement::new(
+                        pts,
+                        style.stroke_width(2),
+                    )))?;
+                    chart.draw_series(std::iter::once(PathElement::new(
+                        mirrored,
+                        style.stroke_width(2),
+                    )))?;
+                }
+            }
+        }
+        Ok(())
+    })
+}
+
+/// The table the command line prints: FE (both idealizations) against the analytic model,
+/// in the style of paper 004's Table 2.
+pub struct VerifyTable<'a>(pub &'a VerifyReport);
+
+/// `v` with `digits` significant digits, in plain decimals.
+fn significant(v: f64, digits: i32) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let decimals = (digits - 1 - v.abs().log10().floor() as i32).max(0) as usize;
+    format!("{v:.decimals$}")
+}
+
+/// A value in the unit a designer reads, with that unit.
+fn shown(name: &str, unit: &str, v: f64) -> (f64, &'static str) {
+    match (name, unit) {
+        ("x_in" | "y_out", _) => (v * 1e6, "um"),
+        ("k_out", _) => (v * 1e-3, "N/mm"),
+        (_, "N/m") => (v * 1e-6, "N/um"),
+        (_, "Pa") => (v * 1e-6, "MPa"),
+        (_, "Hz") => (v, "Hz"),
+        _ => (v, ""),
+    }
+}
+
+impl Display for VerifyTable<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let r = self.0;
+        let finest = r.levels.last();
+        writeln!(
+            s,
+            "{}: finite-element check (paper 004 Sec. 4.1), {} meshes, the finest {} elements on \
+             the half part, in {:.2} s; errors estimated by Richardson extrapolation{}",
+            r.problem,
+            r.levels.len(),
+            finest.map_or(0, |l| l.elements),
+            r.seconds,
+            if r.converged {
+                String::new()
+            } else {
+                format!(" (NOT all within {} %)", 100.0 * r.tolerance)
+            }
+        )?;
+        writeln!(
+            s,
+            "{:<21} {:>24} {:>24} {:>10} {:>20}",
+            "", "FE plane stress", "FE plane strain", "analytic", "deviation (ps / pe)"
+        )?;
+        let (ps, pe) = (&r.outputs["plane_stress"], &r.outputs["plane_strain"]);
+        for (name, a) in ps {
+            let b = &pe[name];
+            let (_, unit) = shown(name, a.unit, 1.0);
+            let cell = |o: &OutputReport| {
+                let (v, _) = shown(name, o.unit, o.estimate.value);
+                match o.estimate.relative_error {
+                    Some(e) if o.estimate.converging => {
+                        format!("{} (+-{} %)", significant(v, 5), significant(100.0 * e, 2))
+                    }
+                    _ => format!("{} (not conv.)", significant(v, 5)),
+                }
+            };
+            let analytic = a.analytic.map_or("-".to_string(), |v| {
+                significant(shown(name, a.unit, v).0, 5)
+            });
+            let deviation = match (a.deviation_percent, b.deviation_percent) {
+                (Some(x), Some(y)) => format!("{x:+.1} % / {y:+.1} %"),
+                _ => "-".to_string(),
+            };
+            let label = if unit.is_empty() {
+                name.to_string()
+            } else {
+                format!("{name} ({unit})")
+            };
+            writeln!(
+                s,
+                "{label:<21} {:>24} {:>24} {analytic:>10} {deviation:>20}",
+                cell(a),
+                cell(b)
+            )?;
+        }
+        writeln!(
+            s,
+            "x_in, y_out at {} N on each input face; stresses at the actuation force ({:.1} N plane \
+             stress, {:.1} N plane strain{}); read plane strain for a part much wider than its \
+             hinges are thick",
+            r.test_force,
+            r.actuation_force.get("plane_stress").copied().unwrap_or(f64::NAN),
+            r.actuation_force.get("plane_strain").copied().unwrap_or(f64::NAN),
+            r.analytic_actuation_force
+                .map_or(String::new(), |f| format!(", analytic {f:.1} N"))
+        )
+    }
+}
