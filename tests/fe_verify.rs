@@ -93,12 +93,12 @@ fn the_printed_design_converges_and_deviates_as_table_2_does() {
         let fe = |name: &str| output(&v, k, name).estimate.value;
         // Table 2: the FE amplification and input stiffness below the analytic ones
         assert!(
-            fe("amplification") < analytic(&model, &x, "amplification"),
+            fe("fe_amplification") < analytic(&model, &x, "amplification"),
             "{:?}",
             r.idealization
         );
         assert!(
-            fe("k_in") < analytic(&model, &x, "k_in"),
+            fe("fe_k_in") < analytic(&model, &x, "k_in"),
             "{:?}",
             r.idealization
         );
@@ -108,19 +108,19 @@ fn the_printed_design_converges_and_deviates_as_table_2_does() {
         // below the analytic (the README's comparison)
         let own = v.actuation_force[k];
         let stress = analytic(&model, &x, "stress_max");
-        let section = fe("stress_section") * af / own;
+        let section = fe("fe_stress_section") * af / own;
         assert!(
             (section - stress).abs() < 0.01 * stress,
             "{:?}: {section} against {stress}",
             r.idealization
         );
-        assert!(fe("stress_peak") * af / own > 1.1 * stress);
-        assert!(fe("stress_section") < stress);
+        assert!(fe("fe_stress_max") * af / own > 1.1 * stress);
+        assert!(fe("fe_stress_section") < stress);
         // the first mode is a sideways one, below the output mode
-        assert!(fe("frequency_first") < fe("frequency_output"));
+        assert!(fe("fe_natural_frequency") < fe("fe_output_frequency"));
     }
     // plane strain is the stiffer bound
-    assert!(output(&v, 1, "k_in").estimate.value > output(&v, 0, "k_in").estimate.value);
+    assert!(output(&v, 1, "fe_k_in").estimate.value > output(&v, 0, "fe_k_in").estimate.value);
 }
 
 #[test]
@@ -134,17 +134,17 @@ fn a_sharp_roots_peak_stress_is_reported_as_not_converging() {
     // the peak never stops the refinement and is never extrapolated; the rest converge
     assert!(v.converged);
     for k in 0..2 {
-        let peak = &output(&v, k, "stress_peak").estimate;
+        let peak = &output(&v, k, "fe_stress_max").estimate;
         assert!(
             !peak.converging && peak.relative_error.is_none(),
             "{peak:?}"
         );
-        let values = &output(&v, k, "stress_peak").values;
+        let values = &output(&v, k, "fe_stress_max").values;
         assert!(
             values.windows(2).all(|w| w[1] > w[0]),
             "the peak grows: {values:?}"
         );
-        assert!(output(&v, k, "stress_section").estimate.converging);
+        assert!(output(&v, k, "fe_stress_section").estimate.converging);
     }
     // the fillets stand beyond the model's hinge, where it has rigid bodies: the bodies'
     // faces move out by the radius and the fillets' zones, thicker than the hinge but far
@@ -155,7 +155,9 @@ fn a_sharp_roots_peak_stress_is_reported_as_not_converging() {
         &VerifySettings::default(),
     )
     .unwrap();
-    assert!(output(&filleted, 1, "k_in").estimate.value < output(&v, 1, "k_in").estimate.value);
+    assert!(
+        output(&filleted, 1, "fe_k_in").estimate.value < output(&v, 1, "fe_k_in").estimate.value
+    );
 }
 
 #[test]
@@ -186,7 +188,7 @@ fn the_command_line_checks_a_design_and_a_runs_optimum() {
     }
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("verify.json")).unwrap()).unwrap();
-    let amp = &json["outputs"]["plane_strain"]["amplification"];
+    let amp = &json["outputs"]["plane_strain"]["fe_amplification"];
     assert!(amp["converging"].as_bool().unwrap());
     assert!(amp["relative_error"].as_f64().unwrap() < 0.005);
     assert!((amp["analytic"].as_f64().unwrap() - 12.86).abs() < 0.01);
@@ -247,7 +249,7 @@ fn with_rigid_bodies_the_part_in_plane_stress_is_the_analytic_model() {
     };
     let v = verify_design(&model, &x, &settings).unwrap();
     for name in ["amplification", "k_in", "k_out"] {
-        let fe = output(&v, 0, name).estimate.value;
+        let fe = output(&v, 0, &format!("fe_{name}")).estimate.value;
         let an = analytic(&model, &x, name);
         assert!((fe - an).abs() < 0.015 * an, "{name}: FE {fe} against {an}");
     }

@@ -78,15 +78,15 @@ impl Default for VerifySettings {
 
 /// The outputs, in the order of every level's values.
 pub const OUTPUTS: [(&str, &str, &str); 9] = [
-    ("x_in", "m", "increase of the distance between the input faces under the test force"),
-    ("y_out", "m", "output face's displacement towards the axis under the same load"),
-    ("amplification", "1", "y_out / x_in"),
-    ("k_in", "N/m", "test force / x_in"),
-    ("k_out", "N/m", "test force on the output face / its displacement, inputs free"),
-    ("stress_section", "Pa", "largest beam stress |N|/(w t) + 6|M|/(w t^2) at the hinges' root sections under the actuation"),
-    ("stress_peak", "Pa", "largest nodal von Mises stress under the actuation"),
-    ("frequency_output", "Hz", "lowest symmetric (output) mode"),
-    ("frequency_first", "Hz", "lowest mode of either symmetry"),
+    ("fe_x_in", "m", "increase of the distance between the input faces under the test force"),
+    ("fe_y_out", "m", "output face's displacement towards the axis under the same load"),
+    ("fe_amplification", "1", "y_out / x_in"),
+    ("fe_k_in", "N/m", "test force / x_in"),
+    ("fe_k_out", "N/m", "test force on the output face / its displacement, inputs free"),
+    ("fe_stress_section", "Pa", "largest beam stress |N|/(w t) + 6|M|/(w t^2) at the hinges' root sections under the actuation"),
+    ("fe_stress_max", "Pa", "largest nodal von Mises stress under the actuation"),
+    ("fe_output_frequency", "Hz", "lowest symmetric (output) mode"),
+    ("fe_natural_frequency", "Hz", "lowest mode of either symmetry"),
 ];
 
 /// Index of the peak stress among [`OUTPUTS`]: reported, never a reason to refine.
@@ -587,7 +587,7 @@ pub fn verify(
             let k_in = r
                 .outputs
                 .iter()
-                .find(|o| o.name == "k_in")
+                .find(|o| o.name == "fe_k_in")
                 .map_or(f64::NAN, |o| o.estimate.value);
             actuation.nominal_stroke * k_in + actuation.preload
         })

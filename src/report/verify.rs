@@ -33,8 +33,8 @@ pub const VERIFY_FILES: [&str; 5] = [
 const DECK_LEVEL: usize = 0;
 const DECK_3D_LAYERS: usize = 2;
 
-/// The analytic output each FE output is compared with, by the model's output names: `x_in`
-/// and `y_out` come from `k_in` and `amplification` at the test force.
+/// The analytic output each FE output is compared with, by the model's output names:
+/// `fe_x_in` and `fe_y_out` come from `k_in` and `amplification` at the test force.
 fn analytic(problem: &Problem, x: &[f64], test_force: f64) -> IndexMap<&'static str, f64> {
     let model = problem.model();
     let get = |name: &str| -> Option<f64> {
@@ -48,24 +48,24 @@ fn analytic(problem: &Problem, x: &[f64], test_force: f64) -> IndexMap<&'static 
     let mut out = IndexMap::new();
     let (k_in, amp) = (get("k_in"), get("amplification"));
     if let Some(k) = k_in {
-        out.insert("x_in", test_force / k);
-        out.insert("k_in", k);
+        out.insert("fe_x_in", test_force / k);
+        out.insert("fe_k_in", k);
         if let Some(a) = amp {
-            out.insert("y_out", a * test_force / k);
+            out.insert("fe_y_out", a * test_force / k);
         }
     }
     if let Some(a) = amp {
-        out.insert("amplification", a);
+        out.insert("fe_amplification", a);
     }
     if let Some(k) = get("k_out") {
-        out.insert("k_out", k);
+        out.insert("fe_k_out", k);
     }
     if let Some(s) = get("stress_max") {
-        out.insert("stress_section", s);
-        out.insert("stress_peak", s);
+        out.insert("fe_stress_section", s);
+        out.insert("fe_stress_max", s);
     }
     if let Some(f) = get("natural_frequency") {
-        out.insert("frequency_output", f);
+        out.insert("fe_output_frequency", f);
     }
     out
 }
@@ -135,7 +135,7 @@ impl VerifyReport {
                 let meaning = OUTPUTS.iter().find(|m| m.0 == o.name).map_or("", |m| m.2);
                 let analytic = a.get(o.name).copied();
                 let fe = o.estimate.value;
-                let stress = o.name.starts_with("stress");
+                let stress = o.name.starts_with("fe_stress");
                 map.insert(
                     o.name,
                     OutputReport {
@@ -288,7 +288,7 @@ fn stress_png(path: &Path, problem: &str, v: &Verification) -> Result<(), WriteE
         for (k, (area, r)) in areas.iter().zip(&v.results).enumerate() {
             let tris = triangles(v, k, &|_| [0.0, 0.0]);
             let top = r.fields.von_mises.iter().copied().fold(0.0, f64::max);
-            let peak = r.outputs.iter().find(|o| o.name == "stress_peak");
+            let peak = r.outputs.iter().find(|o| o.name == "fe_stress_max");
             let caption = format!(
                 "{} (largest {:.1} MPa{})",
                 r.idealization.name(),
@@ -408,8 +408,8 @@ fn significant(v: f64, digits: i32) -> String {
 /// A value in the unit a designer reads, with that unit.
 fn shown(name: &str, unit: &str, v: f64) -> (f64, &'static str) {
     match (name, unit) {
-        ("x_in" | "y_out", _) => (v * 1e6, "um"),
-        ("k_out", _) => (v * 1e-3, "N/mm"),
+        ("fe_x_in" | "fe_y_out", _) => (v * 1e6, "um"),
+        ("fe_k_out", _) => (v * 1e-3, "N/mm"),
         (_, "N/m") => (v * 1e-6, "N/um"),
         (_, "Pa") => (v * 1e-6, "MPa"),
         (_, "Hz") => (v, "Hz"),
@@ -474,7 +474,7 @@ impl Display for VerifyTable<'_> {
         }
         writeln!(
             s,
-            "x_in, y_out at {} N on each input face; stresses at the actuation force ({:.1} N plane \
+            "fe_x_in, fe_y_out at {} N on each input face; stresses at the actuation force ({:.1} N plane \
              stress, {:.1} N plane strain{}); read plane strain for a part much wider than its \
              hinges are thick",
             r.test_force,
