@@ -5,7 +5,10 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::Parser;
+
+mod args;
+use args::{Cli, Command, DesignArgs, StudyArgs};
 
 use flexopt::fe::verify::{verify_design, VerifySettings};
 use flexopt::pareto::{pareto, ParetoSpec};
@@ -15,7 +18,7 @@ use flexopt::problem::{Problem, Solver};
 use flexopt::report::pareto::write_pareto;
 use flexopt::report::part::write_part;
 use flexopt::report::study::write_all;
-use flexopt::report::summary::{ParetoSummary, StudySummary, Wrote};
+use flexopt::report::summary::{infeasible_message, ParetoSummary, StudySummary, Wrote};
 use flexopt::report::sweep::write_sweep;
 use flexopt::report::verify::{write_verify, VerifyReport, VerifyTable};
 use flexopt::report::{check_writable, DesignReport};
@@ -61,150 +64,6 @@ impl Failure {
             message: e.to_string(),
         }
     }
-}
-
-#[derive(Parser)]
-#[command(
-    name = "flexopt",
-    version,
-    about = "Design and optimize compliant flexure-hinge mechanisms"
-)]
-struct Cli {
-    #[command(subcommand)]
-    command: Command,
-}
-
-#[derive(Subcommand)]
-enum Command {
-    /// Evaluate one design and print every output as JSON.
-    Eval {
-        /// The problem file (TOML).
-        problem: PathBuf,
-        /// The design, `name=value` pairs in the problem file's units, comma-separated;
-        /// fixed variables may be left out.
-        #[arg(long)]
-        design: String,
-    },
-    /// The part of one design: its outline for CAD and wire EDM (part.dxf, part.svg,
-    /// part.json) and a dimensioned drawing (part.png).
-    Export {
-        /// The problem file (TOML).
-        problem: PathBuf,
-        #[command(flatten)]
-        design: DesignArgs,
-        /// Folder to write into (default: results/<problem name>/export).
-        #[arg(long)]
-        out: Option<PathBuf>,
-    },
-    /// Check one design on its part by finite elements: paper 004's load cases in plane
-    /// stress and plane strain, each output's discretization error estimated (verify.json,
-    /// stress.png, deformed.png, CalculiX decks part.inp and part3d.inp).
-    Verify {
-        /// The problem file (TOML).
-        problem: PathBuf,
-        #[command(flatten)]
-        design: DesignArgs,
-        /// Folder to write into (default: results/<problem name>/verify).
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// The relative error every output must be estimated below (default 0.005).
-        #[arg(long)]
-        tolerance: Option<f64>,
-    },
-    /// Curves of the outputs against one design variable (JSON and PNG).
-    Sweep {
-        problem: PathBuf,
-        /// The variable to sweep.
-        #[arg(long)]
-        param: String,
-        /// First value, in the variable's unit.
-        #[arg(long, allow_hyphen_values = true)]
-        from: f64,
-        /// Last value, in the variable's unit.
-        #[arg(long, allow_hyphen_values = true)]
-        to: f64,
-        /// Number of points.
-        #[arg(long, default_value_t = 201)]
-        steps: usize,
-        /// The design the other variables are held at, `name=value` pairs in the file's
-        /// units; variables left out (or all, without it) take the middle of their bounds,
-        /// an angle range that straddles zero the middle of its positive part.
-        #[arg(long)]
-        around: Option<String>,
-        /// Outputs to record, comma-separated (default: all).
-        #[arg(long, value_delimiter = ',')]
-        outputs: Vec<String>,
-        /// Folder to write into (default: results/<problem name>/sweep).
-        #[arg(long)]
-        out: Option<PathBuf>,
-    },
-    /// Optimize: local solves from many starts, optima sorted into zones, the optimal
-    /// design exported (optimum.json, starts.json/.csv, zones.json, zones.png,
-    /// configurations.png).
-    Run {
-        problem: PathBuf,
-        #[command(flatten)]
-        study: StudyArgs,
-        /// Local solver (default: the problem file's search.solver).
-        #[arg(long, value_parser = ["sqp", "nelder-mead"])]
-        solver: Option<String>,
-        /// No progress bar.
-        #[arg(long)]
-        quiet: bool,
-        /// Check the optimum on its part by finite elements too (into DIR/verify).
-        #[arg(long)]
-        verify: bool,
-    },
-    /// Trade-off front by the epsilon-constraint method: the limit of the problem's
-    /// one-sided constraint on OUTPUT is stepped from A to B and the study run at each
-    /// step (pareto.json, pareto.png).
-    Pareto {
-        problem: PathBuf,
-        /// The constrained output whose limit is stepped.
-        #[arg(long)]
-        vary: String,
-        /// First limit, in the constraint's unit.
-        #[arg(long, allow_hyphen_values = true)]
-        from: f64,
-        /// Last limit, in the constraint's unit.
-        #[arg(long, allow_hyphen_values = true)]
-        to: f64,
-        /// Number of limits.
-        #[arg(long, default_value_t = 11)]
-        steps: usize,
-        #[command(flatten)]
-        study: StudyArgs,
-    },
-}
-
-/// Where a command takes its one design from.
-#[derive(clap::Args)]
-#[group(required = true, multiple = false)]
-struct DesignArgs {
-    /// The design, `name=value` pairs in the problem file's units, comma-separated; fixed
-    /// variables may be left out.
-    #[arg(long)]
-    design: Option<String>,
-    /// A report of `flexopt run` whose design to take (its `design_si`).
-    #[arg(long)]
-    optimum: Option<PathBuf>,
-}
-
-/// The options of a multistart study, shared by `run` and `pareto`.
-#[derive(clap::Args)]
-struct StudyArgs {
-    /// Folder to write into (default: results/<problem name>).
-    #[arg(long)]
-    out: Option<PathBuf>,
-    /// Number of starts, per limit for `pareto` (default: the problem file's search.starts).
-    #[arg(long)]
-    starts: Option<usize>,
-    /// Random seed (default: the problem file's search.seed).
-    #[arg(long)]
-    seed: Option<u64>,
-    /// Worker threads, 0 for every core (default: the problem file's search.threads).
-    #[arg(long)]
-    threads: Option<usize>,
 }
 
 fn main() -> ExitCode {
@@ -454,53 +313,6 @@ fn run_study(
     } else {
         Err(Failure::no_feasible(infeasible_message(problem, &study)))
     }
-}
-
-/// What a run without a feasible start tells: the constraints that cannot be met with the
-/// others, where the least violating design leaves them and what they ask.
-fn infeasible_message(problem: &Problem, study: &flexopt::study::Study) -> String {
-    let head = format!(
-        "{}: no start ended at a feasible design",
-        problem.file.display()
-    );
-    let Some(l) = &study.least_violating else {
-        return format!("{head}; optimum.json holds the least violating one");
-    };
-    let report = flexopt::report::DesignReport::new(problem, &l.x);
-    let unmet: Vec<String> = l
-        .unmet
-        .iter()
-        .filter_map(|&k| report.constraints.get(k))
-        .map(|c| {
-            // six significant digits, as a designer reads them
-            let show = |v: Option<f64>| {
-                v.map_or("-".to_string(), |v| {
-                    flexopt::problem::units::short(format!("{v:.5e}").parse().unwrap_or(v))
-                })
-            };
-            let u = if c.unit == "1" {
-                String::new()
-            } else {
-                format!(" {}", c.unit)
-            };
-            let wanted = match (c.lower, c.upper) {
-                (Some(_), Some(_)) => format!("between {} and {}", show(c.lower), show(c.upper)),
-                (Some(_), None) => format!(">= {}", show(c.lower)),
-                _ => format!("<= {}", show(c.upper)),
-            };
-            format!("{} = {}{u} (wanted {wanted}{u})", c.output, show(c.value))
-        })
-        .collect();
-    format!(
-        "{head}; no start met {} together with the other constraints: {}. optimum.json holds \
-         the design that meets the others and violates these least",
-        if unmet.len() == 1 {
-            "this one"
-        } else {
-            "these"
-        },
-        unmet.join("; ")
-    )
 }
 
 /// Writes to stdout; a reader that has gone away (a closed pipe) is not an error worth a

@@ -177,3 +177,50 @@ fn wrote(s: &mut fmt::Formatter<'_>, files: &[PathBuf]) -> fmt::Result {
     }
     Ok(())
 }
+
+/// What a run without a feasible start tells: the constraints that cannot be met with the
+/// others, where the least violating design leaves them and what they ask.
+pub fn infeasible_message(problem: &Problem, study: &Study) -> String {
+    let head = format!(
+        "{}: no start ended at a feasible design",
+        problem.file.display()
+    );
+    let Some(l) = &study.least_violating else {
+        return format!("{head}; optimum.json holds the least violating one");
+    };
+    let report = super::DesignReport::new(problem, &l.x);
+    let unmet: Vec<String> = l
+        .unmet
+        .iter()
+        .filter_map(|&k| report.constraints.get(k))
+        .map(|c| {
+            // six significant digits, as a designer reads them
+            let show = |v: Option<f64>| {
+                v.map_or("-".to_string(), |v| {
+                    crate::problem::units::short(format!("{v:.5e}").parse().unwrap_or(v))
+                })
+            };
+            let u = if c.unit == "1" {
+                String::new()
+            } else {
+                format!(" {}", c.unit)
+            };
+            let wanted = match (c.lower, c.upper) {
+                (Some(_), Some(_)) => format!("between {} and {}", show(c.lower), show(c.upper)),
+                (Some(_), None) => format!(">= {}", show(c.lower)),
+                _ => format!("<= {}", show(c.upper)),
+            };
+            format!("{} = {}{u} (wanted {wanted}{u})", c.output, show(c.value))
+        })
+        .collect();
+    format!(
+        "{head}; no start met {} together with the other constraints: {}. optimum.json holds \
+         the design that meets the others and violates these least",
+        if unmet.len() == 1 {
+            "this one"
+        } else {
+            "these"
+        },
+        unmet.join("; ")
+    )
+}

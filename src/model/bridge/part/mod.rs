@@ -37,9 +37,12 @@
 
 use serde::Serialize;
 
+mod drawing;
+
 use super::geometry::{Geometry, Layout};
 use super::BridgeSettings;
-use crate::part::{Actuation, Actuator, Annotation, Face, HingeSite, PartSpec, Solid};
+use crate::part::{Actuation, Actuator, Face, HingeSite, PartSpec, Solid};
+use drawing::{annotations, deg, mm};
 
 /// The `[part]` settings of a bridge (SI).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -135,26 +138,6 @@ fn on_edges(mut polygon: Vec<P>, points: &[P]) -> Vec<P> {
         }
     }
     polygon
-}
-
-/// A length for a drawing or message: mm, at most three decimals.
-fn mm(v: f64) -> String {
-    format!("{} mm", trimmed(v * 1e3, 3))
-}
-
-fn deg(v: f64) -> String {
-    format!("{}°", trimmed(v.to_degrees(), 2))
-}
-
-/// `v` with at most `decimals` decimals, no trailing zeros, and no sign on a zero.
-fn trimmed(v: f64, decimals: usize) -> String {
-    let s = format!("{v:.decimals$}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.into()
-    }
 }
 
 /// The upper left quarter placed in the part: its nodes, the faces at the hinges' ends, the
@@ -470,70 +453,4 @@ fn size_problems(s: &PartSettings, q: &Quarter, t: f64) -> Vec<String> {
         ));
     }
     problems
-}
-
-/// The drawing's dimensions: overall size, pocket, the upper left quarter's hinges and link.
-fn annotations(
-    g: &Geometry<f64>,
-    q: &Quarter,
-    tb: f64,
-    td: f64,
-    [in_far, in_h, out_top, pocket]: [f64; 4],
-) -> Vec<Annotation> {
-    let mid = |p: P, q: P| scale(add(p, q), 0.5);
-    let top = in_h.max(out_top);
-    let [a, _] = across(q.f[0], q.nb, q.hb);
-    vec![
-        Annotation::Length {
-            a: [in_far, -top],
-            b: [-in_far, -top],
-            offset: -3e-3,
-            label: mm(-2.0 * in_far),
-        },
-        Annotation::Length {
-            a: [-in_far, -top],
-            b: [-in_far, top],
-            offset: -3e-3,
-            label: mm(2.0 * top),
-        },
-        Annotation::Length {
-            a: [a[0], 0.0],
-            b: [-a[0], 0.0],
-            offset: 0.0,
-            label: format!("pocket {}", mm(pocket)),
-        },
-        Annotation::Length {
-            a: q.n[0],
-            b: q.n[1],
-            offset: 1.2e-3,
-            label: format!("l2 {}", mm(g.l2())),
-        },
-        Annotation::Length {
-            a: q.n[2],
-            b: q.n[3],
-            offset: 1.2e-3,
-            label: format!("l4 {}", mm(g.l4())),
-        },
-        Annotation::Length {
-            a: q.n[1],
-            b: q.n[2],
-            offset: -(q.hb.max(q.hd) + 1.5e-3),
-            label: format!("l3 {}", mm(g.l3)),
-        },
-        Annotation::Note {
-            at: mid(q.n[0], q.n[1]),
-            label_at: [mid(q.n[0], q.n[1])[0], top + 2e-3],
-            label: format!("t2 {}, δ2 {}", mm(tb), deg(g.delta2)),
-        },
-        Annotation::Note {
-            at: mid(q.n[1], q.n[2]),
-            label_at: [mid(q.n[1], q.n[2])[0], top + 4e-3],
-            label: format!("δ3 {}", deg(g.delta3)),
-        },
-        Annotation::Note {
-            at: mid(q.n[2], q.n[3]),
-            label_at: [mid(q.n[2], q.n[3])[0], top + 6e-3],
-            label: format!("t4 {}, δ4 {}", mm(td), deg(g.delta4)),
-        },
-    ]
 }

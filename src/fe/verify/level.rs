@@ -1,0 +1,301 @@
+//! One mesh of a verification: its conditions, its solves, its outputs.
+
+use crate::fe::assembly::Pattern;
+use crate::fe::element::{Elastic, Idealization};
+use crate::fe::geometry::Domain;
+use crate::fe::mesh::Mesh;
+use crate::fe::stress::{nodal_stresses, peak_von_mises, section, Locator};
+use crate::fe::{loads, modal, FeError};
+use crate::part::half::SYMMETRY;
+use crate::part::Actuation;
+
+/// What the part gives the analysis.
+pub(super) struct Setup {
+    pub(super) domain: Domain,
+    pub(super) material: Elastic,
+    pub(super) width: f64,
+    pub(super) actuation: Actuation,
+    pub(super) body_stiffening: f64,
+}
+
+/// The element size at `p`: `t / n` on and around each hinge's thin section, growing by 0.3
+/// of the distance from it, never above a tenth of the part.
+pub(super) fn size_function(
+    domain: &Domain,
+    per_thickness: f64,
+) -> (impl Fn([f64; 2]) -> f64, f64) {
+    let hinges: Vec<(crate::fe::geometry::Edge, f64)> = domain
+        .hinges
+        .iter()
+        .map(|h| {
+            (
+                crate::fe::geometry::Edge::Line {
+                    a: h.start,
+                    b: h.end,
+                },
+                h.thickness,
+            )
+        })
+        .collect();
+    let coarse = 0.1 * domain.size();
+    (
+        move |p: [f64; 2]| {
+            hinges.iter().fold(coarse, |h, (line, t)| {
+                let d = (line.nearest(p).0 - 0.5 * t).max(0.0);
+                h.min(t / per_thickness + 0.3 * d)
+            })
+        },
+        coarse,
+    )
+}
+
+/// The degrees of freedom on the nodes of the faces called `name` (both directions).
+pub(super) fn face_nodes(m: &Mesh, domain: &Domain, name: &str) -> Vec<usize> {
+    let tol = 1e-9 * domain.size();
+    let mut nodes: Vec<usize> = domain
+        .faces
+        .iter()
+        .filter(|f| f.name == name)
+        .flat_map(|f| m.nodes_on(f.a, f.b, tol))
+        .collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    nodes
+}
+
+pub(super) fn face_edges(
+    m: &Mesh,
+    domain: &Domain,
+    name: &str,
+) -> Result<Vec<[usize; 3]>, FeError> {
+    let tol = 1e-9 * domain.size();
+    let edges: Vec<[usize; 3]> = domain
+        .faces
+        .iter()
+        .filter(|f| f.name == name)
+        .flat_map(|f| m.edges_on(f.a, f.b, tol))
+        .collect();
+    if edges.is_empty() {
+        return Err(FeError::Setup(format!("the part has no face `{name}`")));
+    }
+    Ok(edges)
+}
+
+/// A mesh's one pattern: the clamping face fixed, every other condition held by springs on
+/// the diagonal (stiff ones, [`PENALTY`] times the stiffest diagonal entry, for conditions
+/// that are exact), so that one ordering and one symbolic factorization serve the static
+/// cases and both families of modes.
+pub(super) struct Holds {
+    pub(super) pattern: Pattern,
+    /// The degrees of freedom of the cut, in x and in y, and of the input face in x.
+    pub(super) cut_x: Vec<usize>,
+    pub(super) cut_y: Vec<usize>,
+    pub(super) input_x: Vec<usize>,
+}
+
+/// The stiffness of a spring that stands for a fixed degree of freedom, relative to the
+/// stiffest diagonal entry: the held displacement is about `1e-9` of the others, and the
+/// outputs move by as little (measured against elimination in the tests).
+const PENALTY: f64 = 1e9;
+
+pub(super) fn holds(m: &Mesh, setup: &Setup) -> Result<Holds, FeError> {
+    let d = &setup.domain;
+    let clamp = face_nodes(m, d, "clamp_bottom");
+    let mut fixed = vec![false; 2 * m.nodes.len()];
+    for &n in &clamp {
+        fixed[2 * n] = true;
+        fixed[2 * n + 1] = true;
+    }
+    let cut = face_nodes(m, d, SYMMETRY);
+    Ok(Holds {
+        pattern: Pattern::new(m, &fixed)?,
+        cut_x: cut.iter().map(|&n| 2 * n).collect(),
+        cut_y: cut.iter().map(|&n| 2 * n + 1).collect(),
+        input_x: face_nodes(m, d, "input_right")
+            .iter()
+            .map(|&n| 2 * n)
+            .collect(),
+    })
+}
+
+/// One level's values (in the order of [`OUTPUTS`]; the modal ones NaN without a density),
+/// with the locations of the stresses and the actuation fields.
+pub(super) struct LevelResult {
+    pub(super) values: [f64; 9],
+    pub(super) peak_at: [f64; 2],
+    pub(super) section_at: String,
+    pub(super) section_point: [f64; 2],
+    pub(super) displacement: Vec<f64>,
+    pub(super) von_mises: Vec<f64>,
+}
+
+fn column(x: &faer::Mat<f64>, j: usize) -> Vec<f64> {
+    (0..x.nrows()).map(|i| x[(i, j)]).collect()
+}
+
+pub(super) fn solve_level(
+    m: &Mesh,
+    setup: &Setup,
+    holds: &Holds,
+    mass: Option<&faer::sparse::SparseColMat<usize, f64>>,
+    idealization: Idealization,
+    force: f64,
+) -> Result<LevelResult, FeError> {
+    let d = &setup.domain;
+    let (w, mat) = (setup.width, &setup.material);
+    let input = face_edges(m, d, "input_right")?;
+    let output = face_edges(m, d, "output_top")?;
+    face_edges(m, d, "clamp_bottom")?;
+    let p = &holds.pattern;
+    let in_hinge = |e: usize| {
+        let c = crate::fe::element::point(&m.element_nodes(e), [1.0 / 3.0; 3]);
+        d.hinges.iter().any(|h| {
+            let len = (h.end[0] - h.start[0]).hypot(h.end[1] - h.start[1]);
+            let u = [(h.end[0] - h.start[0]) / len, (h.end[1] - h.start[1]) / len];
+            let (dx, dy) = (c[0] - h.start[0], c[1] - h.start[1]);
+            let along = dx * u[0] + dy * u[1];
+            let across = (-dx * u[1] + dy * u[0]).abs();
+            (0.0..=len).contains(&along) && across <= 0.5 * h.thickness
+        })
+    };
+    let k0 = if setup.body_stiffening == 1.0 {
+        p.stiffness(m, mat, w, idealization)?
+    } else {
+        let f = setup.body_stiffening;
+        p.stiffness_scaled(m, mat, w, idealization, &[], &|e| {
+            if in_hinge(e) {
+                1.0
+            } else {
+                f
+            }
+        })?
+    };
+    let penalty = PENALTY * p.largest_diagonal(&k0);
+    let held =
+        |dofs: &[usize]| -> Vec<(usize, f64)> { dofs.iter().map(|&d| (d, penalty)).collect() };
+    let factor = p.factor(&p.with_diagonal(&k0, &held(&holds.cut_x)))?;
+    let n = p.dofs.count();
+    // the test force on the input face, and half the test force on the half output face
+    let loads = [
+        loads::uniform_force(m, &input, w, [force, 0.0]),
+        loads::uniform_force(m, &output, w, [0.0, 0.5 * force]),
+    ];
+    let mut rhs = faer::Mat::<f64>::zeros(n, 2);
+    for (j, f) in loads.iter().enumerate() {
+        for (dof, &v) in f.iter().enumerate() {
+            if let Some(i) = p.dofs.free(dof) {
+                rhs[(i, j)] += v;
+            }
+        }
+    }
+    factor.solve(&mut rhs);
+    let zero = vec![0.0; 2 * m.nodes.len()];
+    let u_in = p.dofs.expand(&column(&rhs, 0), &zero);
+    let u_out = p.dofs.expand(&column(&rhs, 1), &zero);
+    let x_in = 2.0 * loads::mean_displacement(m, &input, &u_in)[0];
+    let y_out = -loads::mean_displacement(m, &output, &u_in)[1];
+    let k_in = force / x_in;
+    let k_out = force / loads::mean_displacement(m, &output, &u_out)[1];
+
+    // the actuation: the largest input force, the stresses it gives
+    let a = &setup.actuation;
+    let actuation_force = a.nominal_stroke * k_in + a.preload;
+    let scale = actuation_force / force;
+    let u_act: Vec<f64> = u_in.iter().map(|v| v * scale).collect();
+    let dm = mat.d_matrix(idealization);
+    let nodal = nodal_stresses(m, &dm, &u_act);
+    let von_mises: Vec<f64> = nodal
+        .iter()
+        .map(|s| mat.von_mises(*s, idealization))
+        .collect();
+    let (peak, peak_node) = peak_von_mises(&nodal, mat, idealization);
+    let locator = Locator::new(m);
+    let mut best = (f64::NEG_INFINITY, String::new(), [0.0; 2]);
+    // the root sections' resultants from two inner sections, at a quarter and three
+    // quarters of the thin section: along a strip free of loads the axial force is constant
+    // and the moment linear (statics, exactly), so they give the roots' resultants without
+    // integrating across a root, where a sharp corner's stress is singular
+    for h in &d.hinges {
+        let len = (h.end[0] - h.start[0]).hypot(h.end[1] - h.start[1]);
+        let axis = [(h.end[0] - h.start[0]) / len, (h.end[1] - h.start[1]) / len];
+        let at = |f: f64| {
+            [
+                h.start[0] + f * len * axis[0],
+                h.start[1] + f * len * axis[1],
+            ]
+        };
+        let cut = |f: f64| {
+            section(m, &locator, &dm, &u_act, at(f), axis, h.thickness)
+                .ok_or_else(|| FeError::Solve(format!("a section of {} leaves the mesh", h.name)))
+        };
+        let (a, b) = (cut(0.25)?, cut(0.75)?);
+        let axial = 0.5 * (a.axial + b.axial);
+        let t = h.thickness;
+        for (end, moment, centre) in [
+            ("start", 1.5 * a.moment - 0.5 * b.moment, h.start),
+            ("end", 1.5 * b.moment - 0.5 * a.moment, h.end),
+        ] {
+            let stress = axial.abs() / t + 6.0 * moment.abs() / (t * t);
+            if stress > best.0 {
+                best = (
+                    stress,
+                    format!("{}, {end} of its thin section", h.name),
+                    centre,
+                );
+            }
+        }
+    }
+
+    // the modes: the symmetric family with the actuator holding the input face (springs of
+    // its stiffness, each face node its share of 2 k_a as the other face is the mirror, or
+    // held in x for an actuator much stiffer than the part); the antisymmetric family with
+    // the cut held in y; each started from a static deflection close to its lowest mode
+    let mut f_output = f64::NAN;
+    let mut f_first = f64::NAN;
+    if let Some(mass) = mass {
+        let actuator: Vec<(usize, f64)> = match a.stiffness {
+            None => held(&holds.input_x),
+            Some(ka) => loads::uniform_force(m, &input, w, [1.0, 0.0])
+                .iter()
+                .enumerate()
+                .filter(|(_, &v)| v != 0.0)
+                .map(|(dof, &v)| (dof, 2.0 * ka * v))
+                .collect(),
+        };
+        let lowest = |springs: Vec<(usize, f64)>, load: &[f64]| -> Result<f64, FeError> {
+            let factor = p.factor(&p.with_diagonal(&k0, &springs))?;
+            let mut r = faer::Mat::<f64>::zeros(n, 1);
+            for (dof, &v) in load.iter().enumerate() {
+                if let Some(i) = p.dofs.free(dof) {
+                    r[(i, 0)] = v;
+                }
+            }
+            factor.solve(&mut r);
+            let modes = modal::lowest_modes(&factor, mass, 1, 1e-6, Some(column(&r, 0)))?;
+            Ok(modes[0].frequency)
+        };
+        let symmetric = [held(&holds.cut_x), actuator].concat();
+        f_output = lowest(symmetric, &loads[1])?;
+        let sideways = loads::uniform_force(m, &output, w, [force, 0.0]);
+        f_first = f_output.min(lowest(held(&holds.cut_y), &sideways)?);
+    }
+    let amplification = y_out / x_in;
+    Ok(LevelResult {
+        values: [
+            x_in,
+            y_out,
+            amplification,
+            k_in,
+            k_out,
+            best.0,
+            peak,
+            f_output,
+            f_first,
+        ],
+        peak_at: m.nodes[peak_node],
+        section_at: best.1,
+        section_point: best.2,
+        displacement: u_act,
+        von_mises,
+    })
+}
