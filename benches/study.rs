@@ -120,6 +120,36 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
+/// The same 300-start study with strip hinges (wei2017) and with circular notches
+/// (bridge_circular), side by side: what the notches' closed forms cost.
+fn hinge_kinds(c: &mut Criterion) {
+    let mut group = c.benchmark_group("hinge_kinds_300_starts");
+    group.sample_size(20);
+    let pool = pool();
+    for (name, file) in [
+        ("strip", "problems/wei2017.toml"),
+        ("circular", "problems/bridge_circular.toml"),
+    ] {
+        let problem = Problem::load(Path::new(file)).unwrap();
+        let nlp = DesignNlp::new(&problem);
+        let starts = study_starts(&problem, &nlp);
+        let settings = sqp_settings(&problem);
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                pool.install(|| {
+                    black_box(
+                        starts
+                            .par_iter()
+                            .map(|x0| sqp::solve(&nlp, x0, &settings))
+                            .collect::<Vec<_>>(),
+                    )
+                })
+            })
+        });
+    }
+    group.finish();
+}
+
 /// One local solve of each kind, the Nelder-Mead study, and the SQP study on one and two
 /// threads.
 fn pieces(c: &mut Criterion) {
@@ -170,5 +200,5 @@ fn pieces(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench, pieces);
+criterion_group!(benches, bench, pieces, hinge_kinds);
 criterion_main!(benches);

@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export RESULTS=${1:-results}
 cargo build --release --quiet
-for p in wei2017 wei2017_dynamic bridge_stress prr3_frequency pss3_frequency; do
+for p in wei2017 wei2017_dynamic bridge_stress bridge_circular prr3_frequency pss3_frequency; do
   ./target/release/flexopt run "problems/$p.toml" --quiet --out "$RESULTS/$p" >/dev/null
 done
 # the finite-element check of the optimum and of paper 004's printed design (Table 1)
@@ -16,6 +16,10 @@ done
   --out "$RESULTS/wei2017/verify" >/dev/null
 ./target/release/flexopt verify problems/wei2017.toml --out "$RESULTS/wei2017/verify_printed" \
   --design l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07,t4=0.4 >/dev/null
+./target/release/flexopt verify problems/bridge_circular.toml \
+  --optimum "$RESULTS/bridge_circular/optimum.json" --out "$RESULTS/bridge_circular/verify" >/dev/null
+# the accuracy table of the hinge kinds (results/hinges/)
+cargo run --release --quiet --example hinge_accuracy >/dev/null
 ./target/release/flexopt pareto problems/wei2017_dynamic.toml --vary natural_frequency \
   --from 400 --to 2000 --steps 17 --out "$RESULTS/wei2017_dynamic" >/dev/null
 for s in fig9 prr3_sweeps pss3_sweeps; do

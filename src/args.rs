@@ -52,6 +52,39 @@ pub enum Command {
         #[arg(long)]
         tolerance: Option<f64>,
     },
+    /// One flexure hinge on its own: compliances, stiffnesses, rotation per moment and the
+    /// rotation a stress limit allows, as JSON. Dimensions in mm: a strip takes --l --t, a
+    /// circular notch --r --t, an elliptical one --a --b --t, a corner-filleted leaf --l --t
+    /// --r.
+    Hinge {
+        /// strip, circular, elliptical or corner-filleted.
+        #[arg(long)]
+        kind: String,
+        /// Length (strip, corner-filleted; fillets included), mm.
+        #[arg(long)]
+        l: Option<f64>,
+        /// Least thickness, mm.
+        #[arg(long)]
+        t: Option<f64>,
+        /// Notch radius (circular) or fillet radius (corner-filleted), mm.
+        #[arg(long)]
+        r: Option<f64>,
+        /// Semi-axis along the hinge (elliptical), mm.
+        #[arg(long)]
+        a: Option<f64>,
+        /// Semi-axis across the hinge (elliptical), mm.
+        #[arg(long)]
+        b: Option<f64>,
+        /// Width of the hinge (out of the plane), mm.
+        #[arg(long)]
+        width: f64,
+        /// A material preset (al7075-t6, 65si2mn).
+        #[arg(long, default_value = "al7075-t6")]
+        material: String,
+        /// The stress limit, MPa (default: a third of the material's ultimate strength).
+        #[arg(long)]
+        stress_limit: Option<f64>,
+    },
     /// Curves of the outputs against one design variable (JSON and PNG).
     Sweep {
         problem: PathBuf,

@@ -11,6 +11,7 @@ mod args;
 use args::{Cli, Command, DesignArgs, StudyArgs};
 
 use flexopt::fe::verify::{verify_design, VerifySettings};
+use flexopt::model::hinge::calculator;
 use flexopt::pareto::{pareto, ParetoSpec};
 use flexopt::part::Part;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
@@ -84,6 +85,23 @@ fn run(command: Command) -> Result<(), Failure> {
             design,
             out,
         } => export(&problem, &design, out),
+        Command::Hinge {
+            kind,
+            l,
+            t,
+            r,
+            a,
+            b,
+            width,
+            material,
+            stress_limit,
+        } => hinge(
+            &kind,
+            [("l", l), ("t", t), ("r", r), ("a", a), ("b", b)],
+            width,
+            &material,
+            stress_limit,
+        ),
         Command::Verify {
             problem,
             design,
@@ -411,6 +429,19 @@ fn export(path: &Path, design: &DesignArgs, out: Option<PathBuf>) -> Result<(), 
         .map_err(Failure::write_failed)?;
     emit(&Wrote(&files));
     Ok(())
+}
+
+/// `flexopt hinge`: one hinge's report as JSON; every bad value is bad input.
+fn hinge(
+    kind: &str,
+    given: [(&str, Option<f64>); 5],
+    width: f64,
+    material: &str,
+    stress_limit: Option<f64>,
+) -> Result<(), Failure> {
+    let report = calculator::from_options(kind, &given, width, material, stress_limit)
+        .map_err(Failure::bad_input)?;
+    print_json(&report)
 }
 
 /// The settings of a verification: the defaults, the tolerance from `--tolerance`.

@@ -142,7 +142,63 @@ pub struct Hinge {
     pub name: String,
     pub start: [f64; 2],
     pub end: [f64; 2],
+    /// The least thickness.
     pub thickness: f64,
+    /// The outline above the centre line in the hinge's frame, `(x, y, bulge)` (m), from
+    /// its start to its end.
+    pub profile: Vec<[f64; 3]>,
+}
+
+impl Hinge {
+    /// The hinge's thickness at the distance `x` (m) from its start: twice the height of
+    /// its outline there.
+    pub fn thickness_at(&self, x: f64) -> f64 {
+        let p = &self.profile;
+        for k in 0..p.len().saturating_sub(1) {
+            let (a, b) = (p[k], p[k + 1]);
+            if x < a[0] - 1e-15 || x > b[0] + 1e-15 {
+                continue;
+            }
+            let va = crate::part::Vertex {
+                x: a[0],
+                y: a[1],
+                bulge: a[2],
+            };
+            let vb = crate::part::Vertex {
+                x: b[0],
+                y: b[1],
+                bulge: 0.0,
+            };
+            return 2.0
+                * match BulgeArc::from_bulge(va, vb) {
+                    None => {
+                        let f = if b[0] > a[0] {
+                            (x - a[0]) / (b[0] - a[0])
+                        } else {
+                            0.0
+                        };
+                        a[1] + f * (b[1] - a[1])
+                    }
+                    Some(arc) => {
+                        // the arc's point above x: the root of the circle on the arc's side
+                        let dx = (x - arc.centre[0]).clamp(-arc.radius, arc.radius);
+                        let dy = (arc.radius * arc.radius - dx * dx).sqrt();
+                        let mid = arc.at(0.5);
+                        if mid[1] < arc.centre[1] {
+                            arc.centre[1] - dy
+                        } else {
+                            arc.centre[1] + dy
+                        }
+                    }
+                };
+        }
+        self.thickness
+    }
+
+    /// The hinge's length along its centre line.
+    pub fn length(&self) -> f64 {
+        (self.end[0] - self.start[0]).hypot(self.end[1] - self.start[1])
+    }
 }
 
 /// The region to mesh, in metres.
@@ -201,6 +257,11 @@ impl Domain {
                     start: m(h.start),
                     end: m(h.end),
                     thickness: h.thickness / MM,
+                    profile: h
+                        .profile
+                        .iter()
+                        .map(|v| [v[0] / MM, v[1] / MM, v[2]])
+                        .collect(),
                 })
                 .collect(),
         }

@@ -11,6 +11,7 @@ pub mod assembly;
 pub mod calculix;
 pub mod element;
 pub mod geometry;
+pub mod hinge;
 pub mod loads;
 pub mod mesh;
 pub mod modal;

@@ -172,6 +172,13 @@ pub trait Model: Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// Why some design between `lower` and `upper` (SI, every parameter) lies outside the
+    /// model's domain although each bound is valid on its own (a corner-filleted hinge whose
+    /// fillets may grow longer than half its leaf, say), with the parameter to blame.
+    fn box_error(&self, _lower: &[f64], _upper: &[f64]) -> Option<(usize, String)> {
+        None
+    }
+
     /// The outputs whose maximum this output is, when it is defined so (a largest stress
     /// over several places, say). A max is not differentiable where its arguments cross, so
     /// an optimizer given `max <= limit` does better with `part <= limit` for every part.

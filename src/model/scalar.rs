@@ -46,6 +46,9 @@ pub trait Scalar:
     fn abs(self) -> Self;
     fn sqrt(self) -> Self;
     fn powi(self, n: i32) -> Self;
+    /// `self^n` for a real exponent (`self > 0`).
+    fn powf(self, n: f64) -> Self;
+    fn atan(self) -> Self;
 }
 
 impl Scalar for f64 {
@@ -68,6 +71,12 @@ impl Scalar for f64 {
     }
     fn powi(self, n: i32) -> Self {
         f64::powi(self, n)
+    }
+    fn powf(self, n: f64) -> Self {
+        f64::powf(self, n)
+    }
+    fn atan(self) -> Self {
+        f64::atan(self)
     }
 }
 
@@ -94,6 +103,12 @@ macro_rules! num_dual_scalar {
             }
             fn powi(self, n: i32) -> Self {
                 DualNum::powi(&self, n)
+            }
+            fn powf(self, n: f64) -> Self {
+                DualNum::powf(&self, n)
+            }
+            fn atan(self) -> Self {
+                DualNum::atan(&self)
             }
         }
     )*};
@@ -320,6 +335,15 @@ impl<const N: usize> Scalar for Jet<N> {
         let p = self.re.powi(n - 1);
         self.chain(p * self.re, n as f64 * p)
     }
+    #[inline(always)]
+    fn powf(self, n: f64) -> Self {
+        let p = self.re.powf(n - 1.0);
+        self.chain(p * self.re, n * p)
+    }
+    #[inline(always)]
+    fn atan(self) -> Self {
+        self.chain(self.re.atan(), 1.0 / (1.0 + self.re * self.re))
+    }
 }
 
 #[cfg(test)]
@@ -332,6 +356,8 @@ mod tests {
         let (s, c) = (x * y).sin_cos();
         (s + c * 2.0 - 1.0) / (x.powi(3) + 3.0) * y.abs().sqrt() - (x / y).recip() / 2.0
             + -(x - y).cos()
+            + (x * 0.5 - y).atan()
+            + (x * x + 1.0).powf(0.45)
             + x.sin()
     }
 

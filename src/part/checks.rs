@@ -18,13 +18,14 @@ use super::outline::polygon_mm as polygon;
 
 use super::{HingeSite, PartSpec, MM};
 
-/// The band beside the thin section of `h` (metres, counterclockwise), `slot` wide on
-/// each side, kept `1e-9` m short of the faces at both ends, where the bodies begin.
+/// The band beside `h` (metres, counterclockwise): its root half thickness and `slot` to
+/// each side of its centre line, kept `1e-9` m short of the faces at both ends, where the
+/// bodies begin.
 pub fn keep_out(h: &HingeSite, slot: f64) -> Vec<[f64; 2]> {
     let len = (h.end[0] - h.start[0]).hypot(h.end[1] - h.start[1]);
     let u = [(h.end[0] - h.start[0]) / len, (h.end[1] - h.start[1]) / len];
     let n = [-u[1], u[0]];
-    let w = 0.5 * h.thickness + slot;
+    let w = 0.5 * h.root + slot;
     let inset = 1e-9;
     let (a, b) = (-h.fillet + inset, len + h.fillet - inset);
     let at = |s: f64, t: f64| {

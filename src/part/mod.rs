@@ -16,6 +16,7 @@ pub mod checks;
 pub mod dxf;
 pub mod half;
 pub mod outline;
+mod roots;
 pub mod svg;
 
 use serde::Serialize;
@@ -29,16 +30,22 @@ pub struct Solid {
     pub points: Vec<[f64; 2]>,
 }
 
-/// A hinge's thin section: its centre line from `start` to `end` (the model's hinge, length
-/// l), its thickness, and the fillet radius at its four roots. The solid of the hinge runs
-/// `fillet` beyond both ends, where the rigid bodies' faces are.
+/// A hinge: its centre line from `start` to `end` (the model's hinge), its least and root
+/// thicknesses, its outline above the centre line in its own frame (`profile`: `(x, y,
+/// bulge)` from `(0, root/2)` to `(length, root/2)`, metres; the kind's
+/// [`crate::model::hinge::HingeKind::outline`]), and the part's fillet radius at its four
+/// roots (a strip's; the solid of the hinge then runs `fillet` beyond both ends, where the
+/// rigid bodies' faces are).
 #[derive(Debug, Clone, PartialEq)]
 pub struct HingeSite {
     pub name: String,
     pub start: [f64; 2],
     pub end: [f64; 2],
     pub thickness: f64,
+    pub root: f64,
     pub fillet: f64,
+    pub kind: &'static str,
+    pub profile: Vec<[f64; 3]>,
     /// The index of the hinge's own solid among [`PartSpec::solids`].
     pub solid: usize,
 }
@@ -114,14 +121,20 @@ pub struct PartSpec {
     pub warnings: Vec<String>,
 }
 
-/// A hinge's thin section in a [`Part`] (mm).
+/// A hinge of a [`Part`] (mm), as [`HingeSite`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct HingeMm {
     pub name: String,
+    pub kind: &'static str,
     pub start: [f64; 2],
     pub end: [f64; 2],
+    /// The least thickness.
     pub thickness: f64,
+    /// The thickness at its ends.
+    pub root: f64,
     pub fillet: f64,
+    /// The outline above the centre line in the hinge's own frame: `(x, y, bulge)`.
+    pub profile: Vec<[f64; 3]>,
 }
 
 /// A part: its outline loops and faces in millimetres.
@@ -236,10 +249,17 @@ impl Part {
                 .iter()
                 .map(|h| HingeMm {
                     name: h.name.clone(),
+                    kind: h.kind,
                     start: mm(h.start),
                     end: mm(h.end),
                     thickness: h.thickness * MM,
+                    root: h.root * MM,
                     fillet: h.fillet * MM,
+                    profile: h
+                        .profile
+                        .iter()
+                        .map(|v| [v[0] * MM, v[1] * MM, v[2]])
+                        .collect(),
                 })
                 .collect(),
             area,

@@ -19,6 +19,7 @@
 use geo::{Coord, LineString, Polygon};
 use serde::Serialize;
 
+use super::roots::{add_fillets, add_profile};
 use super::{PartSpec, MM};
 
 /// A vertex of a loop (mm) and the bulge of the edge to the next one.
@@ -226,6 +227,9 @@ pub fn outline(spec: &PartSpec) -> Result<Vec<Loop>, Vec<String>> {
     }
     let mut problems = Vec::new();
     for hinge in &spec.hinges {
+        if hinge.profile.len() > 2 || hinge.profile.iter().any(|v| v[2] != 0.0) {
+            add_profile(&mut loops, hinge, &mut problems);
+        }
         if hinge.fillet > 0.0 {
             add_fillets(&mut loops, hinge, &mut problems);
         }
@@ -361,7 +365,7 @@ impl Exact {
     }
 }
 
-fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+pub(super) fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     let (vx, vy) = (b[0] - a[0], b[1] - a[1]);
     let len2 = vx * vx + vy * vy;
     let t = if len2 > 0.0 {
@@ -382,74 +386,4 @@ fn crossing(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Option<[f64; 
     }
     let t = ((c[0] - a[0]) * sy - (c[1] - a[1]) * sx) / den;
     Some([a[0] + t * rx, a[1] + t * ry])
-}
-
-/// Rounds the four roots of `hinge` in `loops`.
-fn add_fillets(loops: &mut [Loop], hinge: &super::HingeSite, problems: &mut Vec<String>) {
-    let s = [hinge.start[0] * MM, hinge.start[1] * MM];
-    let e = [hinge.end[0] * MM, hinge.end[1] * MM];
-    let (r, half) = (hinge.fillet * MM, 0.5 * hinge.thickness * MM);
-    let len = (e[0] - s[0]).hypot(e[1] - s[1]);
-    let u = [(e[0] - s[0]) / len, (e[1] - s[1]) / len];
-    let n = [-u[1], u[0]];
-    let at = |p: [f64; 2], a: f64, b: f64| [p[0] + a * u[0] + b * n[0], p[1] + a * u[1] + b * n[1]];
-    for (end, base, back) in [("start", s, -r), ("end", e, r)] {
-        for side in [1.0, -1.0] {
-            let corner = at(base, back, side * half);
-            let on_hinge = at(base, 0.0, side * half);
-            let on_face = at(base, back, side * (half + r));
-            if !replace_corner(loops, corner, on_hinge, on_face) {
-                problems.push(format!(
-                    "the root of {} at its {end} is not a free corner of the outline: \
-                     something covers it or its face is shorter than the fillet radius",
-                    hinge.name
-                ));
-            }
-        }
-    }
-}
-
-/// Replaces the vertex at `corner` by a quarter circle tangent at `p` and `q`; false if
-/// the corner is not there with room for the arc on both of its edges.
-fn replace_corner(loops: &mut [Loop], corner: [f64; 2], p: [f64; 2], q: [f64; 2]) -> bool {
-    let close = |v: Vertex, w: [f64; 2]| (v.x - w[0]).hypot(v.y - w[1]) < 1e-9;
-    for l in loops.iter_mut() {
-        let n = l.vertices.len();
-        let Some(i) = (0..n).find(|&i| close(l.vertices[i], corner)) else {
-            continue;
-        };
-        let (prev, next) = (l.vertices[(i + n - 1) % n], l.vertices[(i + 1) % n]);
-        // the tangent points must lie on the corner's two edges
-        let on = |a: Vertex, t: [f64; 2]| {
-            segment_distance(t, [a.x, a.y], corner) < 1e-9
-                && prev.bulge == 0.0
-                && l.vertices[i].bulge == 0.0
-        };
-        let (first, second) = if on(prev, p) && on(next, q) {
-            (p, q)
-        } else if on(prev, q) && on(next, p) {
-            (q, p)
-        } else {
-            return false;
-        };
-        // a quarter turn, its sense from the corner's
-        let cross = (corner[0] - first[0]) * (second[1] - corner[1])
-            - (corner[1] - first[1]) * (second[0] - corner[0]);
-        let bulge = std::f64::consts::FRAC_PI_8.tan() * cross.signum();
-        l.vertices[i] = Vertex {
-            x: first[0],
-            y: first[1],
-            bulge,
-        };
-        l.vertices.insert(
-            i + 1,
-            Vertex {
-                x: second[0],
-                y: second[1],
-                bulge: 0.0,
-            },
-        );
-        return true;
-    }
-    false
 }

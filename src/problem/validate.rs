@@ -238,7 +238,7 @@ impl Validator<'_, '_> {
             };
             found[p] = Some(var);
         }
-        found
+        let vars: Vec<Variable> = found
             .into_iter()
             .enumerate()
             .map(|(p, v)| {
@@ -252,7 +252,20 @@ impl Validator<'_, '_> {
                     )
                 })
             })
-            .collect()
+            .collect::<Res<_>>()?;
+        // designs the bounds allow that the model has no value for (a fillet longer than
+        // half its leaf, say): refused here, not met by the optimizer
+        let lower: Vec<f64> = vars.iter().map(|v| v.lower).collect();
+        let upper: Vec<f64> = vars.iter().map(|v| v.upper).collect();
+        if let Some((p, why)) = model.box_error(&lower, &upper) {
+            let i = raw
+                .iter()
+                .position(|v| v.name == params[p].name)
+                .unwrap_or(0);
+            let key = if vars[p].fixed { "value" } else { "upper" };
+            return Err(self.err(&[k("variables"), Segment::Index(i), k(key)], why));
+        }
+        Ok(vars)
     }
 
     fn output(&self, model: &dyn Model, path: &[Segment], name: &str) -> Res<usize> {

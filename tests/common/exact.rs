@@ -101,6 +101,15 @@ impl Scalar for Exact {
     fn sqrt(self) -> Self {
         Exact::from(self.to_f64().sqrt())
     }
+    /// The f64 arc tangent of the (rounded) value, taken as exact (the strip bridge, which
+    /// this reference checks, uses none).
+    fn atan(self) -> Self {
+        Exact::from(self.to_f64().atan())
+    }
+    /// The f64 power of the (rounded) value, taken as exact (likewise unused by the strip).
+    fn powf(self, n: f64) -> Self {
+        Exact::from(self.to_f64().powf(n))
+    }
     fn powi(self, n: i32) -> Self {
         let v = get(self);
         let mut r = BigRational::from_integer(1.into());

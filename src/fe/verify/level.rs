@@ -211,12 +211,14 @@ pub(super) fn solve_level(
     let (peak, peak_node) = peak_von_mises(&nodal, mat, idealization);
     let locator = Locator::new(m);
     let mut best = (f64::NEG_INFINITY, String::new(), [0.0; 2]);
-    // the root sections' resultants from two inner sections, at a quarter and three
-    // quarters of the thin section: along a strip free of loads the axial force is constant
-    // and the moment linear (statics, exactly), so they give the roots' resultants without
-    // integrating across a root, where a sharp corner's stress is singular
+    // the hinges' resultants across two inner sections, at a quarter and three quarters of
+    // their length: along a hinge free of loads the axial force is constant and the moment
+    // linear (statics, exactly), so they give the resultants everywhere along it without
+    // integrating across a root, where a sharp corner's stress is singular; the beam
+    // stress `|N| / t + 6 |M| / t^2` is then taken where it is largest along the hinge's
+    // own thickness, as the closed forms take it
     for h in &d.hinges {
-        let len = (h.end[0] - h.start[0]).hypot(h.end[1] - h.start[1]);
+        let len = h.length();
         let axis = [(h.end[0] - h.start[0]) / len, (h.end[1] - h.start[1]) / len];
         let at = |f: f64| {
             [
@@ -225,23 +227,32 @@ pub(super) fn solve_level(
             ]
         };
         let cut = |f: f64| {
-            section(m, &locator, &dm, &u_act, at(f), axis, h.thickness)
-                .ok_or_else(|| FeError::Solve(format!("a section of {} leaves the mesh", h.name)))
+            section(
+                m,
+                &locator,
+                &dm,
+                &u_act,
+                at(f),
+                axis,
+                h.thickness_at(f * len),
+            )
+            .ok_or_else(|| FeError::Solve(format!("a section of {} leaves the mesh", h.name)))
         };
         let (a, b) = (cut(0.25)?, cut(0.75)?);
         let axial = 0.5 * (a.axial + b.axial);
-        let t = h.thickness;
-        for (end, moment, centre) in [
-            ("start", 1.5 * a.moment - 0.5 * b.moment, h.start),
-            ("end", 1.5 * b.moment - 0.5 * a.moment, h.end),
-        ] {
+        const STATIONS: usize = 256;
+        for k in 0..=STATIONS {
+            let f = k as f64 / STATIONS as f64;
+            let moment = a.moment + (f - 0.25) / 0.5 * (b.moment - a.moment);
+            let t = h.thickness_at(f * len);
             let stress = axial.abs() / t + 6.0 * moment.abs() / (t * t);
             if stress > best.0 {
-                best = (
-                    stress,
-                    format!("{}, {end} of its thin section", h.name),
-                    centre,
-                );
+                let place = match k {
+                    0 => "at its start".to_string(),
+                    STATIONS => "at its end".to_string(),
+                    _ => format!("{:.0} % along it", 100.0 * f),
+                };
+                best = (stress, format!("{}, {place}", h.name), at(f));
             }
         }
     }

@@ -11,18 +11,39 @@ use super::{Actuator, Bridge, BridgeSettings};
 use crate::model::hinge::HingeKind;
 use crate::model::material::{Material, RawMaterial};
 use crate::model::{Dimension, Model};
+use crate::problem::error::Segment;
 use crate::problem::reader::{k, quoted, Res};
 use crate::problem::schema::{Number, Quantity};
 use crate::problem::sections::Sections;
 
 /// The sections the bridge reads.
-pub const SECTIONS: &[&str] = &["material", "hinge", "actuator", "dynamics", "part"];
+pub const SECTIONS: &[&str] = &[
+    "material", "hinge", "hinges", "actuator", "dynamics", "part",
+];
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawHinge {
-    kind: String,
+    /// The kind of both hinges, unless `[hinge.b]` or `[hinge.d]` names another.
+    kind: Option<String>,
     width: Quantity,
+    b: Option<RawOneHinge>,
+    d: Option<RawOneHinge>,
+}
+
+/// `[hinges.b]` and `[hinges.d]`: the same as `[hinge.b]` and `[hinge.d]`, for files that
+/// keep the per-hinge tables apart from `[hinge]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawHinges {
+    b: Option<RawOneHinge>,
+    d: Option<RawOneHinge>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawOneHinge {
+    kind: String,
 }
 
 #[derive(Debug, Deserialize)]
@@ -62,11 +83,41 @@ struct RawPart {
 pub fn build(s: &mut Sections) -> Res<Arc<dyn Model>> {
     let m: RawMaterial = s.required("material")?;
     let h: RawHinge = s.required("hinge")?;
+    let hs: RawHinges = s.optional("hinges")?.unwrap_or_default();
     let a: RawActuator = s.required("actuator")?;
     let d: Option<RawDynamics> = s.optional("dynamics")?;
     let p: RawPart = s.optional("part")?.unwrap_or_default();
     let material = Material::from_section(s, &m)?;
-    let kind = hinge_kind(s, &h.kind)?;
+    let kind = |which: &str,
+                one: &Option<RawOneHinge>,
+                other: &Option<RawOneHinge>|
+     -> Res<HingeKind> {
+        match (one, other) {
+            (Some(_), Some(_)) => {
+                return Err(s.err(
+                    &[k("hinges"), k(which)],
+                    format!(
+                        "hinge {which} is given twice: keep [hinge.{which}] or [hinges.{which}]"
+                    ),
+                ))
+            }
+            (None, Some(o)) => return hinge_kind(s, &[k("hinges"), k(which), k("kind")], &o.kind),
+            _ => {}
+        }
+        match (one, &h.kind) {
+            (Some(o), _) => hinge_kind(s, &[k("hinge"), k(which), k("kind")], &o.kind),
+            (None, Some(both)) => hinge_kind(s, &[k("hinge"), k("kind")], both),
+            (None, None) => Err(s.err(
+                &[k("hinge"), k("kind")],
+                format!(
+                    "missing: give the kind of both hinges here, or hinge {which}'s in \
+                     [hinge.{which}] (one of {})",
+                    quoted(HingeKind::NAMES)
+                ),
+            )),
+        }
+    };
+    let (hinge_b, hinge_d) = (kind("b", &h.b, &hs.b)?, kind("d", &h.d, &hs.d)?);
     let size = |key: &str, q: &Option<Quantity>| -> Res<Option<f64>> {
         q.as_ref()
             .map(|q| s.positive(&[k("actuator"), k(key)], q, Dimension::Length))
@@ -75,8 +126,8 @@ pub fn build(s: &mut Sections) -> Res<Arc<dyn Model>> {
     let actuator_size = [size("length", &a.length)?, size("height", &a.height)?];
     let part = part_settings(s, &p, actuator_size)?;
     let settings = BridgeSettings {
-        hinge_b: kind,
-        hinge_d: kind,
+        hinge_b,
+        hinge_d,
         width: s.positive(&[k("hinge"), k("width")], &h.width, Dimension::Length)?,
         material,
         actuator: actuator(s, &a)?,
@@ -89,10 +140,10 @@ pub fn build(s: &mut Sections) -> Res<Arc<dyn Model>> {
     Ok(Arc::new(Bridge::new(settings)))
 }
 
-fn hinge_kind(s: &Sections, kind: &str) -> Res<HingeKind> {
+fn hinge_kind(s: &Sections, path: &[Segment], kind: &str) -> Res<HingeKind> {
     HingeKind::from_name(kind).ok_or_else(|| {
         s.err(
-            &[k("hinge"), k("kind")],
+            path,
             format!(
                 "unknown hinge kind \"{kind}\"; expected one of {}",
                 quoted(HingeKind::NAMES)

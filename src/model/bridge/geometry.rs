@@ -257,6 +257,22 @@ impl Layout {
         }
     }
 
+    /// Why some design between `lower` and `upper` lies outside the domain though its
+    /// bounds are valid each: a hinge kind whose dimensions constrain each other (a
+    /// corner-filleted leaf's fillets at most half its length).
+    pub fn box_error(&self, lower: &[f64], upper: &[f64]) -> Option<(usize, String)> {
+        let names: Vec<&str> = self.parameters.iter().map(|p| p.name.as_ref()).collect();
+        for (kind, idx) in [(self.hinge_b, &self.b), (self.hinge_d, &self.d)] {
+            let lo: Vec<f64> = idx.iter().map(|&i| lower[i]).collect();
+            let hi: Vec<f64> = idx.iter().map(|&i| upper[i]).collect();
+            let own: Vec<&str> = idx.iter().map(|&i| names[i]).collect();
+            if let Some((k, why)) = kind.box_error(&lo, &hi, &own) {
+                return Some((idx[k], why));
+            }
+        }
+        None
+    }
+
     /// Why the design `x` (SI) lies outside the model's domain, if it does: every value
     /// finite, each hinge valid for its kind (a strip's length not negative, its thickness
     /// positive), `l3` not negative, at least one hinge of some length (else

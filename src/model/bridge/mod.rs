@@ -158,6 +158,10 @@ impl Model for Bridge {
         self.layout.domain_error(x)
     }
 
+    fn box_error(&self, lower: &[f64], upper: &[f64]) -> Option<(usize, String)> {
+        self.layout.box_error(lower, upper)
+    }
+
     fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {
         Bridge::evaluate(self, &self.layout.geometry(x), wanted, out);
     }

@@ -33,11 +33,12 @@ pub enum BridgeOutput {
     EquivalentMass,
     NaturalFrequency,
     SettlingTime,
+    StressBeamMax,
 }
 
 impl BridgeOutput {
     /// Every output, in the order of [`OUTPUTS`].
-    pub const ALL: [BridgeOutput; 23] = [
+    pub const ALL: [BridgeOutput; 24] = [
         BridgeOutput::Amplification,
         BridgeOutput::KIn,
         BridgeOutput::KOut,
@@ -61,6 +62,7 @@ impl BridgeOutput {
         BridgeOutput::EquivalentMass,
         BridgeOutput::NaturalFrequency,
         BridgeOutput::SettlingTime,
+        BridgeOutput::StressBeamMax,
     ];
 
     /// Whether the output needs the masses and damping of [`BridgeSettings::dynamics`].
@@ -75,7 +77,7 @@ impl BridgeOutput {
 }
 
 /// Names, dimensions and meanings of the outputs, indexed like [`BridgeOutput::ALL`].
-pub const OUTPUTS: [OutputInfo; 23] = [
+pub const OUTPUTS: [OutputInfo; 24] = [
     OutputInfo::new("amplification", Dimension::Ratio, "displacement amplification da = a21/a11 (Eq. 9)"),
     OutputInfo::new("k_in", Dimension::Stiffness, "input stiffness 1/a11 (Eq. 10)"),
     OutputInfo::new("k_out", Dimension::Stiffness, "output stiffness -1/a22 (Eq. 11)"),
@@ -99,6 +101,7 @@ pub const OUTPUTS: [OutputInfo; 23] = [
     OutputInfo::new("equivalent_mass", Dimension::Mass, "mass on the moving output face equivalent to the moving bridge and payload (Lagrange/Rayleigh, paper 001 Sec. 2.2)"),
     OutputInfo::new("natural_frequency", Dimension::Frequency, "natural frequency along the output, sqrt(k_out_actuated / equivalent_mass) / 2 pi (paper 001 Eq. 12)"),
     OutputInfo::new("settling_time", Dimension::Time, "settling time into +-2 % after a step, for the damping ratio of [dynamics] (paper 001 Sec. 4.2)"),
+    OutputInfo::new("stress_beam_max", Dimension::Stress, "largest beam stress |N|/(w t) + 6|M|/(w t^2) in the hinges, without a notch's stress concentration (stress_max for strips)"),
 ];
 
 impl Bridge {
@@ -271,6 +274,13 @@ impl<D: Scalar> Evaluation<'_, D> {
             StressD => {
                 let [_, _, n4, n5] = self.stresses();
                 max(n4, n5)
+            }
+            StressBeamMax => {
+                let [n2, n3, n4, n5] = self.stresses();
+                let (b, d) = (&self.g.b, &self.g.d);
+                let kt_b = b.kind.stress_concentration(b.dims());
+                let kt_d = d.kind.stress_concentration(d.dims());
+                max(max(n2, n3) / kt_b, max(n4, n5) / kt_d)
             }
             StressNode2 => self.stresses()[0],
             StressNode3 => self.stresses()[1],

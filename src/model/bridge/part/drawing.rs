@@ -2,7 +2,8 @@
 //! angles print in it and in the part's messages.
 
 use super::{across, add, scale, Quarter, P};
-use crate::model::bridge::geometry::Geometry;
+use crate::model::bridge::geometry::{Geometry, Layout};
+use crate::model::hinge::HingeKind;
 use crate::part::Annotation;
 
 /// A length for a drawing or message: mm, at most three decimals.
@@ -29,8 +30,7 @@ fn trimmed(v: f64, decimals: usize) -> String {
 pub(super) fn annotations(
     g: &Geometry<f64>,
     q: &Quarter,
-    tb: f64,
-    td: f64,
+    layout: &Layout,
     [in_far, in_h, out_top, pocket]: [f64; 4],
 ) -> Vec<Annotation> {
     let mid = |p: P, q: P| scale(add(p, q), 0.5);
@@ -59,13 +59,13 @@ pub(super) fn annotations(
             a: q.n[0],
             b: q.n[1],
             offset: 1.2e-3,
-            label: format!("l2 {}", mm(g.l2())),
+            label: format!("{} {}", length_name(layout, 0), mm(g.l2())),
         },
         Annotation::Length {
             a: q.n[2],
             b: q.n[3],
             offset: 1.2e-3,
-            label: format!("l4 {}", mm(g.l4())),
+            label: format!("{} {}", length_name(layout, 1), mm(g.l4())),
         },
         Annotation::Length {
             a: q.n[1],
@@ -76,7 +76,7 @@ pub(super) fn annotations(
         Annotation::Note {
             at: mid(q.n[0], q.n[1]),
             label_at: [mid(q.n[0], q.n[1])[0], top + 2e-3],
-            label: format!("t2 {}, δ2 {}", mm(tb), deg(g.delta2)),
+            label: format!("{}δ2 {}", other_dims(layout, 0, g.b.dims()), deg(g.delta2)),
         },
         Annotation::Note {
             at: mid(q.n[1], q.n[2]),
@@ -86,7 +86,44 @@ pub(super) fn annotations(
         Annotation::Note {
             at: mid(q.n[2], q.n[3]),
             label_at: [mid(q.n[2], q.n[3])[0], top + 6e-3],
-            label: format!("t4 {}, δ4 {}", mm(td), deg(g.delta4)),
+            label: format!("{}δ4 {}", other_dims(layout, 1, g.d.dims()), deg(g.delta4)),
         },
     ]
+}
+
+/// The names of hinge `k`'s (0: b, 1: d) dimensions in the layout, the first one first.
+fn dim_names(layout: &Layout, k: usize) -> Vec<String> {
+    let (kind, number) = if k == 0 {
+        (layout.hinge_b, '2')
+    } else {
+        (layout.hinge_d, '4')
+    };
+    kind.dimensions()
+        .iter()
+        .map(|d| format!("{}{number}", d.stem))
+        .collect()
+}
+
+/// How the length of hinge `k` is named: its first dimension, doubled for a notch.
+fn length_name(layout: &Layout, k: usize) -> String {
+    let kind = if k == 0 {
+        layout.hinge_b
+    } else {
+        layout.hinge_d
+    };
+    let first = dim_names(layout, k).remove(0);
+    match kind {
+        HingeKind::Circular | HingeKind::Elliptical => format!("2 {first}"),
+        _ => first,
+    }
+}
+
+/// Hinge `k`'s dimensions but the first, each with its value, and a separator.
+fn other_dims(layout: &Layout, k: usize, dims: &[f64]) -> String {
+    dim_names(layout, k)
+        .iter()
+        .zip(dims)
+        .skip(1)
+        .map(|(n, v)| format!("{n} {}, ", mm(*v)))
+        .collect()
 }

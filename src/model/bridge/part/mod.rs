@@ -41,6 +41,7 @@ mod drawing;
 
 use super::geometry::{Geometry, Layout};
 use super::BridgeSettings;
+use crate::model::hinge::HingeKind;
 use crate::part::{Actuation, Actuator, Face, HingeSite, PartSpec, Solid};
 use drawing::{annotations, deg, mm};
 
@@ -154,26 +155,27 @@ struct Quarter {
 }
 
 impl Quarter {
-    fn new(g: &Geometry<f64>, s: &PartSettings, tb: f64, td: f64) -> Self {
-        let r = s.fillet_radius;
+    /// `tb`, `td`: the hinges' root thicknesses; `rb`, `rd`: their root fillets (a
+    /// strip's; a notch meets its bodies smoothly and has none).
+    fn new(g: &Geometry<f64>, s: &PartSettings, [tb, td]: [f64; 2], [rb, rd]: [f64; 2]) -> Self {
         let t = g.trig();
         let (ub, ud) = ([t.c[0], t.s[0]], [t.c[2], t.s[2]]);
         let (nb, nd) = ([-ub[1], ub[0]], [-ud[1], ud[0]]);
-        let hb = (0.5 * s.link_thickness).max(0.5 * tb + r);
-        let hd = (0.5 * s.link_thickness).max(0.5 * td + r);
+        let hb = (0.5 * s.link_thickness).max(0.5 * tb + rb);
+        let hd = (0.5 * s.link_thickness).max(0.5 * td + rd);
         let nodes = g.nodes();
         // hinge d's face on the output block's side, hinge b's face centre `hb` below the
         // input block's top
         let offset = [
-            -0.5 * s.output_block_width - (nodes[3][0] + r * ud[0]),
-            0.5 * s.input_block_height - hb + r * ub[1],
+            -0.5 * s.output_block_width - (nodes[3][0] + rd * ud[0]),
+            0.5 * s.input_block_height - hb + rb * ub[1],
         ];
         let n = nodes.map(|p| add(p, offset));
         let f = [
-            add(n[0], scale(ub, -r)),
-            add(n[1], scale(ub, r)),
-            add(n[2], scale(ud, -r)),
-            add(n[3], scale(ud, r)),
+            add(n[0], scale(ub, -rb)),
+            add(n[1], scale(ub, rb)),
+            add(n[2], scale(ud, -rd)),
+            add(n[3], scale(ud, rd)),
         ];
         Quarter {
             n,
@@ -213,9 +215,21 @@ pub fn spec(
     let g: Geometry<f64> = layout.geometry(x);
     let tb = layout.hinge_b.root_thickness(g.b.dims());
     let td = layout.hinge_d.root_thickness(g.d.dims());
-    let r = s.fillet_radius;
-    let q = Quarter::new(&g, s, tb, td);
-    let mut problems = size_problems(s, &q, tb.max(td));
+    // the part's fillets round a strip's roots; a notch meets its bodies smoothly
+    let fillet = |kind: HingeKind| {
+        if kind == HingeKind::Strip {
+            s.fillet_radius
+        } else {
+            0.0
+        }
+    };
+    let (rb, rd) = (fillet(layout.hinge_b), fillet(layout.hinge_d));
+    let q = Quarter::new(&g, s, [tb, td], [rb, rd]);
+    let least = layout
+        .hinge_b
+        .least_thickness(g.b.dims())
+        .max(layout.hinge_d.least_thickness(g.d.dims()));
+    let mut problems = size_problems(s, &q, least);
     let [f2, f3, f4, f5] = q.f;
 
     // each hinge's solid runs from face to face; its corners are vertices of the bodies'
@@ -326,16 +340,37 @@ pub fn spec(
             (first + 1, first + 2),
             (first + 2, output),
         ]);
-        for (hinge, start, end, thick, solid) in [
-            ("hinge b", q.n[0], q.n[1], tb, first),
-            ("hinge d", q.n[2], q.n[3], td, first + 2),
+        for (hinge, start, end, kind, dims, root, r, solid) in [
+            (
+                "hinge b",
+                q.n[0],
+                q.n[1],
+                layout.hinge_b,
+                g.b.dims(),
+                tb,
+                rb,
+                first,
+            ),
+            (
+                "hinge d",
+                q.n[2],
+                q.n[3],
+                layout.hinge_d,
+                g.d.dims(),
+                td,
+                rd,
+                first + 2,
+            ),
         ] {
             hinges.push(HingeSite {
                 name: format!("{hinge} ({name})"),
                 start: m(start),
                 end: m(end),
-                thickness: thick,
+                thickness: kind.least_thickness(dims),
+                root,
                 fillet: r,
+                kind: kind.name(),
+                profile: kind.outline(dims),
                 solid,
             });
         }
@@ -364,7 +399,7 @@ pub fn spec(
         },
     ];
     let mut warnings = Vec::new();
-    if r == 0.0 {
+    if s.fillet_radius == 0.0 && [layout.hinge_b, layout.hinge_d].contains(&HingeKind::Strip) {
         warnings.push(
             "part.fillet_radius is 0: the hinge roots are sharp inner corners, which wire \
              EDM cannot cut (its smallest inner radius is about 0.1-0.2 mm) and whose elastic \
@@ -380,12 +415,16 @@ pub fn spec(
             stiffness: settings.actuator.stiffness,
             payload_mass: settings.dynamics.as_ref().map_or(0.0, |d| d.payload_mass),
         }),
-        caption: format!(
-            "fillets r {}, links {} thick",
-            mm(s.fillet_radius),
-            mm(s.link_thickness)
-        ),
-        annotations: annotations(&g, &q, tb, td, [in_far, in_h, out_top, pocket]),
+        caption: if rb.max(rd) > 0.0 {
+            format!(
+                "fillets r {}, links {} thick",
+                mm(s.fillet_radius),
+                mm(s.link_thickness)
+            )
+        } else {
+            format!("links {} thick", mm(s.link_thickness))
+        },
+        annotations: annotations(&g, &q, layout, [in_far, in_h, out_top, pocket]),
         solids,
         joints,
         hinges,
