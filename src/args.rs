@@ -128,6 +128,11 @@ pub enum Command {
         /// Check the optimum on its part by finite elements too (into DIR/verify).
         #[arg(long)]
         verify: bool,
+        /// Refine the optimum against the finite elements of its part (refined.json and the
+        /// refined part's files; settings in the file's [refine]), or not (`none`),
+        /// whatever the file's [refine] fidelity says.
+        #[arg(long, value_parser = ["fe", "none"])]
+        refine: Option<String>,
     },
     /// Trade-off front by the epsilon-constraint method: the limit of the problem's
     /// one-sided constraint on OUTPUT is stepped from A to B and the study run at each

@@ -6,6 +6,7 @@
 //! - [`report`]: JSON export and plots.
 //! - [`sweep`]: curves of every output against one design variable.
 //! - [`pareto`]: trade-off fronts by stepping the limit of one constraint.
+//! - [`refine`]: an optimum refined against the finite elements of its part.
 //! - [`dynamics`]: Runge-Kutta step responses of single-degree-of-freedom systems.
 
 pub mod dynamics;
@@ -15,6 +16,7 @@ pub mod optim;
 pub mod pareto;
 pub mod part;
 pub mod problem;
+pub mod refine;
 pub mod report;
 pub mod study;
 pub mod sweep;

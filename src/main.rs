@@ -8,22 +8,21 @@ use std::process::ExitCode;
 use clap::Parser;
 
 mod args;
-use args::{Cli, Command, DesignArgs, StudyArgs};
+mod study_command;
+use args::{Cli, Command, DesignArgs};
+use study_command::{run_pareto, run_study, study_setup};
 
 use flexopt::fe::verify::{verify_design, VerifySettings};
 use flexopt::model::hinge::calculator;
-use flexopt::pareto::{pareto, ParetoSpec};
+use flexopt::pareto::ParetoSpec;
 use flexopt::part::Part;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
 use flexopt::problem::{Problem, Solver};
-use flexopt::report::pareto::write_pareto;
 use flexopt::report::part::write_part;
-use flexopt::report::study::write_all;
-use flexopt::report::summary::{infeasible_message, ParetoSummary, StudySummary, Wrote};
+use flexopt::report::summary::Wrote;
 use flexopt::report::sweep::write_sweep;
 use flexopt::report::verify::{write_verify, VerifyReport, VerifyTable};
 use flexopt::report::{check_writable, DesignReport};
-use flexopt::study::{self, StudyOptions};
 use flexopt::sweep::{sweep, SweepSpec};
 
 /// Why the command stopped: the message to print and the exit code.
@@ -139,8 +138,12 @@ fn run(command: Command) -> Result<(), Failure> {
             solver,
             quiet,
             verify,
+            refine,
         } => {
-            let (problem, mut options) = study_setup(&problem, &study)?;
+            let (mut problem, mut options) = study_setup(&problem, &study)?;
+            if let Some(r) = refine {
+                problem.refine.enabled = r == "fe";
+            }
             if let Some(s) = solver {
                 options.solver = if s == "sqp" {
                     Solver::Sqp
@@ -179,158 +182,6 @@ fn output_dir(problem: &Problem, out: Option<PathBuf>) -> Result<PathBuf, Failur
     let dir = out.unwrap_or_else(|| problem.default_output_dir());
     check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
     Ok(dir)
-}
-
-/// Loads the problem and applies the command line's overrides of its `[search]`.
-fn study_setup(path: &Path, args: &StudyArgs) -> Result<(Problem, StudyOptions), Failure> {
-    let StudyArgs {
-        starts,
-        seed,
-        threads,
-        ..
-    } = *args;
-    let problem = Problem::load(path).map_err(Failure::bad_input)?;
-    if problem.free_variables().next().is_none() {
-        return Err(Failure::bad_input(format!(
-            "{}: key `variables`: every variable has a fixed `value`, so there is nothing to \
-             optimize; give at least one `lower` and `upper` instead (`flexopt eval` and \
-             `flexopt sweep` take a fixed design)",
-            problem.file.display()
-        )));
-    }
-    let mut options = StudyOptions::from_problem(&problem);
-    if let Some(s) = starts {
-        if !(1..=1_000_000).contains(&s) {
-            return Err(Failure::bad_input(format!(
-                "{}: key `--starts`: must lie between 1 and 1000000, got {s}",
-                problem.file.display()
-            )));
-        }
-        options.starts = s;
-    }
-    if let Some(t) = threads.filter(|&t| t > 1024) {
-        return Err(Failure::bad_input(format!(
-            "{}: key `--threads`: must lie between 0 and 1024, got {t}",
-            problem.file.display()
-        )));
-    }
-    // the file's seed is a TOML integer: one range for both
-    if let Some(s) = seed.filter(|&s| s > i64::MAX as u64) {
-        return Err(Failure::bad_input(format!(
-            "{}: key `--seed`: must lie between 0 and {}, got {s}",
-            problem.file.display(),
-            i64::MAX
-        )));
-    }
-    options.seed = seed.unwrap_or(options.seed);
-    options.threads = threads.unwrap_or(options.threads);
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    if options.threads > cores {
-        eprintln!(
-            "warning: {}: {} threads on {cores} cores: the starts run no faster than with \
-             {cores}, and many more threads than cores slow them down",
-            problem.file.display(),
-            options.threads
-        );
-    }
-    Ok((problem, options))
-}
-
-fn run_pareto(
-    problem: &Problem,
-    spec: &ParetoSpec,
-    options: &StudyOptions,
-    dir: &Path,
-) -> Result<(), Failure> {
-    let front = pareto(problem, spec, options).map_err(Failure::bad_input)?;
-    let files = write_pareto(dir, &front).map_err(Failure::write_failed)?;
-    emit(&ParetoSummary {
-        problem,
-        front: &front,
-        files: &files,
-    });
-    if front.points.iter().any(|p| p.feasible) {
-        Ok(())
-    } else {
-        Err(Failure::no_feasible(format!(
-            "{}: no limit of the range admits a feasible design",
-            problem.file.display()
-        )))
-    }
-}
-
-fn run_study(
-    problem: &Problem,
-    options: &StudyOptions,
-    dir: &Path,
-    verify: bool,
-) -> Result<(), Failure> {
-    // Ctrl-C stops the starts not yet begun; the finished ones are written, marked partial
-    let stop = options.stop.clone();
-    let _ = ctrlc::set_handler(move || stop.store(true, std::sync::atomic::Ordering::Relaxed));
-    let study = study::run(problem, options);
-    if study.interrupted && study.runs.is_empty() {
-        return Err(Failure::interrupted(format!(
-            "{}: interrupted before any start finished; nothing was written",
-            problem.file.display()
-        )));
-    }
-    // the optimum's part, for a feasible optimum of a model that has one
-    let part = study
-        .any_feasible
-        .then(|| Part::for_model(problem.model(), study.reported_design()))
-        .flatten();
-    let files = write_all(dir, problem, &study, part.as_ref()).map_err(Failure::write_failed)?;
-    emit(&StudySummary {
-        problem,
-        study: &study,
-        part: part.as_ref(),
-        files: &files,
-    });
-    if verify && study.any_feasible && !study.interrupted {
-        if let Some(Ok(_)) = &part {
-            let settings = VerifySettings::default();
-            run_verify(
-                problem,
-                study.reported_design(),
-                &settings,
-                &dir.join("verify"),
-            )?;
-        }
-    }
-    if study.interrupted {
-        Err(Failure::interrupted(format!(
-            "{}: interrupted: {} of {} starts finished; the files written hold those \
-             (\"partial\": true in optimum.json)",
-            problem.file.display(),
-            study.runs.len(),
-            options.starts
-        )))
-    } else if study.any_feasible && !study.best_converged {
-        Err(Failure {
-            code: 4,
-            message: format!(
-                "{}: no feasible start converged; optimum.json holds the best feasible design, \
-                 unconverged (\"converged\": false): raise search.max_iterations or check the \
-                 tolerance",
-                problem.file.display()
-            ),
-        })
-    } else if let Some(Err(e)) = &part {
-        Err(Failure {
-            code: 5,
-            message: format!(
-                "{}: the optimum gives no part that can be made with the [part] sizes: {e}; \
-                 its analytic results are written, its part files are not \
-                 (optimum.json: part_problems)",
-                problem.file.display()
-            ),
-        })
-    } else if study.any_feasible {
-        Ok(())
-    } else {
-        Err(Failure::no_feasible(infeasible_message(problem, &study)))
-    }
 }
 
 /// Writes to stdout; a reader that has gone away (a closed pipe) is not an error worth a

@@ -256,6 +256,13 @@ pub trait Model: Send + Sync + std::fmt::Debug {
     fn part(&self, _x: &[f64]) -> Option<Result<crate::part::PartSpec, Vec<String>>> {
         None
     }
+
+    /// The finite-element output of the part ([`crate::fe::verify::OUTPUTS`], or
+    /// `fe_actuation_force`) that measures what the model's output `output` computes, if
+    /// one does: what `flexopt verify` compares it with and `run --refine fe` corrects it by.
+    fn fe_counterpart(&self, _output: usize) -> Option<&'static str> {
+        None
+    }
 }
 
 /// A model that computes all its outputs at once (a parallel mechanism's frequencies come

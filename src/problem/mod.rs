@@ -10,6 +10,7 @@ pub mod epigraph;
 pub mod error;
 pub mod nlp;
 pub mod reader;
+pub mod refine;
 pub mod schema;
 pub mod sections;
 pub mod units;
@@ -130,6 +131,8 @@ pub struct Problem {
     pub constraints: Vec<Constraint>,
     pub search: SearchSettings,
     pub zones: ZoneSettings,
+    /// `[refine]`: the FE refinement of `run`'s optimum.
+    pub refine: refine::RefineSettings,
 }
 
 impl Problem {

@@ -42,6 +42,7 @@ pub const COMMON_KEYS: &[&str] = &[
     "constraints",
     "search",
     "zones",
+    "refine",
 ];
 
 /// The common part of a problem file; the model reads its own sections.
@@ -59,6 +60,7 @@ pub struct RawProblem {
     pub search: RawSearch,
     #[serde(default)]
     pub zones: RawZones,
+    pub refine: Option<super::refine::RawRefine>,
     /// The other top-level keys, in file order: the model's sections, checked against
     /// the model's list before it reads them.
     #[serde(flatten)]

@@ -121,6 +121,7 @@ impl Validator<'_, '_> {
             constraints,
             search: self.search(&raw.search)?,
             zones: self.zones(&raw.zones)?,
+            refine: super::refine::settings(self, raw.refine.as_ref())?,
         })
     }
 

@@ -8,6 +8,7 @@ pub mod folder;
 pub mod pareto;
 pub mod part;
 pub mod plot;
+pub mod refine;
 pub mod study;
 pub mod summary;
 pub mod sweep;

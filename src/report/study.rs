@@ -409,6 +409,32 @@ pub fn write_all(
     study: &Study,
     part: Option<&Result<Part, PartError>>,
 ) -> Result<Vec<PathBuf>, WriteError> {
+    write_all_refined(dir, problem, study, part, None)
+}
+
+/// The files of a refinement, written with the study's set.
+pub struct RefinedFiles<'a> {
+    pub report: &'a super::refine::RefinedReport,
+    /// The refined design's part, where it has one.
+    pub part: Option<&'a Part>,
+}
+
+/// The names of the refined design's part files.
+pub const REFINED_PART_FILES: [&str; 4] = [
+    "refined_part.dxf",
+    "refined_part.svg",
+    "refined_part.json",
+    "refined_part.png",
+];
+
+/// [`write_all`], with `refined.json` and the refined design's part files in the set.
+pub fn write_all_refined(
+    dir: &Path,
+    problem: &Problem,
+    study: &Study,
+    part: Option<&Result<Part, PartError>>,
+    refined: Option<RefinedFiles>,
+) -> Result<Vec<PathBuf>, WriteError> {
     let set = OutputSet::begin(dir)?;
     let records = start_records(problem, study);
     let files = [
@@ -436,6 +462,15 @@ pub fn write_all(
     if let Some(Ok(part)) = part {
         write_part(path, &problem.name, &optimum.design.design, part)?;
         written.extend(PART_FILES);
+    }
+    if let Some(r) = refined {
+        write_json(&path("refined.json"), r.report)?;
+        written.push("refined.json");
+        if let (Some(part), Some(design)) = (r.part, r.report.refined.as_ref()) {
+            let named = |f: &str| set.path(&format!("refined_{f}"));
+            write_part(named, &problem.name, &design.design, part)?;
+            written.extend(REFINED_PART_FILES);
+        }
     }
     set.commit(&written)
 }

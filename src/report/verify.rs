@@ -33,42 +33,41 @@ pub const VERIFY_FILES: [&str; 5] = [
 const DECK_LEVEL: usize = 0;
 const DECK_3D_LAYERS: usize = 2;
 
-/// The analytic output each FE output is compared with, by the model's output names:
-/// `fe_x_in` and `fe_y_out` come from `k_in` and `amplification` at the test force.
+/// The analytic output each FE output is compared with: the model's outputs with an FE
+/// counterpart ([`crate::model::Model::fe_counterpart`]), and `fe_x_in`, `fe_y_out` from
+/// `k_in` and `amplification` at the test force. The section stress is compared with beam
+/// theory (`stress_beam_max`, or `stress_max` for a model without it).
 fn analytic(problem: &Problem, x: &[f64], test_force: f64) -> IndexMap<&'static str, f64> {
     let model = problem.model();
     let get = |name: &str| -> Option<f64> {
         let i = model.output_index(name)?;
-        model.unavailable(i).is_none().then(|| {
-            let mut v = [0.0];
-            model.evaluate(x, &[i], &mut v);
-            v[0]
-        })
+        value(model, x, i)
     };
     let mut out = IndexMap::new();
-    let (k_in, amp) = (get("k_in"), get("amplification"));
-    if let Some(k) = k_in {
+    for i in 0..model.outputs().len() {
+        if let (Some(fe), Some(v)) = (model.fe_counterpart(i), value(model, x, i)) {
+            out.insert(fe, v);
+        }
+    }
+    if let Some(k) = get("k_in") {
         out.insert("fe_x_in", test_force / k);
-        out.insert("fe_k_in", k);
-        if let Some(a) = amp {
+        if let Some(a) = get("amplification") {
             out.insert("fe_y_out", a * test_force / k);
         }
     }
-    if let Some(a) = amp {
-        out.insert("fe_amplification", a);
-    }
-    if let Some(k) = get("k_out") {
-        out.insert("fe_k_out", k);
-    }
-    // the section stress is beam theory's; the peak has a notch's concentration too
-    if let Some(s) = get("stress_max") {
-        out.insert("fe_stress_section", get("stress_beam_max").unwrap_or(s));
-        out.insert("fe_stress_max", s);
-    }
-    if let Some(f) = get("natural_frequency") {
-        out.insert("fe_output_frequency", f);
+    if let (None, Some(s)) = (out.get("fe_stress_section"), get("stress_max")) {
+        out.insert("fe_stress_section", s);
     }
     out
+}
+
+/// The model's output `i` at `x`, where the model can compute it.
+fn value(model: &dyn crate::model::Model, x: &[f64], i: usize) -> Option<f64> {
+    model.unavailable(i).is_none().then(|| {
+        let mut v = [0.0];
+        model.evaluate(x, &[i], &mut v);
+        v[0]
+    })
 }
 
 /// One FE output in `verify.json`.

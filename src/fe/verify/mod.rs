@@ -66,6 +66,8 @@ pub struct VerifySettings {
     /// this: 1 for the part as it is, large to make its links, blocks and fillets nearly
     /// rigid, as the analytic model has them (a measurement of what that assumption costs).
     pub body_stiffening: f64,
+    /// Compute the natural modes too (where the material has a density).
+    pub modal: bool,
 }
 
 impl Default for VerifySettings {
@@ -76,6 +78,7 @@ impl Default for VerifySettings {
             test_force: 10.0,
             per_thickness: 4.0,
             body_stiffening: 1.0,
+            modal: true,
         }
     }
 }
@@ -189,7 +192,7 @@ pub fn verify(
         actuation,
         body_stiffening: settings.body_stiffening,
     };
-    let modal = material.density > 0.0;
+    let modal = settings.modal && material.density > 0.0;
     let (size, coarse) = size_function(&setup.domain, settings.per_thickness);
     let mut m = mesh(&setup.domain, &size, coarse)?;
     let mut levels = Vec::new();

@@ -1,0 +1,230 @@
+//! The commands that run studies: `run` (with its refinement and FE check) and `pareto`,
+//! and the options they share.
+
+use std::path::Path;
+
+use crate::args::StudyArgs;
+use crate::{emit, run_verify, Failure};
+use flexopt::fe::verify::VerifySettings;
+use flexopt::pareto::{pareto, ParetoSpec};
+use flexopt::part::Part;
+use flexopt::problem::Problem;
+use flexopt::refine::study::refine_study;
+use flexopt::report::pareto::write_pareto;
+use flexopt::report::refine::{RefineSummary, RefinedReport};
+use flexopt::report::study::{write_all_refined, RefinedFiles};
+use flexopt::report::summary::{infeasible_message, ParetoSummary, StudySummary};
+use flexopt::study::{self, StudyOptions};
+
+/// Loads the problem and applies the command line's overrides of its `[search]`.
+pub(crate) fn study_setup(
+    path: &Path,
+    args: &StudyArgs,
+) -> Result<(Problem, StudyOptions), Failure> {
+    let StudyArgs {
+        starts,
+        seed,
+        threads,
+        ..
+    } = *args;
+    let problem = Problem::load(path).map_err(Failure::bad_input)?;
+    if problem.free_variables().next().is_none() {
+        return Err(Failure::bad_input(format!(
+            "{}: key `variables`: every variable has a fixed `value`, so there is nothing to \
+             optimize; give at least one `lower` and `upper` instead (`flexopt eval` and \
+             `flexopt sweep` take a fixed design)",
+            problem.file.display()
+        )));
+    }
+    let mut options = StudyOptions::from_problem(&problem);
+    if let Some(s) = starts {
+        if !(1..=1_000_000).contains(&s) {
+            return Err(Failure::bad_input(format!(
+                "{}: key `--starts`: must lie between 1 and 1000000, got {s}",
+                problem.file.display()
+            )));
+        }
+        options.starts = s;
+    }
+    if let Some(t) = threads.filter(|&t| t > 1024) {
+        return Err(Failure::bad_input(format!(
+            "{}: key `--threads`: must lie between 0 and 1024, got {t}",
+            problem.file.display()
+        )));
+    }
+    // the file's seed is a TOML integer: one range for both
+    if let Some(s) = seed.filter(|&s| s > i64::MAX as u64) {
+        return Err(Failure::bad_input(format!(
+            "{}: key `--seed`: must lie between 0 and {}, got {s}",
+            problem.file.display(),
+            i64::MAX
+        )));
+    }
+    options.seed = seed.unwrap_or(options.seed);
+    options.threads = threads.unwrap_or(options.threads);
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if options.threads > cores {
+        eprintln!(
+            "warning: {}: {} threads on {cores} cores: the starts run no faster than with \
+             {cores}, and many more threads than cores slow them down",
+            problem.file.display(),
+            options.threads
+        );
+    }
+    Ok((problem, options))
+}
+
+pub(crate) fn run_pareto(
+    problem: &Problem,
+    spec: &ParetoSpec,
+    options: &StudyOptions,
+    dir: &Path,
+) -> Result<(), Failure> {
+    let front = pareto(problem, spec, options).map_err(Failure::bad_input)?;
+    let files = write_pareto(dir, &front).map_err(Failure::write_failed)?;
+    emit(&ParetoSummary {
+        problem,
+        front: &front,
+        files: &files,
+    });
+    if front.points.iter().any(|p| p.feasible) {
+        Ok(())
+    } else {
+        Err(Failure::no_feasible(format!(
+            "{}: no limit of the range admits a feasible design",
+            problem.file.display()
+        )))
+    }
+}
+
+pub(crate) fn run_study(
+    problem: &Problem,
+    options: &StudyOptions,
+    dir: &Path,
+    verify: bool,
+) -> Result<(), Failure> {
+    // Ctrl-C stops the starts not yet begun; the finished ones are written, marked partial
+    let stop = options.stop.clone();
+    let _ = ctrlc::set_handler(move || stop.store(true, std::sync::atomic::Ordering::Relaxed));
+    let study = study::run(problem, options);
+    if study.interrupted && study.runs.is_empty() {
+        return Err(Failure::interrupted(format!(
+            "{}: interrupted before any start finished; nothing was written",
+            problem.file.display()
+        )));
+    }
+    // the optimum's part, for a feasible optimum of a model that has one
+    let part = study
+        .any_feasible
+        .then(|| Part::for_model(problem.model(), study.reported_design()))
+        .flatten();
+    if problem.refine.enabled && part.is_none() && study.any_feasible {
+        eprintln!(
+            "warning: {}: the {} model has no part, so its optimum is not refined against \
+             finite elements",
+            problem.file.display(),
+            problem.model().name()
+        );
+    }
+    // the refinement by the finite elements, of a feasible optimum with a part
+    let refined = (problem.refine.enabled && matches!(part, Some(Ok(_))) && !study.interrupted)
+        .then(|| {
+            if options.progress {
+                eprintln!(
+                    "refining the optimum against the finite elements of its part (at most {} \
+                     FE checks)...",
+                    problem.refine.max_fe
+                );
+            }
+            let r = refine_study(problem, &study);
+            let report = RefinedReport::new(problem, &problem.refine, &r.all, r.chosen);
+            let design = r.all[r.chosen].1.result.as_ref().map(|c| c.x.clone());
+            let part = design.and_then(|x| Part::for_model(problem.model(), &x)?.ok());
+            (report, part)
+        });
+    let files = write_all_refined(
+        dir,
+        problem,
+        &study,
+        part.as_ref(),
+        refined.as_ref().map(|(report, part)| RefinedFiles {
+            report,
+            part: part.as_ref(),
+        }),
+    )
+    .map_err(Failure::write_failed)?;
+    emit(&StudySummary {
+        problem,
+        study: &study,
+        part: part.as_ref(),
+        files: &files,
+    });
+    if let Some((report, _)) = &refined {
+        emit(&RefineSummary(report));
+    }
+    if verify && study.any_feasible && !study.interrupted {
+        if let Some(Ok(_)) = &part {
+            let settings = VerifySettings::default();
+            run_verify(
+                problem,
+                study.reported_design(),
+                &settings,
+                &dir.join("verify"),
+            )?;
+        }
+    }
+    if study.interrupted {
+        Err(Failure::interrupted(format!(
+            "{}: interrupted: {} of {} starts finished; the files written hold those \
+             (\"partial\": true in optimum.json)",
+            problem.file.display(),
+            study.runs.len(),
+            options.starts
+        )))
+    } else if study.any_feasible && !study.best_converged {
+        Err(Failure {
+            code: 4,
+            message: format!(
+                "{}: no feasible start converged; optimum.json holds the best feasible design, \
+                 unconverged (\"converged\": false): raise search.max_iterations or check the \
+                 tolerance",
+                problem.file.display()
+            ),
+        })
+    } else if let Some(Err(e)) = &part {
+        Err(Failure {
+            code: 5,
+            message: format!(
+                "{}: the optimum gives no part that can be made with the [part] sizes: {e}; \
+                 its analytic results are written, its part files are not \
+                 (optimum.json: part_problems)",
+                problem.file.display()
+            ),
+        })
+    } else if let Some((r, _)) = refined
+        .as_ref()
+        .filter(|(r, _)| !r.converged || !r.feasible)
+    {
+        let what = if r.feasible {
+            (
+                4,
+                "the refinement did not converge (raise refine.max_fe); refined.json holds \
+                 the best design that meets every constraint as measured",
+            )
+        } else {
+            (
+                3,
+                "the refinement found no design that meets every constraint as measured by \
+                 the finite elements; refined.json holds the least violating one",
+            )
+        };
+        Err(Failure {
+            code: what.0,
+            message: format!("{}: {}", problem.file.display(), what.1),
+        })
+    } else if study.any_feasible {
+        Ok(())
+    } else {
+        Err(Failure::no_feasible(infeasible_message(problem, &study)))
+    }
+}

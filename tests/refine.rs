@@ -1,0 +1,387 @@
+//! The refinement of an optimum against a higher fidelity (issue 14): against a synthetic
+//! high fidelity whose optimum is known exactly, against the finite elements on paper 004's
+//! problem, on a one-variable stiffness target whose FE answer the test finds by itself,
+//! and on a target the finite elements cannot meet.
+
+mod common;
+
+use std::path::Path;
+use std::sync::Arc;
+
+use common::{flexopt, MM};
+use flexopt::fe::verify::{verify_design, VerifySettings};
+use flexopt::fe::Idealization;
+use flexopt::model::Model;
+use flexopt::problem::refine::RefineSettings;
+use flexopt::problem::Problem;
+use flexopt::refine::corrected::Corrected;
+use flexopt::refine::fe::FeFidelity;
+use flexopt::refine::study::refine_study;
+use flexopt::refine::{refine, Correction, HighFidelity, Measurement, RefineStatus};
+use flexopt::study::{self, StudyOptions};
+
+fn wei2017() -> Problem {
+    Problem::load(Path::new("problems/wei2017.toml")).unwrap()
+}
+
+/// The FE's plane-strain value and estimated relative error of each output named, at `x`.
+fn plane_strain(p: &Problem, x: &[f64], names: &[&str]) -> Vec<(f64, f64)> {
+    let v = verify_design(p.model(), x, &VerifySettings::default()).unwrap();
+    let r = v
+        .results
+        .iter()
+        .find(|r| r.idealization == Idealization::PlaneStrain)
+        .unwrap();
+    names
+        .iter()
+        .map(|n| {
+            let e = &r.outputs.iter().find(|o| o.name == *n).unwrap().estimate;
+            (e.value, e.relative_error.unwrap_or(0.0))
+        })
+        .collect()
+}
+
+/// The root of `f` by `steps` secant steps from `a` and `b`.
+fn secant(f: impl Fn(f64) -> f64, (mut a, mut b): (f64, f64), steps: usize) -> f64 {
+    let (mut fa, mut fb) = (f(a), f(b));
+    for _ in 0..steps {
+        let c = b - fb * (b - a) / (fb - fa);
+        (a, fa) = (b, fb);
+        b = c;
+        fb = f(b);
+    }
+    b
+}
+
+fn analytic_optimum(p: &Problem) -> Vec<f64> {
+    study::run(p, &StudyOptions::from_problem(p))
+        .reported_design()
+        .to_vec()
+}
+
+/// A "measurement" that is a known model: `truth` evaluated.
+struct Synthetic {
+    truth: Corrected,
+    measured: Vec<usize>,
+}
+
+impl HighFidelity for Synthetic {
+    fn describe(&self) -> String {
+        "synthetic".into()
+    }
+    fn measures(&self, output: usize) -> bool {
+        self.measured.contains(&output)
+    }
+    fn measure(&self, x: &[f64], outputs: &[usize]) -> Result<Measurement, String> {
+        let mut values = vec![0.0; outputs.len()];
+        self.truth.evaluate(x, outputs, &mut values);
+        Ok(Measurement {
+            values,
+            errors: vec![None; outputs.len()],
+            detail: serde_json::Value::Null,
+        })
+    }
+}
+
+#[test]
+fn a_synthetic_fidelity_is_refined_to_its_own_optimum() {
+    let p = wei2017();
+    let model = p.model.clone();
+    let x0 = analytic_optimum(&p);
+    // the "true" outputs: the model's times factors that vary over the design space by
+    // several per cent, as the FE's ratios to the model do (0.83 to 0.93 on the stiffnesses)
+    let range: Vec<f64> = p.variables.iter().map(|v| v.upper - v.lower).collect();
+    let factor = |rho: f64, tilt: [f64; 8]| Correction {
+        rho,
+        slope: tilt.iter().zip(&range).map(|(t, r)| t / r).collect(),
+        centre: x0.clone(),
+    };
+    let out = |name: &str| model.output_index(name).unwrap();
+    let corrections = [
+        (
+            out("amplification"),
+            factor(0.93, [0.2, 0.0, -0.1, 0.0, 0.05, 0.2, 0.0, -0.1]),
+        ),
+        (
+            out("k_in"),
+            factor(0.83, [0.3, 0.0, 0.4, 0.1, 0.0, 0.3, 0.0, 0.4]),
+        ),
+        (
+            out("k_out"),
+            factor(0.89, [-0.2, 0.1, 0.3, 0.0, 0.1, -0.2, 0.1, 0.3]),
+        ),
+        (
+            out("stress_max"),
+            factor(1.02, [0.1, 0.0, 0.0, 0.0, 0.0, 0.1, 0.0, 0.0]),
+        ),
+    ];
+    let truth = Corrected::new(model.clone(), &corrections);
+    // the truth's own optimum, by the multistart study on the true problem
+    let mut true_problem = p.clone();
+    true_problem.model = Arc::new(Corrected::new(model.clone(), &corrections));
+    let true_study = study::run(&true_problem, &StudyOptions::from_problem(&true_problem));
+    let best = true_study.reported_objective();
+    let high = Synthetic {
+        truth,
+        measured: corrections.iter().map(|(o, _)| *o).collect(),
+    };
+    let settings = RefineSettings {
+        enabled: true,
+        tolerance: 1e-6,
+        max_fe: 40,
+        ..RefineSettings::default()
+    };
+    let r = refine(&p, &x0, &high, &settings);
+    assert_eq!(
+        r.status,
+        RefineStatus::Converged,
+        "{:?}",
+        r.iterations.len()
+    );
+    let c = r.result.as_ref().unwrap();
+    assert!(c.feasible);
+    // the start violates the truth's constraints; the end meets them and reaches the
+    // truth's optimum
+    assert!(!r.start.as_ref().unwrap().feasible);
+    assert!(
+        ((c.objective - best) / best).abs() < 1e-5,
+        "refined {} against the true optimum {best}",
+        c.objective
+    );
+    assert!(r.measurements <= 15, "{} measurements", r.measurements);
+}
+
+#[test]
+fn paper_004s_optimum_is_refined_to_a_design_the_fe_says_meets_every_constraint() {
+    let mut p = wei2017();
+    p.refine.enabled = true;
+    let s = study::run(&p, &StudyOptions::from_problem(&p));
+    let r = refine_study(&p, &s);
+    let refinement = &r.all[r.chosen].1;
+    assert_eq!(refinement.status, RefineStatus::Converged);
+    assert!(
+        refinement.measurements <= 12,
+        "{} FE checks",
+        refinement.measurements
+    );
+    let x = refinement.result.as_ref().unwrap().x.clone();
+    // an FE check of its own, plane strain as the refinement's default: every constraint
+    // met to the FE's error estimate
+    let fe = plane_strain(
+        &p,
+        &x,
+        &["fe_k_in", "fe_k_out", "fe_stress_max", "fe_amplification"],
+    );
+    let [(k_in, e_in), (k_out, e_out), (stress, e_s), (amplification, _)] = fe[..] else {
+        unreachable!()
+    };
+    assert!(k_in <= 7e6 * (1.0 + e_in + 1e-9), "k_in {k_in}");
+    assert!(k_out >= 3.8e4 * (1.0 - e_out - 1e-9), "k_out {k_out}");
+    assert!(stress <= 505e6 / 3.0 * (1.0 + e_s), "stress {stress}");
+    let model = p.model();
+    let mut spans = [0.0; 2];
+    let idx = [
+        model.output_index("span_x").unwrap(),
+        model.output_index("span_y").unwrap(),
+    ];
+    model.evaluate(&x, &idx, &mut spans);
+    assert!(spans[0] <= 12e-3 * (1.0 + 1e-8) && spans[0] >= 7.5e-3);
+    // the analytic optimum violates k_out on the part by 10 %; a designer scales both hinge
+    // thicknesses until the FE meets it (secant on the scale): the refined design does better
+    let x0 = s.reported_design().to_vec();
+    let scaled = |k: f64| {
+        let mut y = x0.clone();
+        y[2] *= k;
+        y[7] *= k;
+        let fe = plane_strain(&p, &y, &["fe_k_out", "fe_amplification"]);
+        (fe[0].0, fe[1].0)
+    };
+    let k = secant(|k| scaled(k).0 - 3.8e4, (1.0, 1.04), 4);
+    let (k_scaled, amp_scaled) = scaled(k);
+    assert!((k_scaled / 3.8e4 - 1.0).abs() < 1e-4);
+    assert!(
+        amplification > amp_scaled,
+        "refined {amplification} against the thickened optimum's {amp_scaled}"
+    );
+}
+
+#[test]
+fn a_one_variable_stiffness_target_reaches_the_fe_answer() {
+    // only t2 free: maximize k_in up to 6e6 N/m; the answer is where the FE's k_in is 6e6
+    let text = std::fs::read_to_string("problems/wei2017.toml").unwrap();
+    let mut p = Problem::parse(Path::new("target.toml"), &text).unwrap();
+    let table1 = [
+        1.96 * MM,
+        4.07f64.to_radians(),
+        0.4 * MM,
+        8.1 * MM,
+        4.01f64.to_radians(),
+        1.96 * MM,
+        4.07f64.to_radians(),
+        0.4 * MM,
+    ];
+    for (i, v) in p.variables.iter_mut().enumerate() {
+        if i != 2 {
+            v.lower = table1[i];
+            v.upper = table1[i];
+            v.fixed = true;
+        } else {
+            v.lower = 0.3 * MM;
+            v.upper = 0.6 * MM;
+        }
+    }
+    let k_in = p.model().output_index("k_in").unwrap();
+    p.objective.index = k_in;
+    p.objective.output = "k_in".into();
+    p.objective.sense = flexopt::problem::Sense::Maximize;
+    p.objective.absolute = false;
+    p.constraints.retain(|c| c.output == "k_in");
+    p.constraints[0].upper = Some(6e6);
+    p.refine.enabled = true;
+    // the FE answer by the test's own secant on t2
+    let fe_k_in = |t: f64| {
+        let mut x = table1;
+        x[2] = t;
+        plane_strain(&p, &x, &["fe_k_in"])[0].0
+    };
+    let t_fe = secant(|t| fe_k_in(t) - 6e6, (0.38 * MM, 0.4 * MM), 5);
+    // the FE is smooth in t2 only to its discretization error (about 2e-5; the mesh
+    // changes with the geometry)
+    assert!((fe_k_in(t_fe) / 6e6 - 1.0).abs() < 1e-4);
+    let start = analytic_optimum(&p);
+    let fe = FeFidelity::new(p.model(), &p.refine, false);
+    let r = refine(&p, &start, &fe, &p.refine);
+    assert_eq!(r.status, RefineStatus::Converged);
+    let c = r.result.unwrap();
+    // the analytic answer lies off the FE's by the model's error; the refined one on it
+    assert!(((start[2] - t_fe) / t_fe).abs() > 0.01);
+    assert!(
+        ((c.x[2] - t_fe) / t_fe).abs() < p.refine.tolerance,
+        "t2 {} against the FE answer {}",
+        c.x[2],
+        t_fe
+    );
+    assert!(r.measurements <= 8, "{} FE checks", r.measurements);
+}
+
+#[test]
+fn a_target_the_part_cannot_meet_exits_3_with_the_least_violating_design() {
+    // t2 and t4 within 0.40..0.416 mm, the rest at Table 1, k_out >= 40 N/mm: the model
+    // reaches 42.4 N/mm at the thickest, the part (FE) only 37.8
+    let text = std::fs::read_to_string("problems/wei2017.toml").unwrap();
+    let fixed = |t: &str, name: &str, value: f64| {
+        t.replacen(
+            &format!("name = \"{name}\"\nunit = \"mm\"\nlower = 0.5\nupper = 20"),
+            &format!("name = \"{name}\"\nunit = \"mm\"\nvalue = {value}"),
+            1,
+        )
+    };
+    let mut t = fixed(&text, "l2", 1.96);
+    t = fixed(&t, "l3", 8.1);
+    t = fixed(&t, "l4", 1.96);
+    for name in ["delta2", "delta3", "delta4"] {
+        t = t.replacen(
+            &format!("name = \"{name}\"\nunit = \"deg\"\nlower = -45\nupper = 45"),
+            &format!("name = \"{name}\"\nunit = \"deg\"\nvalue = 4.07"),
+            1,
+        );
+    }
+    for name in ["t2", "t4"] {
+        t = t.replacen(
+            &format!("name = \"{name}\"\nunit = \"mm\"\nlower = 0.4\nupper = 2"),
+            &format!("name = \"{name}\"\nunit = \"mm\"\nlower = 0.4\nupper = 0.416"),
+            1,
+        );
+    }
+    t = t.replace("lower = 3.8e4", "lower = 4.0e4");
+    t = t.replace("upper = 7e6", "upper = 9e6");
+    t += "\n[refine]\nfidelity = \"fe\"\nmax_fe = 6\n";
+    let dir = std::env::temp_dir().join(format!("flexopt-refine-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("unreachable.toml");
+    std::fs::write(&file, &t).unwrap();
+    let out_dir = dir.join("out");
+    let out = flexopt(&[
+        "run",
+        file.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{stderr}");
+    assert!(stderr.contains("least violating"), "{stderr}");
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out_dir.join("refined.json")).unwrap()).unwrap();
+    assert_eq!(json["feasible"], false);
+    let violation = |d: &serde_json::Value| {
+        d["constraints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| (-c["relative_margin"].as_f64().unwrap()).max(0.0))
+            .sum::<f64>()
+    };
+    let (refined, start) = (&json["refined"], &json["analytic_optimum"]);
+    assert!(violation(refined) > 0.0);
+    assert!(violation(refined) <= violation(start) + 1e-12);
+    // the least violating design is the thickest the bounds allow
+    for name in ["t2", "t4"] {
+        let t = refined["design"][name].as_f64().unwrap();
+        assert!(t > 0.416 - 2e-3 * 0.016, "{name} = {t}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn refine_keys_are_checked() {
+    let text = std::fs::read_to_string("problems/wei2017.toml").unwrap();
+    for (section, key, words) in [
+        (
+            "[refine]\nidealization = \"plane-strain\"\n",
+            "refine.fidelity",
+            "missing",
+        ),
+        (
+            "[refine]\nfidelity = \"cfd\"\n",
+            "refine.fidelity",
+            "\"fe\" or \"none\"",
+        ),
+        (
+            "[refine]\nfidelity = \"fe\"\ntolerance = 0.5\n",
+            "refine.tolerance",
+            "between",
+        ),
+        (
+            "[refine]\nfidelity = \"fe\"\nmax_fe = 1\n",
+            "refine.max_fe",
+            "between 2 and 200",
+        ),
+        (
+            "[refine]\nfidelity = \"fe\"\nfrom = \"best\"\n",
+            "refine.from",
+            "\"zones\"",
+        ),
+        (
+            "[refine]\nfidelity = \"fe\"\nstress = \"mean\"\n",
+            "refine.stress",
+            "\"section\"",
+        ),
+        (
+            "[refine]\nfidelity = \"fe\"\ntrust_radius = 0\n",
+            "refine.trust_radius",
+            "(0, 1]",
+        ),
+    ] {
+        let e = Problem::parse(Path::new("r.toml"), &format!("{text}\n{section}")).unwrap_err();
+        assert_eq!(e.key, key, "{section}");
+        assert!(e.to_string().contains(words), "{e}");
+    }
+    let ok = Problem::parse(
+        Path::new("r.toml"),
+        &format!("{text}\n[refine]\nfidelity = \"fe\"\nidealization = \"plane-stress\"\n"),
+    )
+    .unwrap();
+    assert!(ok.refine.enabled);
+    assert_eq!(ok.refine.idealization, Idealization::PlaneStress);
+}
