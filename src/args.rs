@@ -17,7 +17,9 @@ pub struct Cli {
 
 #[derive(Subcommand)]
 pub enum Command {
-    /// Evaluate one design and print every output as JSON.
+    /// Evaluate one design: every output, the objective and each constraint with its limit,
+    /// margin and activity, as a table (in the file's units) or as JSON (SI, with each
+    /// output's display unit beside).
     Eval {
         /// The problem file (TOML).
         problem: PathBuf,
@@ -25,6 +27,10 @@ pub enum Command {
         /// fixed variables may be left out.
         #[arg(long)]
         design: String,
+        /// `table` or `json`; default: a table on a terminal, JSON when the output goes to
+        /// a file or a pipe (what scripts read).
+        #[arg(long, value_parser = ["table", "json"])]
+        format: Option<String>,
     },
     /// The part of one design: its outline for CAD and wire EDM (part.dxf, part.svg,
     /// part.json) and a dimensioned drawing (part.png).
@@ -119,12 +125,6 @@ pub enum Command {
         problem: PathBuf,
         #[command(flatten)]
         study: StudyArgs,
-        /// Local solver (default: the problem file's search.solver).
-        #[arg(long, value_parser = ["sqp", "nelder-mead"])]
-        solver: Option<String>,
-        /// No progress bar.
-        #[arg(long)]
-        quiet: bool,
         /// Check the optimum on its part by finite elements too (into DIR/verify).
         #[arg(long)]
         verify: bool,
@@ -184,4 +184,10 @@ pub struct StudyArgs {
     /// Worker threads, 0 for every core (default: the problem file's search.threads).
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Local solver (default: the problem file's search.solver).
+    #[arg(long, value_parser = ["sqp", "nelder-mead"])]
+    pub solver: Option<String>,
+    /// No progress bar or progress lines.
+    #[arg(long)]
+    pub quiet: bool,
 }

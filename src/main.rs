@@ -17,10 +17,11 @@ use flexopt::model::hinge::calculator;
 use flexopt::pareto::ParetoSpec;
 use flexopt::part::Part;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
-use flexopt::problem::{Problem, Solver};
+use flexopt::problem::Problem;
 use flexopt::report::part::write_part;
 use flexopt::report::summary::Wrote;
 use flexopt::report::sweep::write_sweep;
+use flexopt::report::table::DesignTable;
 use flexopt::report::verify::{write_verify, VerifyReport, VerifyTable};
 use flexopt::report::{check_writable, DesignReport};
 use flexopt::sweep::{sweep, SweepSpec};
@@ -78,7 +79,11 @@ fn main() -> ExitCode {
 
 fn run(command: Command) -> Result<(), Failure> {
     match command {
-        Command::Eval { problem, design } => eval(&problem, &design),
+        Command::Eval {
+            problem,
+            design,
+            format,
+        } => eval(&problem, &design, format.as_deref()),
         Command::Export {
             problem,
             design,
@@ -135,23 +140,13 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Run {
             problem,
             study,
-            solver,
-            quiet,
             verify,
             refine,
         } => {
-            let (mut problem, mut options) = study_setup(&problem, &study)?;
+            let (mut problem, options) = study_setup(&problem, &study)?;
             if let Some(r) = refine {
                 problem.refine.enabled = r == "fe";
             }
-            if let Some(s) = solver {
-                options.solver = if s == "sqp" {
-                    Solver::Sqp
-                } else {
-                    Solver::NelderMead
-                };
-            }
-            options.progress = !quiet && std::io::stderr().is_terminal();
             let dir = output_dir(&problem, study.out)?;
             run_study(&problem, &options, &dir, verify)
         }
@@ -227,7 +222,7 @@ fn warn(path: &Path, warnings: &[String]) {
     }
 }
 
-fn eval(path: &Path, design: &str) -> Result<(), Failure> {
+fn eval(path: &Path, design: &str, format: Option<&str>) -> Result<(), Failure> {
     let (problem, x) = load_design(path, design)?;
     if let Some(why) = problem.model().domain_error(&x) {
         return Err(Failure::bad_input(format!(
@@ -242,7 +237,16 @@ fn eval(path: &Path, design: &str) -> Result<(), Failure> {
             path.display()
         );
     }
-    print_json(&report)
+    let table = format.map_or(std::io::stdout().is_terminal(), |f| f == "table");
+    if table {
+        emit(&DesignTable {
+            problem: &problem,
+            report: &report,
+        });
+        Ok(())
+    } else {
+        print_json(&report)
+    }
 }
 
 /// The design of `--design` or `--optimum`, inside the model's domain.

@@ -41,6 +41,9 @@ pub struct ParetoPoint {
     pub active: bool,
     /// Whether no other point is better in both the objective and the output.
     pub on_front: bool,
+    /// The limit of an earlier point with the same result (objective and output equal to
+    /// within [`SAME`]): a limit that does not bind gives the same optimum again.
+    pub same_as: Option<f64>,
     /// The best design, variable -> value in the problem file's units.
     pub design: IndexMap<String, f64>,
     /// Configuration type of the best design (`-` for a model whose topology is fixed).
@@ -163,6 +166,7 @@ pub fn pareto(
             active: feasible
                 && (value_si - limit_si).abs() <= ACTIVE_TOLERANCE * limit_si.abs().max(1e-300),
             on_front: false,
+            same_as: None,
             design: problem
                 .variables
                 .iter()
@@ -207,6 +211,17 @@ fn mark_front(points: &mut [ParetoPoint], sense: Sense, bound: &str) {
         p.on_front = !all.iter().flatten().any(|b| {
             !worse(b.0, a.0) && !worse(b.1, a.1) && (better(b.0, a.0) || better(b.1, a.1))
         });
+    }
+    let limits: Vec<f64> = points.iter().map(|p| p.limit).collect();
+    for i in 0..points.len() {
+        let Some(a) = all[i] else { continue };
+        points[i].same_as = (0..i)
+            .find(|&j| {
+                all[j].is_some_and(|b| {
+                    !better(a.0, b.0) && !better(b.0, a.0) && !better(a.1, b.1) && !better(b.1, a.1)
+                })
+            })
+            .map(|j| limits[j]);
     }
 }
 

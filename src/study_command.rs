@@ -8,7 +8,7 @@ use crate::{emit, run_verify, Failure};
 use flexopt::fe::verify::VerifySettings;
 use flexopt::pareto::{pareto, ParetoSpec};
 use flexopt::part::Part;
-use flexopt::problem::Problem;
+use flexopt::problem::{Problem, Solver};
 use flexopt::refine::study::refine_study;
 use flexopt::report::pareto::write_pareto;
 use flexopt::report::refine::{RefineSummary, RefinedReport};
@@ -60,6 +60,14 @@ pub(crate) fn study_setup(
             i64::MAX
         )));
     }
+    if let Some(s) = &args.solver {
+        options.solver = if s == "sqp" {
+            Solver::Sqp
+        } else {
+            Solver::NelderMead
+        };
+    }
+    options.progress = !args.quiet;
     options.seed = seed.unwrap_or(options.seed);
     options.threads = threads.unwrap_or(options.threads);
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());

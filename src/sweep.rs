@@ -34,6 +34,15 @@ pub struct Sweep {
     pub outputs: IndexMap<String, Vec<Option<f64>>>,
     /// Output -> SI unit.
     pub output_units: IndexMap<String, String>,
+    /// Output -> the unit the plot shows it in (its constraint's, else the designer's
+    /// usual one), and that unit's factor to SI.
+    pub display_units: IndexMap<String, String>,
+    #[serde(skip)]
+    pub display_to_si: IndexMap<String, f64>,
+    /// Output -> its constraint's limits (SI), where the problem constrains it.
+    pub limits: IndexMap<String, [Option<f64>; 2]>,
+    /// Output -> its value at the base design (SI).
+    pub at_around: IndexMap<String, Option<f64>>,
     /// Order of the outputs as the model lists them.
     #[serde(skip)]
     pub order: Vec<String>,
@@ -123,7 +132,37 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
         }
     }
     let infos = model.outputs();
+    let mut at = vec![f64::NAN; wanted.len()];
+    if model.domain_error(base).is_none() {
+        model.evaluate(base, &wanted, &mut at);
+    }
+    let display: Vec<crate::problem::units::Unit> = wanted
+        .iter()
+        .map(|&k| crate::report::display::output_unit(problem, k))
+        .collect();
+    let name = |k: usize| infos[k].name.to_string();
     Ok(Sweep {
+        display_units: wanted
+            .iter()
+            .zip(&display)
+            .map(|(&k, u)| (name(k), u.name.clone()))
+            .collect(),
+        display_to_si: wanted
+            .iter()
+            .zip(&display)
+            .map(|(&k, u)| (name(k), u.to_si))
+            .collect(),
+        limits: problem
+            .constraints
+            .iter()
+            .filter(|c| wanted.contains(&c.index))
+            .map(|c| (name(c.index), [c.lower, c.upper]))
+            .collect(),
+        at_around: wanted
+            .iter()
+            .zip(&at)
+            .map(|(&k, &v)| (name(k), v.is_finite().then_some(v)))
+            .collect(),
         problem: problem.name.clone(),
         variable: var.name.clone(),
         unit: var.unit.name.clone(),

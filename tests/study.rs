@@ -280,7 +280,7 @@ fn hs15_multistart_finds_the_global_minimum() {
         &starts,
         |q, x0| sqp::solve(q, x0, &SqpSettings::default()),
         2,
-        false,
+        None,
     );
     let best = solutions
         .iter()

@@ -97,6 +97,10 @@ pub struct OutputInfo {
     pub name: &'static str,
     pub dimension: Dimension,
     pub description: &'static str,
+    /// The unit a designer reads it in, where the dimension's usual one does not suit it
+    /// (a stroke of micrometres among spans of millimetres).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub display: Option<&'static str>,
 }
 
 impl OutputInfo {
@@ -105,6 +109,15 @@ impl OutputInfo {
             name,
             dimension,
             description,
+            display: None,
+        }
+    }
+
+    /// The same, read in `unit` (one of the dimension's units).
+    pub const fn shown_in(self, unit: &'static str) -> Self {
+        OutputInfo {
+            display: Some(unit),
+            ..self
         }
     }
 }
@@ -143,6 +156,8 @@ pub struct Skeleton {
     /// Whether each member (between nodes `i` and `i + 1`) is rigid; flexible members are
     /// drawn in the zone's colour, rigid ones in grey.
     pub rigid: Vec<bool>,
+    /// Each member's in-plane thickness (mm), drawn to scale; 0 draws its centre line.
+    pub thickness_mm: Vec<f64>,
 }
 
 /// A mechanism model as the problem layer and the optimizer see it.

@@ -8,6 +8,7 @@ pub mod hessian;
 pub mod multistart;
 pub mod nelder_mead;
 pub mod problem;
+pub mod progress;
 pub mod qp;
 pub mod sqp;
 

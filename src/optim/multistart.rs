@@ -4,13 +4,13 @@
 //! `i`), and every solve is a pure function of its start, so the results are the same
 //! whatever the number of threads and whatever order the solves finish in.
 
-use indicatif::{ProgressBar, ProgressStyle};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::problem::{Problem, Solution};
+use super::progress::Progress;
 
 /// How start points fill the sampling box.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -71,14 +71,13 @@ fn stream(seed: u64, index: u64) -> ChaCha8Rng {
 }
 
 /// Solves `problem` from every start with `solve`, on `threads` threads (0: all cores),
-/// keeping every result in the order of the starts. With `progress`, draws a bar on the
-/// terminal.
+/// keeping every result in the order of the starts, each reported to `progress`.
 pub fn run<S>(
     problem: &dyn Problem,
     starts: &[Vec<f64>],
     solve: S,
     threads: usize,
-    progress: bool,
+    progress: Option<&Progress>,
 ) -> Vec<Solution>
 where
     S: Fn(&dyn Problem, &[f64]) -> Solution + Sync,
@@ -97,23 +96,12 @@ pub fn run_until<S>(
     starts: &[Vec<f64>],
     solve: S,
     threads: usize,
-    progress: bool,
+    progress: Option<&Progress>,
     stop: &AtomicBool,
 ) -> Vec<Option<Solution>>
 where
     S: Fn(&dyn Problem, &[f64]) -> Solution + Sync,
 {
-    let bar = if progress {
-        let bar = ProgressBar::new(starts.len() as u64);
-        if let Ok(style) =
-            ProgressStyle::with_template("{bar:40} {pos}/{len} local solves ({elapsed})")
-        {
-            bar.set_style(style);
-        }
-        bar
-    } else {
-        ProgressBar::hidden()
-    };
     let work = || {
         starts
             .par_iter()
@@ -122,7 +110,9 @@ where
                     return None;
                 }
                 let s = solve(problem, x0);
-                bar.inc(1);
+                if let Some(p) = progress {
+                    p.record(&s);
+                }
                 Some(s)
             })
             .collect::<Vec<_>>()
@@ -131,7 +121,9 @@ where
         Ok(pool) => pool.install(work),
         Err(_) => work(),
     };
-    bar.finish_and_clear();
+    if let Some(p) = progress {
+        p.finish();
+    }
     results
 }
 

@@ -89,8 +89,54 @@ impl Unit {
         value * self.to_si
     }
 
+    /// `value` (SI) in this unit. A value that came from the file reads back as written:
+    /// the shortest decimal of 15 or 16 significant digits that converts back to exactly
+    /// `value` is returned, so `-15 deg` is -15, not -14.999999999999998.
     pub fn from_si(&self, value: f64) -> f64 {
-        value / self.to_si
+        let raw = value / self.to_si;
+        if self.to_si == 1.0 || !raw.is_finite() {
+            return raw;
+        }
+        for digits in [15, 16] {
+            if let Ok(v) = format!("{raw:.*e}", digits - 1).parse::<f64>() {
+                if self.to_si(v) == value {
+                    return v;
+                }
+            }
+        }
+        raw
+    }
+
+    /// Every unit of `dimension`, as [`Unit::parse`] gives them.
+    pub fn all(dimension: Dimension) -> Vec<Unit> {
+        units_of(dimension)
+            .iter()
+            .filter(|(n, _)| !n.is_empty())
+            .map(|(n, f)| Unit {
+                name: n.to_string(),
+                dimension,
+                to_si: *f,
+            })
+            .collect()
+    }
+
+    /// The unit a designer reads a quantity of `dimension` in when the problem file names
+    /// none for it: mm, deg, N, MPa, N/um, um/N, g, N mm/rad, Hz, ms.
+    pub fn display(dimension: Dimension) -> Unit {
+        let name = match dimension {
+            Dimension::Ratio => "1",
+            Dimension::Length => "mm",
+            Dimension::Angle => "deg",
+            Dimension::Force => "N",
+            Dimension::Stress => "MPa",
+            Dimension::Stiffness => "N/um",
+            Dimension::Compliance => "um/N",
+            Dimension::Mass => "g",
+            Dimension::RotationalStiffness => "N mm/rad",
+            Dimension::Frequency => "Hz",
+            Dimension::Time => "ms",
+        };
+        Unit::parse(name, dimension).expect("every display unit is in the table")
     }
 }
 

@@ -4,6 +4,7 @@
 //! Every file is written whole or not at all: it is written beside its target under a
 //! temporary name and renamed into place.
 
+pub mod display;
 pub mod folder;
 pub mod pareto;
 pub mod part;
@@ -12,6 +13,7 @@ pub mod refine;
 pub mod study;
 pub mod summary;
 pub mod sweep;
+pub mod table;
 pub mod verify;
 
 use indexmap::IndexMap;
@@ -177,6 +179,9 @@ pub struct DesignReport {
     pub outputs: IndexMap<String, Option<f64>>,
     /// Output -> SI unit.
     pub output_units: IndexMap<String, String>,
+    /// Output -> the unit a person reads it in: its constraint's in the file, else the
+    /// designer's usual one (the summaries, tables and plots use it).
+    pub display_units: IndexMap<String, String>,
     /// The objective as the problem states it (absolute value taken if asked), SI;
     /// `null` where the model gives no finite number.
     pub objective: Option<f64>,
@@ -211,6 +216,7 @@ impl DesignReport {
             design_si: IndexMap::new(),
             outputs: IndexMap::new(),
             output_units: IndexMap::new(),
+            display_units: IndexMap::new(),
             objective: finite(out[problem.objective.index]).map(|v| {
                 if problem.objective.absolute {
                     v.abs()
@@ -242,6 +248,9 @@ impl DesignReport {
             report
                 .output_units
                 .insert(info.name.into(), info.dimension.si_unit().into());
+            report
+                .display_units
+                .insert(info.name.into(), display::output_unit(problem, i).name);
         }
         report.feasible =
             report.objective.is_some() && report.constraints.iter().all(|c| c.satisfied);

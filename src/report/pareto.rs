@@ -46,6 +46,8 @@ fn plot(path: &Path, front: &Pareto) -> Result<(), WriteError> {
             .x_desc(format!("{} ({})", front.output, front.unit))
             .y_desc(&front.objective)
             .label_style((FAMILY, 13))
+            .light_line_style(TRANSPARENT)
+            .bold_line_style(BLACK.mix(0.12))
             .x_label_formatter(&|v| format_tick(*v))
             .y_label_formatter(&|v| format_tick(*v))
             .draw()?;

@@ -32,6 +32,10 @@ pub struct Panel {
     pub x_label: String,
     pub y_label: String,
     pub points: Vec<(f64, f64)>,
+    /// Limits on `y` drawn across the panel (a constraint's).
+    pub limits: Vec<f64>,
+    /// A point marked on the curve (the design the sweep is taken around).
+    pub marker: Option<(f64, f64)>,
 }
 
 /// The error a drawing closure of [`render_png`] returns.
@@ -120,33 +124,74 @@ where
     DB::ErrorType: 'static,
 {
     let xr = range(p.points.iter().map(|q| q.0));
-    let yr = range(p.points.iter().map(|q| q.1));
+    // a limit far off the curve would squash it: only those within reach widen the range
+    let ys: Vec<f64> = p
+        .points
+        .iter()
+        .map(|q| q.1)
+        .filter(|v| v.is_finite())
+        .collect();
+    let (lo, hi) = range(ys.iter().copied());
+    let reach = 2.0 * (hi - lo);
+    let near: Vec<f64> = p
+        .limits
+        .iter()
+        .copied()
+        .filter(|&l| l > lo - reach && l < hi + reach)
+        .collect();
+    let yr = range(ys.iter().copied().chain(near.iter().copied()));
     let mut chart = ChartBuilder::on(area)
         .caption(&p.title, (FAMILY, 16))
-        .margin(8)
-        .x_label_area_size(36)
-        .y_label_area_size(64)
+        .margin(10)
+        .x_label_area_size(44)
+        .y_label_area_size(72)
         .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
     chart
         .configure_mesh()
         .x_desc(&p.x_label)
         .y_desc(&p.y_label)
         .label_style((FAMILY, 12))
+        .axis_desc_style((FAMILY, 13))
+        .x_labels(6)
+        .y_labels(7)
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(BLACK.mix(0.12))
         .y_label_formatter(&|v| format_tick(*v))
         .x_label_formatter(&|v| format_tick(*v))
         .draw()?;
+    for &l in &near {
+        chart.draw_series(DashedLineSeries::new(
+            [(xr.0, l), (xr.1, l)],
+            6,
+            4,
+            RED.mix(0.8).stroke_width(2),
+        ))?;
+    }
     // a gap where the model gives no finite value
     for run in p.points.split(|q| !q.1.is_finite()) {
         chart.draw_series(LineSeries::new(run.iter().copied(), BLUE.stroke_width(2)))?;
     }
+    if let Some((x, y)) = p.marker.filter(|m| m.0.is_finite() && m.1.is_finite()) {
+        chart.draw_series(DashedLineSeries::new(
+            [(x, yr.0), (x, yr.1)],
+            4,
+            4,
+            BLACK.mix(0.5).stroke_width(1),
+        ))?;
+        chart.draw_series([Circle::new((x, y), 5, BLACK.filled())])?;
+    }
     Ok(())
 }
 
-/// Compact tick labels with up to 5 significant digits: 12.5, 0.01195, 7.00e6.
+/// Compact tick labels with up to 5 significant digits: 12.5, 0.01195, 7e6, 2.5e-4.
 pub fn format_tick(v: f64) -> String {
     let a = v.abs();
     if a != 0.0 && !(1e-3..1e5).contains(&a) {
-        return format!("{v:.3e}");
+        let s = format!("{v:.3e}");
+        return match s.split_once('e') {
+            Some((m, e)) => format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.')),
+            None => s,
+        };
     }
     let decimals = if a == 0.0 {
         0

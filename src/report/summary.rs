@@ -50,12 +50,18 @@ impl Display for StudySummary<'_> {
             (true, false) => "best (NOT CONVERGED: no feasible start converged)",
             (false, _) => "least violating (infeasible)",
         };
+        let x = study.reported_design();
+        let model = problem.model();
+        let unit = super::display::output_unit(problem, problem.objective.index);
+        let configuration = match model.configuration(x) {
+            "-" => String::new(),
+            c => format!(" ({c} configuration)"),
+        };
         writeln!(
             s,
-            "{label} {} = {:.6} ({})",
+            "{label} {} = {}{configuration}",
             problem.objective.output,
-            study.reported_objective(),
-            problem.model().configuration(study.reported_design())
+            super::display::with_unit(study.reported_objective(), &unit),
         )?;
         if let Some(l) = &study.least_violating {
             let names: Vec<&str> = l
@@ -69,22 +75,29 @@ impl Display for StudySummary<'_> {
                 names.join(", ")
             )?;
         }
-        let design: Vec<String> = problem
-            .variables
-            .iter()
-            .zip(study.reported_design())
-            .map(|(v, &x)| format!("{}={:.6}", v.name, v.unit.from_si(x)))
-            .collect();
-        writeln!(s, "  design {}", design.join(","))?;
+        writeln!(s, "  design {}", super::display::design_line(problem, x))?;
+        let report = super::DesignReport::new(problem, x);
+        if !report.constraints.is_empty() {
+            write!(s, "{}", super::table::ConstraintLines(&report.constraints))?;
+            let active: Vec<&str> = report
+                .constraints
+                .iter()
+                .filter(|c| c.active)
+                .map(|c| c.output.as_str())
+                .collect();
+            writeln!(
+                s,
+                "  active: {}",
+                if active.is_empty() {
+                    "none".to_string()
+                } else {
+                    active.join(", ")
+                }
+            )?;
+        }
         writeln!(s, "zone  starts  optima  best        worst")?;
         for z in &study.clustering.zones {
-            let f = |v: f64| {
-                if v.is_finite() {
-                    format!("{v:<10.6}")
-                } else {
-                    format!("{:<10}", "-")
-                }
-            };
+            let f = |v: f64| format!("{:<10}", super::display::human(unit.from_si(v)));
             writeln!(
                 s,
                 "{:<5} {:<7} {:<7} {}  {}",
@@ -139,24 +152,75 @@ impl Display for ParetoSummary<'_> {
             front.starts,
             front.elapsed.as_secs_f64() * 1e3
         )?;
-        writeln!(
-            s,
-            "{:>12}  {:>12}  {:>12}  active  front",
+        let unit_of = |name: &str| {
+            self.problem
+                .model()
+                .output_index(name)
+                .map(|i| super::display::output_unit(self.problem, i).name)
+                .filter(|u| u != "1")
+                .map_or(String::new(), |u| format!(" ({u})"))
+        };
+        let head = [
             format!("limit ({})", front.unit),
-            front.objective,
-            front.output
-        )?;
-        for p in &front.points {
-            let show = |v: Option<f64>| v.map_or("infeasible".to_string(), |v| format!("{v:.6}"));
+            format!("{}{}", front.objective, unit_of(&front.objective)),
+            format!("{} ({})", front.output, front.unit),
+            "active".to_string(),
+            "front".to_string(),
+        ];
+        let objective_unit = self
+            .problem
+            .model()
+            .output_index(&front.objective)
+            .map(|i| super::display::output_unit(self.problem, i));
+        let human = super::display::human;
+        let rows: Vec<[String; 5]> = front
+            .points
+            .iter()
+            .map(|p| {
+                let objective = p.objective.map_or("infeasible".to_string(), |v| {
+                    human(objective_unit.as_ref().map_or(v, |u| u.from_si(v)))
+                });
+                let front_mark = match (p.on_front, p.same_as) {
+                    (true, Some(first)) => format!("same as {}", human(first)),
+                    (true, None) => "yes".to_string(),
+                    (false, _) => String::new(),
+                };
+                [
+                    human(p.limit),
+                    objective,
+                    p.value.map_or("-".to_string(), human),
+                    if p.active { "yes" } else { "" }.to_string(),
+                    front_mark,
+                ]
+            })
+            .collect();
+        let width: Vec<usize> = (0..5)
+            .map(|k| {
+                rows.iter()
+                    .map(|r| r[k].len())
+                    .chain([head[k].len()])
+                    .max()
+                    .unwrap_or(0)
+            })
+            .collect();
+        let line = |s: &mut fmt::Formatter<'_>, r: &[String; 5]| {
             writeln!(
                 s,
-                "{:>12}  {:>12}  {:>12}  {:<6}  {}",
-                format!("{:.6}", p.limit),
-                show(p.objective),
-                show(p.value),
-                if p.active { "yes" } else { "no" },
-                if p.on_front { "yes" } else { "no" }
-            )?;
+                "{:>w0$}  {:>w1$}  {:>w2$}  {:<w3$}  {}",
+                r[0],
+                r[1],
+                r[2],
+                r[3],
+                r[4],
+                w0 = width[0],
+                w1 = width[1],
+                w2 = width[2],
+                w3 = width[3]
+            )
+        };
+        line(s, &head)?;
+        for r in &rows {
+            line(s, r)?;
         }
         wrote(s, self.files)
     }

@@ -11,19 +11,36 @@ pub fn write_sweep(dir: &Path, sweep: &Sweep) -> Result<Vec<PathBuf>, WriteError
     let json = dir.join(format!("{}.json", sweep.variable));
     let png = dir.join(format!("{}.png", sweep.variable));
     write_json(&json, sweep)?;
+    let around = sweep.around.get(&sweep.variable).copied();
     let panels: Vec<Panel> = sweep
         .order
         .iter()
-        .map(|name| Panel {
-            title: name.clone(),
-            x_label: format!("{} ({})", sweep.variable, sweep.unit),
-            y_label: format!("{name} ({})", sweep.output_units[name]),
-            points: sweep
-                .values
-                .iter()
-                .zip(&sweep.outputs[name])
-                .map(|(&x, y)| (x, y.unwrap_or(f64::NAN)))
-                .collect(),
+        .map(|name| {
+            // in the display unit: 60 MPa, not 6.000e7 Pa
+            let scale = sweep.display_to_si.get(name).copied().unwrap_or(1.0);
+            let shown = |v: f64| v / scale;
+            let unit = &sweep.display_units[name];
+            Panel {
+                title: name.clone(),
+                x_label: format!("{} ({})", sweep.variable, sweep.unit),
+                y_label: if unit == "1" {
+                    name.clone()
+                } else {
+                    format!("{name} ({unit})")
+                },
+                points: sweep
+                    .values
+                    .iter()
+                    .zip(&sweep.outputs[name])
+                    .map(|(&x, y)| (x, y.map_or(f64::NAN, shown)))
+                    .collect(),
+                limits: sweep
+                    .limits
+                    .get(name)
+                    .map(|l| l.iter().flatten().map(|&v| shown(v)).collect())
+                    .unwrap_or_default(),
+                marker: around.zip(sweep.at_around.get(name).copied().flatten().map(shown)),
+            }
         })
         .collect();
     let columns = if panels.len() == 1 { 1 } else { 4 };

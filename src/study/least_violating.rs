@@ -63,7 +63,7 @@ fn best_of(
         &starts,
         |p, x0| sqp::solve(p, x0, settings),
         threads,
-        false,
+        None,
     );
     solutions
         .into_iter()

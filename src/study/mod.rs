@@ -10,6 +10,7 @@ use serde::Serialize;
 use crate::optim::cluster::{cluster, ClusterSettings, Clustering, EndPoint};
 use crate::optim::multistart::{self, Sampling as StartSampling};
 use crate::optim::nelder_mead::{self, NelderMeadSettings};
+use crate::optim::progress::Progress;
 use crate::optim::sqp::{self, SqpSettings};
 use crate::optim::{Problem as _, Solution, Status};
 use crate::problem::epigraph::Epigraph;
@@ -188,6 +189,23 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
     );
     let tolerance = problem.search.tolerance;
     let max_iterations = problem.search.max_iterations;
+    // the progress's best: a feasible end's objective as the problem states it
+    let unit = crate::report::display::output_unit(problem, problem.objective.index);
+    let label = |s: &Solution| -> Option<(f64, String)> {
+        let feasible = s.objective.is_finite()
+            && s.max_violation <= FEASIBILITY_TOLERANCE
+            && !matches!(s.status, Status::Failed(_) | Status::Infeasible);
+        feasible.then(|| {
+            let value = nlp.objective_at(&s.x[..n], s.objective);
+            let rank = crate::problem::nlp::merit(problem.objective.sense, false, value);
+            let text = crate::report::display::with_unit(value, &unit);
+            (rank, format!("{} {text}", problem.objective.output))
+        })
+    };
+    let progress = options
+        .progress
+        .then(|| Progress::new("local solves", options.starts, &label));
+    let progress = progress.as_ref();
     let begin = Instant::now();
     let solutions = match options.solver {
         Solver::Sqp => {
@@ -206,7 +224,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
                         &starts,
                         |p, x0| sqp::solve(p, x0, &settings),
                         options.threads,
-                        options.progress,
+                        progress,
                         &options.stop,
                     )
                     .into_iter()
@@ -223,7 +241,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
                     &starts,
                     |p, x0| sqp::solve(p, x0, &settings),
                     options.threads,
-                    options.progress,
+                    progress,
                     &options.stop,
                 ),
             }
@@ -239,7 +257,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
                 &starts,
                 |p, x0| nelder_mead::solve(p, x0, &settings),
                 options.threads,
-                options.progress,
+                progress,
                 &options.stop,
             )
         }

@@ -30,13 +30,17 @@ pub fn configuration(g: &Geometry<f64>) -> &'static str {
     }
 }
 
-/// The quarter's centre line: hinge b, the rigid middle link, hinge d (mm, origin at node 2).
+/// The quarter's centre line: hinge b, the rigid middle link, hinge d (mm, origin at node 2),
+/// each hinge as thick as its thinnest section.
 pub fn skeleton(g: &Geometry<f64>) -> Skeleton {
+    let t = |h: &crate::model::hinge::Hinge<f64>| h.kind.least_thickness(h.dims()) * 1e3;
     Skeleton {
         nodes_mm: g.nodes().iter().map(|p| (p[0] * 1e3, p[1] * 1e3)).collect(),
         rigid: vec![false, true, false],
+        thickness_mm: vec![t(&g.b), 0.0, t(&g.d)],
     }
 }
 
 /// What the colours of [`skeleton`]'s plot mean.
-pub const SKELETON_LEGEND: &str = "hinges in colour, middle link grey, origin at node 2";
+pub const SKELETON_LEGEND: &str =
+    "to scale: hinges in colour at their least thickness, middle link's centre line grey, origin at node 2";

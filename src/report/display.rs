@@ -1,0 +1,125 @@
+//! How numbers and quantities read where a person reads them: in the unit the problem file
+//! used for each (a variable's, a constraint's) or a designer's usual one, with the digits
+//! that matter. JSON keeps SI and full precision; these are for terminals, plots and CSV.
+
+use crate::problem::units::Unit;
+use crate::problem::Problem;
+
+/// A number as a person reads it: exactly as written when it has few digits (a value from
+/// the file: `1.96`, `-15`, `0.333`), else to six significant digits (`1.98403`), plain
+/// between 1e-4 and 1e9 and in short scientific form outside (`6.19e-11`).
+pub fn human(v: f64) -> String {
+    if !v.is_finite() {
+        return "-".to_string();
+    }
+    if v == 0.0 {
+        return "0".to_string();
+    }
+    let shortest = format!("{v:e}");
+    let digits = shortest
+        .split('e')
+        .next()
+        .map_or(17, |m| m.chars().filter(char::is_ascii_digit).count());
+    let value = if digits <= 9 {
+        v
+    } else {
+        format!("{v:.5e}").parse().unwrap_or(v)
+    };
+    plain_or_scientific(value)
+}
+
+/// `v` to `digits` significant digits, trailing zeros dropped.
+pub fn significant(v: f64, digits: usize) -> String {
+    if !v.is_finite() {
+        return "-".to_string();
+    }
+    let rounded: f64 = format!("{v:.*e}", digits.max(1) - 1).parse().unwrap_or(v);
+    plain_or_scientific(rounded)
+}
+
+fn plain_or_scientific(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || (1e-4..1e9).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// A number in a CSV file: plain decimal between 1e-4 and 1e7, else short scientific form
+/// (`6.189952040375121e-11`, never `1.2897935500824541e1`); every digit kept.
+pub fn csv(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        "0".to_string()
+    } else if !v.is_finite() || (1e-4..1e7).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// The unit the output `output` of `problem`'s model is shown in: its constraint's unit
+/// when the file constrains it, else the model's choice for it, else the dimension's usual
+/// one ([`Unit::display`]).
+pub fn output_unit(problem: &Problem, output: usize) -> Unit {
+    if let Some(c) = problem.constraints.iter().find(|c| c.index == output) {
+        return c.unit.clone();
+    }
+    let info = &problem.model().outputs()[output];
+    info.display
+        .and_then(|name| Unit::parse(name, info.dimension).ok())
+        .unwrap_or_else(|| Unit::display(info.dimension))
+}
+
+/// `value unit`, the unit left out for a dimensionless one.
+pub fn with_unit(si: f64, unit: &Unit) -> String {
+    let v = human(unit.from_si(si));
+    if unit.name == "1" || unit.name.is_empty() {
+        v
+    } else {
+        format!("{v} {}", unit.name)
+    }
+}
+
+/// The design `x` (SI) in the file's units: `l2 = 1.98403 mm, delta2 = 4.05061 deg, ...`.
+pub fn design_line(problem: &Problem, x: &[f64]) -> String {
+    problem
+        .variables
+        .iter()
+        .zip(x)
+        .map(|(v, &xi)| format!("{} = {}", v.name, with_unit(xi, &v.unit)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The same as `name=value` pairs, as `--design` takes them (values in the file's units).
+pub fn design_arg(problem: &Problem, x: &[f64]) -> String {
+    problem
+        .variables
+        .iter()
+        .zip(x)
+        .map(|(v, &xi)| format!("{}={}", v.name, human(v.unit.from_si(xi))))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_read_as_a_designer_writes_them() {
+        assert_eq!(human(1.96), "1.96");
+        assert_eq!(human(-15.0), "-15");
+        assert_eq!(human(1.9840321707657047), "1.98403");
+        assert_eq!(human(12.897935500824541), "12.8979");
+        assert_eq!(human(7e6), "7000000");
+        assert_eq!(human(6.189952040375121e-11), "6.18995e-11");
+        assert_eq!(human(0.3333333333333333), "0.333333");
+        assert_eq!(significant(148.64597, 4), "148.6");
+        assert_eq!(csv(12.897935500824541), "12.897935500824541");
+        assert_eq!(csv(0.0), "0");
+        assert_eq!(csv(6.189952040375121e-11), "6.189952040375121e-11");
+    }
+}

@@ -1,0 +1,110 @@
+//! A design as a designer reads it on a terminal: `flexopt eval --format table`, and the
+//! constraint lines of the run summary. Every quantity in the unit the problem file used for
+//! it, or the designer's usual one ([`super::display`]).
+
+use std::fmt::{self, Display};
+
+use super::display::{human, output_unit, with_unit};
+use super::{ConstraintReport, DesignReport};
+use crate::problem::{Problem, Sense};
+
+/// `eval`'s table: the design, every output, the objective and each constraint.
+pub struct DesignTable<'a> {
+    pub problem: &'a Problem,
+    pub report: &'a DesignReport,
+}
+
+impl Display for DesignTable<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (p, r) = (self.problem, self.report);
+        let model = p.model();
+        writeln!(s, "{} ({} model)", p.name, r.model)?;
+        writeln!(s, "design")?;
+        for v in &p.variables {
+            let value = r.design.get(&v.name).copied().unwrap_or(f64::NAN);
+            let fixed = if v.fixed { "  (fixed)" } else { "" };
+            writeln!(
+                s,
+                "  {:<22} {:>14} {}{fixed}",
+                v.name,
+                human(value),
+                v.unit.name
+            )?;
+        }
+        writeln!(s, "outputs")?;
+        for (name, value) in &r.outputs {
+            let Some(i) = model.output_index(name) else {
+                continue;
+            };
+            let unit = output_unit(p, i);
+            let shown = value.map_or("-".to_string(), |v| human(unit.from_si(v)));
+            let u = if unit.name == "1" { "" } else { &unit.name };
+            writeln!(s, "  {name:<22} {shown:>14} {u}")?;
+        }
+        let o = &p.objective;
+        let unit = output_unit(p, o.index);
+        writeln!(
+            s,
+            "objective: {} {}{}{} = {}",
+            match o.sense {
+                Sense::Maximize => "maximize",
+                Sense::Minimize => "minimize",
+            },
+            if o.absolute { "|" } else { "" },
+            o.output,
+            if o.absolute { "|" } else { "" },
+            r.objective.map_or("-".to_string(), |v| with_unit(v, &unit))
+        )?;
+        if !r.constraints.is_empty() {
+            write!(s, "{}", ConstraintLines(&r.constraints))?;
+        }
+        writeln!(
+            s,
+            "feasible: {}",
+            if r.feasible {
+                "yes, every constraint met"
+            } else {
+                "NO"
+            }
+        )
+    }
+}
+
+/// The constraints, one aligned line each: value, limits, margin, and whether it is active
+/// or violated.
+pub struct ConstraintLines<'a>(pub &'a [ConstraintReport]);
+
+impl Display for ConstraintLines<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            s,
+            "  {:<22} {:>14} {:>24} {:>14}  {:<10} ",
+            "constraint", "value", "limits", "margin", "unit"
+        )?;
+        for c in self.0 {
+            let num = |v: Option<f64>| v.map_or(String::new(), human);
+            let limits = format!("{} .. {}", num(c.lower), num(c.upper));
+            let state = if !c.satisfied {
+                "VIOLATED"
+            } else if c.active {
+                "active"
+            } else {
+                ""
+            };
+            writeln!(
+                s,
+                "  {:<22} {:>14} {:>24} {:>14}  {:<10} {state}",
+                c.output,
+                c.value.map_or("-".to_string(), human),
+                limits.trim(),
+                // a margin at the rounding of the limit is none
+                match (c.margin, c.relative_margin) {
+                    (Some(_), Some(r)) if r.abs() < 1e-9 => "0".to_string(),
+                    (m, _) => m.map_or("-".to_string(), human),
+                },
+                c.unit,
+            )?;
+        }
+        Ok(())
+    }
+}
