@@ -15,13 +15,55 @@ pub struct Cli {
     pub command: Command,
 }
 
+/// What every command that reads a problem file says of it.
+const PROBLEM: &str = "The problem file (TOML; `flexopt init` writes one to start from), or - \
+                       to read it from standard input";
+
+/// The exit codes, for every command's help.
+const EXIT_CODES: &str = "Exit codes: 0 success; 1 files that could not be written; 2 a \
+rejected problem file, design or option (the message names the file, the key and what is \
+wrong); 3 no feasible design (run, pareto; refined by FE: none meets the constraints on the \
+part); 4 feasible designs but none converged; 5 an optimum whose part cannot be made; 130 \
+interrupted (Ctrl-C).";
+
 #[derive(Subcommand)]
 pub enum Command {
+    /// Write a problem file to start from: every key, the optional ones commented with
+    /// their defaults, a ready set of variables, objective and constraints.
+    #[command(
+        after_help = "Then: flexopt run FILE. Exit codes: 0 written; 2 FILE exists \
+                            (give --force) or cannot be written."
+    )]
+    Init {
+        /// The model: bridge (paper 004's bridge amplifier), prr3 or pss3.
+        #[arg(long, default_value = "bridge", value_parser = ["bridge", "prr3", "pss3"])]
+        model: String,
+        /// The file to write (its stem names the problem); without it, the file goes to
+        /// standard output.
+        file: Option<PathBuf>,
+        /// Overwrite FILE if it exists.
+        #[arg(long)]
+        force: bool,
+    },
+    /// Print the JSON Schema of problem files (for editors that complete and check keys,
+    /// with a TOML language server such as taplo or Even Better TOML).
+    Schema,
+    /// Print the shell completion script for SHELL (bash, zsh, fish, elvish, powershell).
+    #[command(after_help = "For bash: flexopt completions bash > \
+                            ~/.local/share/bash-completion/completions/flexopt")]
+    Completions { shell: clap_complete::Shell },
+    /// List a model's parameters and outputs with their units and meaning.
+    Outputs {
+        /// The model: bridge, prr3 or pss3.
+        #[arg(long, default_value = "bridge", value_parser = ["bridge", "prr3", "pss3"])]
+        model: String,
+    },
     /// Evaluate one design: every output, the objective and each constraint with its limit,
     /// margin and activity, as a table (in the file's units) or as JSON (SI, with each
     /// output's display unit beside).
+    #[command(after_help = EXIT_CODES)]
     Eval {
-        /// The problem file (TOML).
+        #[arg(help = PROBLEM)]
         problem: PathBuf,
         /// The design, `name=value` pairs in the problem file's units, comma-separated;
         /// fixed variables may be left out.
@@ -34,8 +76,9 @@ pub enum Command {
     },
     /// The part of one design: its outline for CAD and wire EDM (part.dxf, part.svg,
     /// part.json) and a dimensioned drawing (part.png).
+    #[command(after_help = EXIT_CODES)]
     Export {
-        /// The problem file (TOML).
+        #[arg(help = PROBLEM)]
         problem: PathBuf,
         #[command(flatten)]
         design: DesignArgs,
@@ -46,8 +89,9 @@ pub enum Command {
     /// Check one design on its part by finite elements: paper 004's load cases in plane
     /// stress and plane strain, each output's discretization error estimated (verify.json,
     /// stress.png, deformed.png, CalculiX decks part.inp and part3d.inp).
+    #[command(after_help = EXIT_CODES)]
     Verify {
-        /// The problem file (TOML).
+        #[arg(help = PROBLEM)]
         problem: PathBuf,
         #[command(flatten)]
         design: DesignArgs,
@@ -62,6 +106,7 @@ pub enum Command {
     /// rotation a stress limit allows, as JSON. Dimensions in mm: a strip takes --l --t, a
     /// circular notch --r --t, an elliptical one --a --b --t, a corner-filleted leaf --l --t
     /// --r.
+    #[command(after_help = EXIT_CODES)]
     Hinge {
         /// strip, circular, elliptical or corner-filleted.
         #[arg(long)]
@@ -84,7 +129,8 @@ pub enum Command {
         /// Width of the hinge (out of the plane), mm.
         #[arg(long)]
         width: f64,
-        /// A material preset (al7075-t6, 65si2mn).
+        /// A material preset (al7075-t6, al6061-t6, ti6al4v, 65si2mn, 17-4ph-h900, c17200,
+        /// 50crva).
         #[arg(long, default_value = "al7075-t6")]
         material: String,
         /// The stress limit, MPa (default: a third of the material's ultimate strength).
@@ -92,7 +138,9 @@ pub enum Command {
         stress_limit: Option<f64>,
     },
     /// Curves of the outputs against one design variable (JSON and PNG).
+    #[command(after_help = EXIT_CODES)]
     Sweep {
+        #[arg(help = PROBLEM)]
         problem: PathBuf,
         /// The variable to sweep.
         #[arg(long)]
@@ -121,7 +169,9 @@ pub enum Command {
     /// Optimize: local solves from many starts, optima sorted into zones, the optimal
     /// design exported (optimum.json, starts.json/.csv, zones.json, zones.png,
     /// configurations.png).
+    #[command(after_help = EXIT_CODES)]
     Run {
+        #[arg(help = PROBLEM)]
         problem: PathBuf,
         #[command(flatten)]
         study: StudyArgs,
@@ -137,7 +187,9 @@ pub enum Command {
     /// Trade-off front by the epsilon-constraint method: the limit of the problem's
     /// one-sided constraint on OUTPUT is stepped from A to B and the study run at each
     /// step (pareto.json, pareto.png).
+    #[command(after_help = EXIT_CODES)]
     Pareto {
+        #[arg(help = PROBLEM)]
         problem: PathBuf,
         /// The constrained output whose limit is stepped.
         #[arg(long)]

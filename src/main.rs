@@ -8,8 +8,10 @@ use std::process::ExitCode;
 use clap::Parser;
 
 mod args;
+mod start_command;
 mod study_command;
 use args::{Cli, Command, DesignArgs};
+use start_command::load_problem;
 use study_command::{run_pareto, run_study, study_setup};
 
 use flexopt::fe::verify::{verify_design, VerifySettings};
@@ -79,6 +81,10 @@ fn main() -> ExitCode {
 
 fn run(command: Command) -> Result<(), Failure> {
     match command {
+        Command::Init { model, file, force } => start_command::init(&model, file.as_deref(), force),
+        Command::Schema => start_command::schema(),
+        Command::Completions { shell } => start_command::completions(shell),
+        Command::Outputs { model } => start_command::outputs(&model),
         Command::Eval {
             problem,
             design,
@@ -195,7 +201,7 @@ fn print_json(value: &impl serde::Serialize) -> Result<(), Failure> {
 }
 
 fn load_design(path: &Path, design: &str) -> Result<(Problem, Vec<f64>), Failure> {
-    let problem = Problem::load(path).map_err(Failure::bad_input)?;
+    let problem = load_problem(path)?;
     let parsed = parse_design(&problem, design).map_err(Failure::bad_input)?;
     warn(path, &parsed.warnings);
     Ok((problem, parsed.x))
@@ -204,7 +210,7 @@ fn load_design(path: &Path, design: &str) -> Result<(Problem, Vec<f64>), Failure
 /// The design a sweep runs around: `--around` (partial: the rest from the default), or the
 /// default of [`default_design`].
 fn load_around(path: &Path, around: Option<&str>) -> Result<(Problem, Vec<f64>), Failure> {
-    let problem = Problem::load(path).map_err(Failure::bad_input)?;
+    let problem = load_problem(path)?;
     let x = match around {
         Some(text) => {
             let parsed = parse_around(&problem, text).map_err(Failure::bad_input)?;
@@ -251,7 +257,7 @@ fn eval(path: &Path, design: &str, format: Option<&str>) -> Result<(), Failure> 
 
 /// The design of `--design` or `--optimum`, inside the model's domain.
 fn chosen_design(path: &Path, args: &DesignArgs) -> Result<(Problem, Vec<f64>), Failure> {
-    let problem = Problem::load(path).map_err(Failure::bad_input)?;
+    let problem = load_problem(path)?;
     let (parsed, key) = match (&args.design, &args.optimum) {
         (Some(text), _) => (parse_design(&problem, text), "--design"),
         (None, Some(report)) => (design_from_optimum(&problem, report), "--optimum"),

@@ -27,7 +27,7 @@ pub(crate) fn study_setup(
         threads,
         ..
     } = *args;
-    let problem = Problem::load(path).map_err(Failure::bad_input)?;
+    let problem = crate::load_problem(path)?;
     if problem.free_variables().next().is_none() {
         return Err(Failure::bad_input(format!(
             "{}: key `variables`: every variable has a fixed `value`, so there is nothing to \

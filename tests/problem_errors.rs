@@ -249,10 +249,33 @@ fn unknown_model_and_hinge_kind() {
 #[test]
 fn ultimate_fraction_needs_a_strength() {
     rejects(
-        mutated("preset = \"al7075-t6\"", "preset = \"65si2mn\""),
+        mutated(
+            "preset = \"al7075-t6\"",
+            "youngs_modulus = \"72 GPa\"\npoisson_ratio = 0.33\ndensity = \"2810 kg/m3\"",
+        ),
         "constraints[2].unit",
         &["ultimate strength"],
     );
+    // and a fraction of the yield strength, one
+    let text = original()
+        .replacen(
+            "preset = \"al7075-t6\"",
+            "youngs_modulus = \"72 GPa\"\npoisson_ratio = 0.33\nultimate_strength = \"505 MPa\"",
+            1,
+        )
+        .replace("unit = \"ultimate\"", "unit = \"yield\"");
+    let e = Problem::parse(Path::new("mutated.toml"), &text).unwrap_err();
+    assert_eq!(e.key, "constraints[2].unit");
+    assert!(e.to_string().contains("no yield strength"), "{e}");
+    // with one, a yield fraction is a stress limit: 1/3 of 503 MPa for the preset
+    let text = original().replace("unit = \"ultimate\"", "unit = \"yield\"");
+    let p = Problem::parse(Path::new("yield.toml"), &text).unwrap();
+    let c = p
+        .constraints
+        .iter()
+        .find(|c| c.output == "stress_max")
+        .unwrap();
+    assert!((c.upper.unwrap() - 503e6 / 3.0).abs() < 1e-3);
 }
 
 #[test]

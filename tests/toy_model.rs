@@ -94,6 +94,8 @@ const TOY: ModelEntry = ModelEntry {
     name: "toy",
     sections: &["spring"],
     build,
+    schema: flexopt::model::registry::no_sections,
+    template: "",
 };
 
 fn models() -> Vec<ModelEntry> {

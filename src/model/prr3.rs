@@ -321,6 +321,8 @@ model_from_all_outputs!(
 pub const ENTRY: ModelEntry = ModelEntry {
     name: "prr3",
     sections: &[],
+    schema: super::registry::no_sections,
+    template: include_str!("templates/prr3.toml"),
     build: |_| Ok(Arc::new(Prr3Model)),
 };
 

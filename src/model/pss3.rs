@@ -322,6 +322,8 @@ model_from_all_outputs!(
 pub const ENTRY: ModelEntry = ModelEntry {
     name: "pss3",
     sections: &[],
+    schema: super::registry::no_sections,
+    template: include_str!("templates/pss3.toml"),
     build: |_| Ok(Arc::new(Pss3Model)),
 };
 

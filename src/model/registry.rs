@@ -18,6 +18,23 @@ pub struct ModelEntry {
     pub sections: &'static [&'static str],
     /// Reads and validates the model's sections, and builds the model.
     pub build: fn(&mut Sections) -> Result<Arc<dyn Model>, ProblemError>,
+    /// The JSON Schema of each of its sections, and whether the section is required.
+    pub schema: fn(&mut schemars::SchemaGenerator) -> Vec<SectionSchema>,
+    /// Its part of the file `flexopt init` writes: its sections, commented, then a ready
+    /// set of variables, objective and constraints.
+    pub template: &'static str,
+}
+
+/// One section of a model's part of a problem file, for the JSON Schema.
+pub struct SectionSchema {
+    pub name: &'static str,
+    pub schema: schemars::Schema,
+    pub required: bool,
+}
+
+/// No sections: a model whose parameters are all variables.
+pub fn no_sections(_: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
+    Vec::new()
 }
 
 impl std::fmt::Debug for ModelEntry {

@@ -8,6 +8,7 @@ pub mod design;
 pub mod elastic;
 pub mod epigraph;
 pub mod error;
+pub mod init;
 pub mod nlp;
 pub mod reader;
 pub mod refine;

@@ -19,7 +19,7 @@ use super::schema::Number;
 use crate::fe::Idealization;
 
 /// The `[refine]` section as written.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RawRefine {
     pub fidelity: Option<String>,

@@ -6,7 +6,7 @@ use serde::de::IgnoredAny;
 use serde::Deserialize;
 
 /// A number as TOML gives it: integer or float.
-#[derive(Debug, Clone, Copy, Deserialize)]
+#[derive(Debug, Clone, Copy, Deserialize, schemars::JsonSchema)]
 #[serde(untagged)]
 pub enum Number {
     Int(i64),
@@ -24,7 +24,7 @@ impl Number {
 
 /// A dimensional value: `"72 GPa"`. A bare number is read so that the error can say
 /// that a unit is missing.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, schemars::JsonSchema)]
 #[serde(untagged)]
 pub enum Quantity {
     Text(String),
@@ -67,7 +67,7 @@ pub struct RawProblem {
     pub sections: IndexMap<String, IgnoredAny>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RawVariable {
     pub name: String,
@@ -77,7 +77,7 @@ pub struct RawVariable {
     pub value: Option<Number>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RawObjective {
     pub maximize: Option<String>,
@@ -86,7 +86,7 @@ pub struct RawObjective {
     pub absolute: bool,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RawConstraint {
     pub output: String,
@@ -95,7 +95,7 @@ pub struct RawConstraint {
     pub upper: Option<Number>,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RawSearch {
     pub starts: Option<i64>,
@@ -107,7 +107,7 @@ pub struct RawSearch {
     pub threads: Option<i64>,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RawZones {
     pub thresholds: Option<Vec<Number>>,

@@ -320,32 +320,11 @@ impl Validator<'_, '_> {
         let path = |key: &str| [k("constraints"), Segment::Index(i), k(key)];
         let index = self.output(model, &path("output"), &c.output)?;
         let dim = model.outputs()[index].dimension;
-        let unit = if c.unit == "ultimate" {
-            if dim != Dimension::Stress {
-                return Err(self.err(
-                    &path("unit"),
-                    format!("\"ultimate\" (a fraction of the ultimate strength) only fits stress outputs, not \"{}\"", c.output),
-                ));
-            }
-            let su = mat.and_then(|m| m.ultimate_strength).ok_or_else(|| {
-                self.err(
-                    &path("unit"),
-                    match mat {
-                        Some(m) => format!(
-                            "material \"{}\" has no ultimate strength: set material.ultimate_strength",
-                            m.name
-                        ),
-                        None => "this model has no material, so no ultimate strength".to_string(),
-                    },
-                )
-            })?;
-            Unit {
-                name: "ultimate".into(),
-                dimension: dim,
-                to_si: su,
-            }
-        } else {
-            Unit::parse(&c.unit, dim).map_err(|m| self.err(&path("unit"), m))?
+        let unit = match units::strength_fraction(&c.unit, dim, mat, &c.output)
+            .map_err(|m| self.err(&path("unit"), m))?
+        {
+            Some(u) => u,
+            None => Unit::parse(&c.unit, dim).map_err(|m| self.err(&path("unit"), m))?,
         };
         let limit = |key: &str, n: Option<Number>| -> Res<Option<f64>> {
             n.map(|n| {

@@ -10,6 +10,7 @@ use super::part::PartSettings;
 use super::{Actuator, Bridge, BridgeSettings};
 use crate::model::hinge::HingeKind;
 use crate::model::material::{Material, RawMaterial};
+use crate::model::registry::SectionSchema;
 use crate::model::{Dimension, Model};
 use crate::problem::error::Segment;
 use crate::problem::reader::{k, quoted, Res};
@@ -21,7 +22,7 @@ pub const SECTIONS: &[&str] = &[
     "material", "hinge", "hinges", "actuator", "dynamics", "part",
 ];
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawHinge {
     /// The kind of both hinges, unless `[hinge.b]` or `[hinge.d]` names another.
@@ -33,20 +34,20 @@ struct RawHinge {
 
 /// `[hinges.b]` and `[hinges.d]`: the same as `[hinge.b]` and `[hinge.d]`, for files that
 /// keep the per-hinge tables apart from `[hinge]`.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawHinges {
     b: Option<RawOneHinge>,
     d: Option<RawOneHinge>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawOneHinge {
     kind: String,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawActuator {
     nominal_stroke: Quantity,
@@ -56,7 +57,7 @@ struct RawActuator {
     height: Option<Quantity>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawDynamics {
     payload_mass: Quantity,
@@ -67,7 +68,7 @@ struct RawDynamics {
     damping_ratio: Number,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawPart {
     link_thickness: Option<Quantity>,
@@ -77,6 +78,23 @@ struct RawPart {
     output_block_width: Option<Quantity>,
     output_block_height: Option<Quantity>,
     min_slot: Option<Quantity>,
+}
+
+/// The JSON Schema of each of the bridge's sections.
+pub fn schema(g: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
+    let one = |name, schema, required| SectionSchema {
+        name,
+        schema,
+        required,
+    };
+    vec![
+        one("material", g.subschema_for::<RawMaterial>(), true),
+        one("hinge", g.subschema_for::<RawHinge>(), true),
+        one("hinges", g.subschema_for::<RawHinges>(), false),
+        one("actuator", g.subschema_for::<RawActuator>(), true),
+        one("dynamics", g.subschema_for::<RawDynamics>(), false),
+        one("part", g.subschema_for::<RawPart>(), false),
+    ]
 }
 
 /// Reads the bridge's sections and builds the model.

@@ -37,6 +37,8 @@ pub const ENTRY: ModelEntry = ModelEntry {
     name: "bridge",
     sections: file::SECTIONS,
     build: file::build,
+    schema: file::schema,
+    template: include_str!("../templates/bridge.toml"),
 };
 
 /// The piezo actuator that drives the bridge (paper 004, Eq. 12-14).
