@@ -11,6 +11,7 @@ pub mod part;
 pub mod plot;
 pub mod refine;
 pub mod study;
+mod study_plots;
 pub mod summary;
 pub mod sweep;
 pub mod table;
