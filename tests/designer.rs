@@ -409,3 +409,30 @@ fn a_new_user_starts_edits_three_values_and_runs() {
     assert!(Path::new(&out_dir).join("optimum.json").is_file());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_sweep_of_every_output_stays_a_small_picture() {
+    let dir = temp_dir("sweep");
+    flexopt_ok(&[
+        "sweep",
+        "problems/wei2017.toml",
+        "--param",
+        "l2",
+        "--from",
+        "0.5",
+        "--to",
+        "5",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let png = std::fs::metadata(dir.join("l2.png")).unwrap().len();
+    assert!(png < 500_000, "{png} bytes");
+    // the JSON keeps SI and says how the plot shows each output
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("l2.json")).unwrap()).unwrap();
+    assert_eq!(json["output_units"]["stress_b"], "Pa");
+    assert_eq!(json["display_units"]["stress_b"], "MPa");
+    assert_eq!(json["display_units"]["stress_max"], "ultimate");
+    assert!(json["limits"]["k_in"][1].as_f64().unwrap() == 7e6);
+    std::fs::remove_dir_all(&dir).ok();
+}
