@@ -62,12 +62,12 @@ fn main() {
         .unwrap()
         .x;
     let settings = VerifySettings::default();
-    let model = problem.model();
+    let mechanism = problem.mechanism();
     let mut times = Vec::new();
     let mut last = None;
     for _ in 0..REPEATS {
         let start = Instant::now();
-        let v = verify_design(model, &x, &settings).unwrap();
+        let v = verify_design(mechanism, &x, &settings).unwrap();
         times.push(start.elapsed().as_secs_f64());
         last = Some(v);
     }

@@ -58,7 +58,7 @@ fn main() {
         alone.push(t.elapsed().as_secs_f64());
         let t = Instant::now();
         verify_design(
-            problem.model(),
+            problem.mechanism(),
             s2.reported_design(),
             &VerifySettings::default(),
         )

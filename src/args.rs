@@ -2,7 +2,11 @@
 
 use std::path::PathBuf;
 
+use clap::builder::PossibleValuesParser;
 use clap::{Parser, Subcommand};
+use flexopt::model::hinge::HingeKind;
+use flexopt::model::material::Material;
+use flexopt::model::registry::MODELS;
 
 #[derive(Parser)]
 #[command(
@@ -26,6 +30,11 @@ wrong); 3 no feasible design (run, pareto; refined by FE: none meets the constra
 part); 4 feasible designs but none converged; 5 an optimum whose part cannot be made; 130 \
 interrupted (Ctrl-C).";
 
+/// The models a problem file can name, from the registry: the first is the default.
+fn models() -> PossibleValuesParser {
+    PossibleValuesParser::new(MODELS.iter().map(|m| m.name))
+}
+
 #[derive(Subcommand)]
 pub enum Command {
     /// Write a problem file to start from: every key, the optional ones commented with
@@ -35,8 +44,8 @@ pub enum Command {
                             (give --force) or cannot be written."
     )]
     Init {
-        /// The model: bridge (paper 004's bridge amplifier), prr3 or pss3.
-        #[arg(long, default_value = "bridge", value_parser = ["bridge", "prr3", "pss3"])]
+        /// The model (`flexopt outputs --model M` describes each).
+        #[arg(long, default_value = MODELS[0].name, value_parser = models())]
         model: String,
         /// The file to write (its stem names the problem); without it, the file goes to
         /// standard output.
@@ -54,8 +63,8 @@ pub enum Command {
     Completions { shell: clap_complete::Shell },
     /// List a model's parameters and outputs with their units and meaning.
     Outputs {
-        /// The model: bridge, prr3 or pss3.
-        #[arg(long, default_value = "bridge", value_parser = ["bridge", "prr3", "pss3"])]
+        /// The model.
+        #[arg(long, default_value = MODELS[0].name, value_parser = models())]
         model: String,
     },
     /// Evaluate one design: every output, the objective and each constraint with its limit,
@@ -108,8 +117,8 @@ pub enum Command {
     /// --r.
     #[command(after_help = EXIT_CODES)]
     Hinge {
-        /// strip, circular, elliptical or corner-filleted.
-        #[arg(long)]
+        /// The hinge's kind.
+        #[arg(long, value_parser = PossibleValuesParser::new(HingeKind::NAMES))]
         kind: String,
         /// Length (strip, corner-filleted; fillets included), mm.
         #[arg(long)]
@@ -129,9 +138,8 @@ pub enum Command {
         /// Width of the hinge (out of the plane), mm.
         #[arg(long)]
         width: f64,
-        /// A material preset (al7075-t6, al6061-t6, ti6al4v, 65si2mn, 17-4ph-h900, c17200,
-        /// 50crva).
-        #[arg(long, default_value = "al7075-t6")]
+        /// A material preset.
+        #[arg(long, default_value = Material::PRESETS[0], value_parser = PossibleValuesParser::new(Material::PRESETS))]
         material: String,
         /// The stress limit, MPa (default: a third of the material's ultimate strength).
         #[arg(long)]

@@ -1,5 +1,7 @@
 //! flexopt: design and optimization of piezo-driven compliant (flexure-hinge) mechanisms.
 //!
+//! - [`vocab`]: the problem file's vocabulary (dimensions, units, values, the reader,
+//!   errors), which both `model` and `problem` stand on.
 //! - [`model`]: the closed-form mechanism models, generic over dual numbers.
 //! - [`problem`]: problem files (TOML), units, validation and the binding of model
 //!   outputs to an objective and constraints.
@@ -20,3 +22,4 @@ pub mod refine;
 pub mod report;
 pub mod study;
 pub mod sweep;
+pub mod vocab;

@@ -17,7 +17,6 @@ use study_command::{run_pareto, run_study, study_setup};
 use flexopt::fe::verify::{verify_design, VerifySettings};
 use flexopt::model::hinge::calculator;
 use flexopt::pareto::ParetoSpec;
-use flexopt::part::Part;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
 use flexopt::problem::Problem;
 use flexopt::report::part::write_part;
@@ -278,7 +277,7 @@ fn export(path: &Path, design: &DesignArgs, out: Option<PathBuf>) -> Result<(), 
     let (problem, x) = chosen_design(path, design)?;
     let dir = out.unwrap_or_else(|| problem.default_output_dir().join("export"));
     check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
-    let part = Part::of_design(problem.model(), &x).map_err(|e| {
+    let part = problem.mechanism().part_or_error(&x).map_err(|e| {
         Failure::bad_input(format!(
             "{}: this design gives no part that can be made: {e}",
             path.display()
@@ -327,7 +326,7 @@ fn run_verify(
     settings: &VerifySettings,
     dir: &Path,
 ) -> Result<(), Failure> {
-    let v = verify_design(problem.model(), x, settings).map_err(|e| {
+    let v = verify_design(problem.mechanism(), x, settings).map_err(|e| {
         Failure::bad_input(format!(
             "{}: cannot check this design: {e}",
             problem.file.display()

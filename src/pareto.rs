@@ -173,7 +173,7 @@ pub fn pareto(
                 .zip(&best.x_end)
                 .map(|(v, &x)| (v.name.clone(), v.unit.from_si(x)))
                 .collect(),
-            configuration: problem.model().configuration(&best.x_end).into(),
+            configuration: problem.depiction().configuration(&best.x_end).into(),
             feasible_starts: s.feasible_runs.len(),
         });
     }

@@ -7,7 +7,6 @@ use crate::args::StudyArgs;
 use crate::{emit, run_verify, Failure};
 use flexopt::fe::verify::VerifySettings;
 use flexopt::pareto::{pareto, ParetoSpec};
-use flexopt::part::Part;
 use flexopt::problem::{Problem, Solver};
 use flexopt::refine::study::refine_study;
 use flexopt::report::pareto::write_pareto;
@@ -124,7 +123,7 @@ pub(crate) fn run_study(
     // the optimum's part, for a feasible optimum of a model that has one
     let part = study
         .any_feasible
-        .then(|| Part::for_model(problem.model(), study.reported_design()))
+        .then(|| problem.mechanism().part(study.reported_design()))
         .flatten();
     if problem.refine.enabled && part.is_none() && study.any_feasible {
         eprintln!(
@@ -147,7 +146,7 @@ pub(crate) fn run_study(
             let r = refine_study(problem, &study);
             let report = RefinedReport::new(problem, &problem.refine, &r.all, r.chosen);
             let design = r.all[r.chosen].1.result.as_ref().map(|c| c.x.clone());
-            let part = design.and_then(|x| Part::for_model(problem.model(), &x)?.ok());
+            let part = design.and_then(|x| problem.mechanism().part(&x)?.ok());
             (report, part)
         });
     let files = write_all_refined(

@@ -46,7 +46,7 @@ fn printed_verification() -> Verification {
     let x = flexopt::problem::design::parse_design(&p, PRINTED)
         .unwrap()
         .x;
-    let spec = p.model().part(&x).unwrap().unwrap();
+    let spec = p.mechanism().part_spec(&x).unwrap().unwrap();
     let m = p.model().material().unwrap();
     let material = Elastic {
         youngs_modulus: m.youngs_modulus,

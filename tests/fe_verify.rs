@@ -10,7 +10,7 @@ use flexopt::fe::stress::Locator;
 use flexopt::fe::verify::{verify_design, Verification, VerifySettings};
 use flexopt::model::bridge::part::PartSettings;
 use flexopt::model::bridge::Bridge;
-use flexopt::model::Model;
+use flexopt::model::{Mechanism, Model};
 
 fn bridge(part: PartSettings) -> Bridge {
     let mut s = wei2017_settings();
@@ -39,7 +39,12 @@ fn analytic(model: &Bridge, x: &[f64], name: &str) -> f64 {
 fn the_printed_design_converges_and_deviates_as_table_2_does() {
     let model = bridge(PartSettings::default());
     let x = table1_optimum();
-    let v = verify_design(&model, &x, &VerifySettings::default()).unwrap();
+    let v = verify_design(
+        &Mechanism::complete(model.clone()),
+        &x,
+        &VerifySettings::default(),
+    )
+    .unwrap();
     assert!(v.converged);
     assert!(v.levels.len() >= 3);
     for r in &v.results {
@@ -130,7 +135,12 @@ fn a_sharp_roots_peak_stress_is_reported_as_not_converging() {
         ..PartSettings::default()
     });
     let x = table1_optimum();
-    let v = verify_design(&model, &x, &VerifySettings::default()).unwrap();
+    let v = verify_design(
+        &Mechanism::complete(model.clone()),
+        &x,
+        &VerifySettings::default(),
+    )
+    .unwrap();
     // the peak never stops the refinement and is never extrapolated; the rest converge
     assert!(v.converged);
     for k in 0..2 {
@@ -150,7 +160,7 @@ fn a_sharp_roots_peak_stress_is_reported_as_not_converging() {
     // faces move out by the radius and the fillets' zones, thicker than the hinge but far
     // from rigid, add compliance, so the filleted part is the softer one
     let filleted = verify_design(
-        &bridge(PartSettings::default()),
+        &Mechanism::complete(bridge(PartSettings::default())),
         &x,
         &VerifySettings::default(),
     )
@@ -247,7 +257,7 @@ fn with_rigid_bodies_the_part_in_plane_stress_is_the_analytic_model() {
         max_levels: 3,
         ..VerifySettings::default()
     };
-    let v = verify_design(&model, &x, &settings).unwrap();
+    let v = verify_design(&Mechanism::complete(model.clone()), &x, &settings).unwrap();
     for name in ["amplification", "k_in", "k_out"] {
         let fe = output(&v, 0, &format!("fe_{name}")).estimate.value;
         let an = analytic(&model, &x, name);

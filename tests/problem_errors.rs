@@ -436,6 +436,6 @@ fn part_keys_are_checked_like_every_other() {
     )
     .unwrap()
     .x;
-    let part = flexopt::part::Part::of_design(p.model(), &x).unwrap();
+    let part = p.mechanism().part_or_error(&x).unwrap();
     assert!(part.warnings[0].contains("fillet_radius is 0"));
 }

@@ -26,7 +26,7 @@ fn wei2017() -> Problem {
 
 /// The FE's plane-strain value and estimated relative error of each output named, at `x`.
 fn plane_strain(p: &Problem, x: &[f64], names: &[&str]) -> Vec<(f64, f64)> {
-    let v = verify_design(p.model(), x, &VerifySettings::default()).unwrap();
+    let v = verify_design(p.mechanism(), x, &VerifySettings::default()).unwrap();
     let r = v
         .results
         .iter()
@@ -86,7 +86,7 @@ impl HighFidelity for Synthetic {
 #[test]
 fn a_synthetic_fidelity_is_refined_to_its_own_optimum() {
     let p = wei2017();
-    let model = p.model.clone();
+    let model = p.mechanism.physics.clone();
     let x0 = analytic_optimum(&p);
     // the "true" outputs: the model's times factors that vary over the design space by
     // several per cent, as the FE's ratios to the model do (0.83 to 0.93 on the stiffnesses)
@@ -118,7 +118,9 @@ fn a_synthetic_fidelity_is_refined_to_its_own_optimum() {
     let truth = Corrected::new(model.clone(), &corrections);
     // the truth's own optimum, by the multistart study on the true problem
     let mut true_problem = p.clone();
-    true_problem.model = Arc::new(Corrected::new(model.clone(), &corrections));
+    true_problem.mechanism = p
+        .mechanism
+        .with_physics(Arc::new(Corrected::new(model.clone(), &corrections)));
     let true_study = study::run(&true_problem, &StudyOptions::from_problem(&true_problem));
     let best = true_study.reported_objective();
     let high = Synthetic {
@@ -249,7 +251,7 @@ fn a_one_variable_stiffness_target_reaches_the_fe_answer() {
     // changes with the geometry)
     assert!((fe_k_in(t_fe) / 6e6 - 1.0).abs() < 1e-4);
     let start = analytic_optimum(&p);
-    let fe = FeFidelity::new(p.model(), &p.refine, false);
+    let fe = FeFidelity::new(p.mechanism(), &p.refine, false);
     let r = refine(&p, &start, &fe, &p.refine);
     assert_eq!(r.status, RefineStatus::Converged);
     let c = r.result.unwrap();

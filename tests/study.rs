@@ -109,7 +109,7 @@ fn zones_show_aligned_at_the_top_and_rhombic_below() {
             .optima
             .iter()
             .map(|&k| {
-                p.model()
+                p.depiction()
                     .configuration(&s.runs[s.feasible_runs[c.optima[k].representative]].x_end)
             })
             .collect()
@@ -308,7 +308,7 @@ fn a_stress_limited_variant_converges_from_every_start() {
         "{}",
         best.objective
     );
-    assert_eq!(p.model().configuration(&best.x_end), "parallel");
+    assert_eq!(p.depiction().configuration(&best.x_end), "parallel");
     let report = flexopt::report::DesignReport::new(&p, &best.x_end);
     let stress = report
         .constraints

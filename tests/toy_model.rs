@@ -1,5 +1,6 @@
 //! A model added from outside the library, the way a new model is added inside it: one
-//! type implementing `Model` and one `ModelEntry`. Problem files, the study, its files, the
+//! type implementing `Model` (the physics; a toy without pictures or a part has no other
+//! capability) and one `ModelEntry`. Problem files, the study, its files, the
 //! sweep and the error messages all work with it and nothing else is touched, which is what
 //! the layout promises (README, "Layout").
 //!
@@ -10,8 +11,9 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use flexopt::model::material::Material;
 use flexopt::model::registry::{ModelEntry, MODELS};
-use flexopt::model::{Dimension, Model, OutputInfo, ParameterInfo};
+use flexopt::model::{Dimension, Mechanism, Model, OutputInfo, ParameterInfo};
 use flexopt::problem::reader::k;
 use flexopt::problem::schema::Quantity;
 use flexopt::problem::sections::Sections;
@@ -76,6 +78,30 @@ impl Model for Spring {
     fn domain_error(&self, x: &[f64]) -> Option<String> {
         (x[0] <= 0.0 || x[1] <= 0.0).then(|| "k and m must be positive".to_string())
     }
+
+    fn box_error(&self, _: &[f64], _: &[f64]) -> Option<(usize, String)> {
+        None
+    }
+
+    fn max_of(&self, _: usize) -> Option<&[usize]> {
+        None
+    }
+
+    fn unavailable(&self, _: usize) -> Option<String> {
+        None
+    }
+
+    fn material(&self) -> Option<&Material> {
+        None
+    }
+
+    fn angle_limit(&self) -> Option<f64> {
+        None
+    }
+
+    fn mirror(&self, _: &mut [f64]) -> bool {
+        false
+    }
 }
 
 #[derive(serde::Deserialize)]
@@ -84,17 +110,17 @@ struct RawSpring {
     preload: Quantity,
 }
 
-fn build(s: &mut Sections) -> Result<Arc<dyn Model>, ProblemError> {
+fn build(s: &mut Sections) -> Result<Mechanism, ProblemError> {
     let raw: RawSpring = s.required("spring")?;
     let preload = s.positive(&[k("spring"), k("preload")], &raw.preload, Dimension::Force)?;
-    Ok(Arc::new(Spring { preload }))
+    Ok(Mechanism::physics_only(Arc::new(Spring { preload })))
 }
 
 const TOY: ModelEntry = ModelEntry {
     name: "toy",
     sections: &["spring"],
     build,
-    schema: flexopt::model::registry::no_sections,
+    schema: flexopt::model::entry::no_sections,
     template: "",
 };
 

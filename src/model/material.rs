@@ -3,9 +3,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::model::Dimension;
-use crate::problem::reader::{k, quoted, Res};
-use crate::problem::schema::{Number, Quantity};
-use crate::problem::sections::Sections;
+use crate::vocab::reader::{k, quoted, Res};
+use crate::vocab::sections::Sections;
+use crate::vocab::values::{Number, Quantity};
 
 /// The `[material]` section as written.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]

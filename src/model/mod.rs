@@ -8,8 +8,10 @@
 //! through [`Model`] and the [`registry`].
 
 pub mod bridge;
+pub mod entry;
 pub mod hinge;
 pub mod material;
+pub mod mechanism;
 pub mod prr3;
 pub mod pss3;
 pub mod reference;
@@ -21,56 +23,11 @@ use std::borrow::Cow;
 use serde::Serialize;
 
 use material::Material;
+pub use mechanism::{build_part, Depiction, Mechanism, PartMaker};
 
 use scalar::Jet;
 
-/// The physical dimension of a parameter or output; the problem layer converts units
-/// against it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Dimension {
-    /// Dimensionless.
-    Ratio,
-    /// m
-    Length,
-    /// rad
-    Angle,
-    /// N
-    Force,
-    /// Pa
-    Stress,
-    /// N/m
-    Stiffness,
-    /// m/N
-    Compliance,
-    /// kg
-    Mass,
-    /// N m/rad
-    RotationalStiffness,
-    /// Hz
-    Frequency,
-    /// s
-    Time,
-}
-
-impl Dimension {
-    /// The SI unit, as printed in outputs.
-    pub fn si_unit(self) -> &'static str {
-        match self {
-            Dimension::Ratio => "1",
-            Dimension::Length => "m",
-            Dimension::Angle => "rad",
-            Dimension::Force => "N",
-            Dimension::Stress => "Pa",
-            Dimension::Stiffness => "N/m",
-            Dimension::Compliance => "m/N",
-            Dimension::Mass => "kg",
-            Dimension::RotationalStiffness => "N m/rad",
-            Dimension::Frequency => "Hz",
-            Dimension::Time => "s",
-        }
-    }
-}
+pub use crate::vocab::Dimension;
 
 /// A design parameter of a model. Names are owned where a model builds them (the bridge
 /// names its hinges' dimensions after the hinge).
@@ -160,10 +117,15 @@ pub struct Skeleton {
     pub thickness_mm: Vec<f64>,
 }
 
-/// A mechanism model as the problem layer and the optimizer see it.
+/// A mechanism's physics, as the problem layer and the optimizer see it: parameters in,
+/// outputs out, and the few facts about its domain and symmetry that a study needs.
 ///
 /// `x` holds every parameter of [`Model::parameters`] in SI units; `wanted` lists indices
-/// into [`Model::outputs`]; only those outputs are computed.
+/// into [`Model::outputs`]; only those outputs are computed. Every method but the two
+/// derived ones must be written by each model: a wrapper (the refinement's corrected model)
+/// cannot drop one of the inner model's answers by forgetting to forward it. What a model
+/// can do beyond its physics (pictures, a part, finite-element load cases) are separate
+/// capabilities, bundled with the physics in a [`Mechanism`].
 pub trait Model: Send + Sync + std::fmt::Debug {
     /// The name a problem file's `model` key gives it.
     fn name(&self) -> &'static str;
@@ -183,29 +145,35 @@ pub trait Model: Send + Sync + std::fmt::Debug {
 
     /// Why the design `x` (SI) lies outside the model's domain, if it does; the model's
     /// outputs are finite everywhere else.
-    fn domain_error(&self, _x: &[f64]) -> Option<String> {
-        None
-    }
+    fn domain_error(&self, x: &[f64]) -> Option<String>;
 
     /// Why some design between `lower` and `upper` (SI, every parameter) lies outside the
     /// model's domain although each bound is valid on its own (a corner-filleted hinge whose
     /// fillets may grow longer than half its leaf, say), with the parameter to blame.
-    fn box_error(&self, _lower: &[f64], _upper: &[f64]) -> Option<(usize, String)> {
-        None
-    }
+    fn box_error(&self, lower: &[f64], upper: &[f64]) -> Option<(usize, String)>;
 
     /// The outputs whose maximum this output is, when it is defined so (a largest stress
     /// over several places, say). A max is not differentiable where its arguments cross, so
     /// an optimizer given `max <= limit` does better with `part <= limit` for every part.
-    fn max_of(&self, _output: usize) -> Option<&[usize]> {
-        None
-    }
+    fn max_of(&self, output: usize) -> Option<&[usize]>;
 
     /// Why this output cannot be computed with the model's settings, if it cannot (a
     /// dynamic output of a bridge without masses, say).
-    fn unavailable(&self, _output: usize) -> Option<String> {
-        None
-    }
+    fn unavailable(&self, output: usize) -> Option<String>;
+
+    /// The material, where the model has one: constraints may set a stress limit as a
+    /// fraction of its strength.
+    fn material(&self) -> Option<&Material>;
+
+    /// The bound on every angle parameter's size, exclusive, where the model has one (the
+    /// bridge's angles stay within a right angle); bounds in a problem file must respect it.
+    fn angle_limit(&self) -> Option<f64>;
+
+    /// The mirror image of the design `x` (SI, every parameter), written over it: a design
+    /// that the model evaluates to the same outputs up to sign and draws as the same
+    /// geometry the other way round. `false`, and `x` untouched, for a model without such a
+    /// symmetry; a study merges a design with its mirror image only where this says so.
+    fn mirror(&self, x: &mut [f64]) -> bool;
 
     /// The outputs that can be computed with the model's settings.
     fn available_outputs(&self) -> Vec<usize> {
@@ -218,66 +186,19 @@ pub trait Model: Send + Sync + std::fmt::Debug {
     fn output_index(&self, name: &str) -> Option<usize> {
         self.outputs().iter().position(|o| o.name == name)
     }
+}
 
-    /// The material, where the model has one: constraints may set a stress limit as a
-    /// fraction of its strength.
-    fn material(&self) -> Option<&Material> {
-        None
+/// Negates the angle parameters of `x` (the mirror image of a planar mechanism whose every
+/// angle is measured from its symmetry axis); `false` where it has none.
+pub(crate) fn negate_angles(parameters: &[ParameterInfo], x: &mut [f64]) -> bool {
+    let mut any = false;
+    for (xi, p) in x.iter_mut().zip(parameters) {
+        if p.dimension == Dimension::Angle {
+            *xi = -*xi;
+            any = true;
+        }
     }
-
-    /// The bound on every angle parameter's size, exclusive, where the model has one (the
-    /// bridge's angles stay within a right angle); bounds in a problem file must respect it.
-    fn angle_limit(&self) -> Option<f64> {
-        None
-    }
-
-    /// The kind of configuration the design `x` (SI) is, by [`Model::configuration_rule`];
-    /// `-` for a model whose topology does not change.
-    fn configuration(&self, _x: &[f64]) -> &'static str {
-        "-"
-    }
-
-    /// The rule by which [`Model::configuration`] names designs, for readers of the results.
-    fn configuration_rule(&self) -> Option<&'static str> {
-        None
-    }
-
-    /// Nodes and mode shapes of the design `x` (SI) for its report.
-    fn drawing(&self, _x: &[f64]) -> Drawing {
-        Drawing::default()
-    }
-
-    /// The design `x` (SI) as a chain of members, for the configuration plot; `None` where
-    /// the model has no such picture, and then no plot is drawn.
-    fn skeleton(&self, _x: &[f64]) -> Option<Skeleton> {
-        None
-    }
-
-    /// The legend of the configuration plot: what the colours and the origin mean.
-    fn skeleton_legend(&self) -> &'static str {
-        ""
-    }
-
-    /// Whether the mirror image of `x` (every angle negated), which the model evaluates to
-    /// the same outputs up to sign, is the orientation to report: a study that merges mirror
-    /// images reports its optimum in the orientation a designer draws (the bridge: output
-    /// blocks outward, as paper 004's Fig. 1 and 3 draw them).
-    fn prefers_mirror(&self, _x: &[f64]) -> bool {
-        false
-    }
-
-    /// The solids of the design `x` (SI) as a part ([`crate::part`]), or what makes the
-    /// part impossible; `None` for a model without a part.
-    fn part(&self, _x: &[f64]) -> Option<Result<crate::part::PartSpec, Vec<String>>> {
-        None
-    }
-
-    /// The finite-element output of the part ([`crate::fe::verify::OUTPUTS`], or
-    /// `fe_actuation_force`) that measures what the model's output `output` computes, if
-    /// one does: what `flexopt verify` compares it with and `run --refine fe` corrects it by.
-    fn fe_counterpart(&self, _output: usize) -> Option<&'static str> {
-        None
-    }
+    any
 }
 
 /// A model that computes all its outputs at once (a parallel mechanism's frequencies come
@@ -305,17 +226,15 @@ pub(crate) trait AllOutputs<const N: usize, const K: usize> {
     }
 }
 
-/// Implements [`Model`] for a type with [`AllOutputs`]: its parameters and outputs tables, its
-/// domain check (a function of the design), and evaluation by picking from all outputs.
+/// Implements [`Model`] for a type with [`AllOutputs`] (its parameters and outputs tables,
+/// its domain check, a function of the design, and evaluation by picking from all outputs),
+/// and [`Depiction`] with its drawing (a function of the design): a parallel mechanism
+/// without material, part, configurations or bounds between parameters.
 macro_rules! model_from_all_outputs {
     ($model:ty, $name:expr, $parameters:expr, $outputs:expr, $domain_error:expr, $drawing:expr) => {
         impl $crate::model::Model for $model {
             fn name(&self) -> &'static str {
                 $name
-            }
-
-            fn drawing(&self, x: &[f64]) -> $crate::model::Drawing {
-                $drawing(x)
             }
 
             fn parameters(&self) -> &[$crate::model::ParameterInfo] {
@@ -330,6 +249,30 @@ macro_rules! model_from_all_outputs {
                 $domain_error(x)
             }
 
+            fn box_error(&self, _: &[f64], _: &[f64]) -> Option<(usize, String)> {
+                None
+            }
+
+            fn max_of(&self, _: usize) -> Option<&[usize]> {
+                None
+            }
+
+            fn unavailable(&self, _: usize) -> Option<String> {
+                None
+            }
+
+            fn material(&self) -> Option<&$crate::model::material::Material> {
+                None
+            }
+
+            fn angle_limit(&self) -> Option<f64> {
+                None
+            }
+
+            fn mirror(&self, x: &mut [f64]) -> bool {
+                $crate::model::negate_angles(&$parameters, x)
+            }
+
             fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {
                 self.pick_values(x, wanted, out);
             }
@@ -342,6 +285,12 @@ macro_rules! model_from_all_outputs {
                 jacobian: &mut [f64],
             ) {
                 self.pick_gradients(x, wanted, out, jacobian);
+            }
+        }
+
+        impl $crate::model::Depiction for $model {
+            fn drawing(&self, x: &[f64]) -> $crate::model::Drawing {
+                $drawing(x)
             }
         }
     };

@@ -48,9 +48,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use std::sync::Arc;
-
-use super::registry::ModelEntry;
+use super::entry::ModelEntry;
 use super::scalar::Scalar;
 use super::{
     check_parameters, model_from_all_outputs, AllOutputs, Dimension, Drawing, ModeShape,
@@ -321,9 +319,9 @@ model_from_all_outputs!(
 pub const ENTRY: ModelEntry = ModelEntry {
     name: "prr3",
     sections: &[],
-    schema: super::registry::no_sections,
+    schema: super::entry::no_sections,
     template: include_str!("templates/prr3.toml"),
-    build: |_| Ok(Arc::new(Prr3Model)),
+    build: |_| Ok(super::Mechanism::depicted(Prr3Model)),
 };
 
 /// The three natural modes of the design `x` (SI), in the platform coordinates.

@@ -64,9 +64,7 @@
 //! stiffness is a moment per angle, and 5.18 N m/rad is the reading that reproduces its
 //! frequencies (tests/pss3.rs).
 
-use std::sync::Arc;
-
-use super::registry::ModelEntry;
+use super::entry::ModelEntry;
 use super::scalar::Scalar;
 use super::{
     check_parameters, model_from_all_outputs, AllOutputs, Dimension, Drawing, ModeShape,
@@ -322,9 +320,9 @@ model_from_all_outputs!(
 pub const ENTRY: ModelEntry = ModelEntry {
     name: "pss3",
     sections: &[],
-    schema: super::registry::no_sections,
+    schema: super::entry::no_sections,
     template: include_str!("templates/pss3.toml"),
-    build: |_| Ok(Arc::new(Pss3Model)),
+    build: |_| Ok(super::Mechanism::depicted(Pss3Model)),
 };
 
 /// The natural modes of the design `x` (SI): M and K are diagonal, so each axis is a mode.

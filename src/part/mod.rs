@@ -187,26 +187,6 @@ impl std::error::Error for PartError {}
 pub const MM: f64 = 1e3;
 
 impl Part {
-    /// The part of `model` at the design `x` (SI): its solids joined, rounded and checked.
-    pub fn of_design(model: &dyn crate::model::Model, x: &[f64]) -> Result<Part, PartError> {
-        Part::for_model(model, x).unwrap_or_else(|| {
-            Err(PartError {
-                problems: vec![format!("the {} model has no part to draw", model.name())],
-            })
-        })
-    }
-
-    /// As [`Part::of_design`]; `None` for a model without a part.
-    pub fn for_model(
-        model: &dyn crate::model::Model,
-        x: &[f64],
-    ) -> Option<Result<Part, PartError>> {
-        Some(match model.part(x)? {
-            Err(problems) => Err(PartError { problems }),
-            Ok(spec) => Part::build(&spec),
-        })
-    }
-
     /// Joins, rounds and checks the solids of `spec`.
     pub fn build(spec: &PartSpec) -> Result<Part, PartError> {
         let problems = checks::before_union(spec);

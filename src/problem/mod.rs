@@ -7,23 +7,23 @@
 pub mod design;
 pub mod elastic;
 pub mod epigraph;
-pub mod error;
 pub mod init;
 pub mod nlp;
-pub mod reader;
 pub mod refine;
 pub mod schema;
-pub mod sections;
-pub mod units;
+mod strength;
 mod validate;
 
+// the vocabulary of the file, kept reachable where it was read before it moved below the
+// models
+pub use crate::vocab::{error, reader, sections, units};
+
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 use serde::Serialize;
 
 use crate::model::registry::{ModelEntry, MODELS};
-use crate::model::Model;
+use crate::model::{Depiction, Mechanism, Model};
 pub use error::ProblemError;
 use error::{Locator, Segment};
 use units::Unit;
@@ -124,8 +124,8 @@ pub struct Problem {
     pub file: PathBuf,
     pub name: String,
     pub description: String,
-    /// The model, configured by its sections of the file.
-    pub model: Arc<dyn Model>,
+    /// The mechanism (its physics and capabilities), configured by its sections of the file.
+    pub mechanism: Mechanism,
     /// One per model parameter, in model order.
     pub variables: Vec<Variable>,
     pub objective: Objective,
@@ -182,8 +182,29 @@ impl Problem {
         .problem(raw)
     }
 
+    /// The mechanism's physics.
     pub fn model(&self) -> &dyn Model {
-        self.model.as_ref()
+        self.mechanism.physics.as_ref()
+    }
+
+    /// The mechanism: its physics, pictures and part.
+    pub fn mechanism(&self) -> &Mechanism {
+        &self.mechanism
+    }
+
+    /// The pictures of the mechanism's designs (every default where it has none).
+    pub fn depiction(&self) -> &dyn Depiction {
+        self.mechanism.depiction()
+    }
+
+    /// The design `x` (SI, every parameter) in the file's units, by variable name: how
+    /// every report writes a design.
+    pub fn design_in_file_units(&self, x: &[f64]) -> indexmap::IndexMap<String, f64> {
+        self.variables
+            .iter()
+            .zip(x)
+            .map(|(v, &xi)| (v.name.clone(), v.unit.from_si(xi)))
+            .collect()
     }
 
     /// The free variables, in model order.

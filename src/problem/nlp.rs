@@ -15,12 +15,25 @@
 //! the scaling.
 
 use super::{Problem as DesignProblem, Sense};
-use crate::model::{Dimension, Model, MAX_PARAMETERS, MAX_WANTED};
+use crate::model::{Model, MAX_PARAMETERS, MAX_WANTED};
 use crate::optim::Problem;
 
 /// Relative violation up to which a constraint counts as met: a constraint's value here is
 /// its relative margin, so this is the one place where the rule can be stated.
 pub const FEASIBILITY_TOLERANCE: f64 = 1e-8;
+
+/// Whether a solve ended at a design that meets every constraint: finite, within
+/// [`FEASIBILITY_TOLERANCE`] of each limit, and not a solve that failed or proved the
+/// problem infeasible. The one test of a feasible end, wherever ends are sorted.
+pub fn feasible_end(s: &crate::optim::Solution) -> bool {
+    s.objective.is_finite()
+        && s.x.iter().all(|x| x.is_finite())
+        && s.max_violation <= FEASIBILITY_TOLERANCE
+        && !matches!(
+            s.status,
+            crate::optim::Status::Failed(_) | crate::optim::Status::Infeasible
+        )
+}
 
 /// Relative margin within which a constraint counts as active.
 pub const ACTIVE_TOLERANCE: f64 = 1e-6;
@@ -221,30 +234,16 @@ impl<'p> DesignNlp<'p> {
         out[0]
     }
 
-    /// The mirror image of a scaled design (every angle negated), if it lies within the
-    /// bounds; `None` for models without that symmetry.
+    /// The mirror image of a scaled design by the model's own map ([`Model::mirror`]), if
+    /// the model has one, it leaves the fixed variables as they are, and it lies within the
+    /// bounds; `None` otherwise.
     pub fn mirror(&self, u: &[f64]) -> Option<Vec<f64>> {
-        let params = self.problem.model().parameters();
-        let free: Vec<_> = self.problem.free_variables().collect();
-        if !free
-            .iter()
-            .any(|v| params[v.parameter].dimension == Dimension::Angle)
-        {
+        let mut x = self.full_design(u);
+        if !self.problem.model().mirror(&mut x) || x != mirror_fixed(self, &x) {
             return None;
         }
-        let x = self.unscale(u);
-        let mirrored: Vec<f64> = x
-            .iter()
-            .zip(&free)
-            .map(|(&xi, v)| {
-                if params[v.parameter].dimension == Dimension::Angle {
-                    -xi
-                } else {
-                    xi
-                }
-            })
-            .collect();
-        let m = self.scale(&mirrored);
+        let free: Vec<f64> = self.free.iter().map(|&p| x[p]).collect();
+        let m = self.scale(&free);
         m.iter()
             .all(|v| (-1e-12..=1.0 + 1e-12).contains(v))
             .then_some(m)
@@ -384,4 +383,14 @@ pub fn merit(sense: Sense, absolute: bool, value: f64) -> f64 {
         Sense::Maximize => -v,
         Sense::Minimize => v,
     }
+}
+
+/// `x` with the fixed variables at their values: equal to `x` when the mirror image left
+/// them alone.
+fn mirror_fixed(nlp: &DesignNlp, x: &[f64]) -> Vec<f64> {
+    let mut kept = nlp.base.clone();
+    for &p in &nlp.free {
+        kept[p] = x[p];
+    }
+    kept
 }

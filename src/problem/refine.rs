@@ -15,8 +15,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::reader::{k, Reader, Res};
-use super::schema::Number;
 use crate::fe::Idealization;
+use crate::vocab::values::Number;
 
 /// The `[refine]` section as written.
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]

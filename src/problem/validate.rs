@@ -7,6 +7,7 @@ use std::ops::Deref;
 use super::reader::{k, quoted, Reader, Res};
 use super::schema::{self, Number, RawProblem};
 use super::sections::Sections;
+use super::strength;
 use super::units::{self, short, Unit};
 use super::{
     Constraint, Objective, Problem, Sampling, SearchSettings, Segment, Sense, Solver, Variable,
@@ -88,8 +89,8 @@ impl Validator<'_, '_> {
             };
             return Err(self.err(&[k(key)], message));
         }
-        let model_arc = (entry.build)(&mut Sections::new(self.loc, self.text, entry.name))?;
-        let model = model_arc.as_ref();
+        let mechanism = (entry.build)(&mut Sections::new(self.loc, self.text, entry.name))?;
+        let model = mechanism.physics.as_ref();
         let variables = self.variables(model, &raw.variables)?;
         let objective = self.objective(model, &raw.objective)?;
         let constraints = raw
@@ -115,7 +116,7 @@ impl Validator<'_, '_> {
             file: self.loc.file().to_path_buf(),
             name,
             description: raw.description,
-            model: model_arc,
+            mechanism,
             variables,
             objective,
             constraints,
@@ -320,7 +321,7 @@ impl Validator<'_, '_> {
         let path = |key: &str| [k("constraints"), Segment::Index(i), k(key)];
         let index = self.output(model, &path("output"), &c.output)?;
         let dim = model.outputs()[index].dimension;
-        let unit = match units::strength_fraction(&c.unit, dim, mat, &c.output)
+        let unit = match strength::strength_fraction(&c.unit, dim, mat, &c.output)
             .map_err(|m| self.err(&path("unit"), m))?
         {
             Some(u) => u,

@@ -186,7 +186,10 @@ impl Context<'_> {
             .filter_map(|(&o, c)| c.clone().map(|c| (o, c)))
             .collect();
         let mut p = self.problem.clone();
-        p.model = Arc::new(Corrected::new(self.problem.model.clone(), &pairs));
+        p.mechanism = self.problem.mechanism.with_physics(Arc::new(Corrected::new(
+            self.problem.mechanism.physics.clone(),
+            &pairs,
+        )));
         // aim inside each measured limit by the margin, so that a measurement a little off
         // the surrogate's prediction still meets it
         for c in &mut p.constraints {

@@ -16,6 +16,9 @@
 //! bridge's stiffnesses by 10-20 %, its amplification by 8 %), where an additive one would
 //! change with every stiffness. The parts of a maximum ([`Model::max_of`]) take the
 //! factor of the maximum, so a stress limit split into its places is corrected as a whole.
+//!
+//! It is physics alone: the refinement puts it in place of the analytic model's physics in
+//! the same [`crate::model::Mechanism`], whose pictures and part stay the analytic model's.
 
 use std::sync::Arc;
 
@@ -104,5 +107,10 @@ impl Model for Corrected {
     }
     fn angle_limit(&self) -> Option<f64> {
         self.inner.angle_limit()
+    }
+    /// None: the correction's slope runs across the design space, so a design and its
+    /// mirror image are corrected by different factors.
+    fn mirror(&self, _x: &mut [f64]) -> bool {
+        false
     }
 }

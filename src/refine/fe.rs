@@ -7,12 +7,12 @@ use serde_json::json;
 use super::{HighFidelity, Measurement};
 use crate::fe::verify::{verify_design, Verification, VerifySettings};
 use crate::fe::Idealization;
-use crate::model::Model;
+use crate::model::Mechanism;
 use crate::problem::refine::{RefineSettings, StressMeasure};
 
 /// The FE check of a model's part.
 pub struct FeFidelity<'a> {
-    pub model: &'a dyn Model,
+    pub mechanism: &'a Mechanism,
     pub idealization: Idealization,
     pub stress: StressMeasure,
     pub settings: VerifySettings,
@@ -21,9 +21,9 @@ pub struct FeFidelity<'a> {
 impl<'a> FeFidelity<'a> {
     /// The FE check `refine` asks for, its meshes refined until every output's estimated
     /// error is below the refinement's tolerance; the modes only when a frequency is asked.
-    pub fn new(model: &'a dyn Model, refine: &RefineSettings, modal: bool) -> Self {
+    pub fn new(mechanism: &'a Mechanism, refine: &RefineSettings, modal: bool) -> Self {
         FeFidelity {
-            model,
+            mechanism,
             idealization: refine.idealization,
             stress: refine.stress,
             settings: VerifySettings {
@@ -36,7 +36,7 @@ impl<'a> FeFidelity<'a> {
 
     /// The FE output that stands for the model's output `output`.
     pub fn counterpart(&self, output: usize) -> Option<&'static str> {
-        match self.model.fe_counterpart(output)? {
+        match self.mechanism.fe_counterpart(output)? {
             "fe_stress_max" if self.stress == StressMeasure::Section => Some("fe_stress_section"),
             name => Some(name),
         }
@@ -81,7 +81,7 @@ impl HighFidelity for FeFidelity<'_> {
     }
 
     fn measure(&self, x: &[f64], outputs: &[usize]) -> Result<Measurement, String> {
-        let v = verify_design(self.model, x, &self.settings).map_err(|e| e.to_string())?;
+        let v = verify_design(self.mechanism, x, &self.settings).map_err(|e| e.to_string())?;
         let which = v
             .results
             .iter()

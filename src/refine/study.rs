@@ -41,7 +41,7 @@ fn starts(problem: &Problem, study: &Study) -> Vec<(usize, Vec<f64>)> {
 
 /// Refines the optimum (or each zone's) of a feasible `study`.
 pub fn refine_study(problem: &Problem, study: &Study) -> StudyRefinement {
-    let model = problem.model();
+    let mechanism = problem.mechanism();
     let settings = &problem.refine;
     let modal = problem
         .constraints
@@ -49,11 +49,11 @@ pub fn refine_study(problem: &Problem, study: &Study) -> StudyRefinement {
         .map(|c| c.index)
         .chain([problem.objective.index])
         .any(|o| {
-            model
+            mechanism
                 .fe_counterpart(o)
                 .is_some_and(|n| n.contains("frequency"))
         });
-    let fe = FeFidelity::new(model, settings, modal);
+    let fe = FeFidelity::new(mechanism, settings, modal);
     let all: Vec<(usize, Refinement)> = starts(problem, study)
         .into_iter()
         .map(|(zone, x)| (zone, refine(problem, &x, &fe, settings)))

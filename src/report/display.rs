@@ -96,10 +96,9 @@ pub fn design_line(problem: &Problem, x: &[f64]) -> String {
 /// The same as `name=value` pairs, as `--design` takes them (values in the file's units).
 pub fn design_arg(problem: &Problem, x: &[f64]) -> String {
     problem
-        .variables
+        .design_in_file_units(x)
         .iter()
-        .zip(x)
-        .map(|(v, &xi)| format!("{}={}", v.name, human(v.unit.from_si(xi))))
+        .map(|(name, &v)| format!("{name}={}", human(v)))
         .collect::<Vec<_>>()
         .join(",")
 }

@@ -212,7 +212,7 @@ impl DesignReport {
         let mut report = DesignReport {
             problem: problem.name.clone(),
             model: model.name().into(),
-            design: IndexMap::new(),
+            design: problem.design_in_file_units(x),
             design_units: IndexMap::new(),
             design_si: IndexMap::new(),
             outputs: IndexMap::new(),
@@ -234,10 +234,9 @@ impl DesignReport {
                 .map(|c| ConstraintReport::new(c, out[c.index], ACTIVE_TOLERANCE))
                 .collect(),
             feasible: false,
-            drawing: model.drawing(x),
+            drawing: problem.depiction().drawing(x),
         };
         for (v, &xi) in problem.variables.iter().zip(x) {
-            report.design.insert(v.name.clone(), v.unit.from_si(xi));
             report
                 .design_units
                 .insert(v.name.clone(), v.unit.name.clone());

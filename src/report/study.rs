@@ -111,16 +111,7 @@ pub struct ZonesReport {
 
 /// The configuration kind of a design of `problem`'s model.
 fn configuration(problem: &Problem, x: &[f64]) -> &'static str {
-    problem.model().configuration(x)
-}
-
-fn in_file_units(problem: &Problem, x: &[f64]) -> IndexMap<String, f64> {
-    problem
-        .variables
-        .iter()
-        .zip(x)
-        .map(|(v, &xi)| (v.name.clone(), v.unit.from_si(xi)))
-        .collect()
+    problem.depiction().configuration(x)
 }
 
 fn finite(v: f64) -> Option<f64> {
@@ -182,8 +173,8 @@ pub fn start_records(problem: &Problem, study: &Study) -> Vec<StartRecord> {
             max_violation: r.solution.max_violation,
             kkt_residual: r.solution.kkt_residual,
             configuration: configuration(problem, &r.x_end),
-            x_start: in_file_units(problem, &r.x_start),
-            x_end: in_file_units(problem, &r.x_end),
+            x_start: problem.design_in_file_units(&r.x_start),
+            x_end: problem.design_in_file_units(&r.x_end),
         })
         .collect()
 }
@@ -215,14 +206,14 @@ pub fn zones_report(problem: &Problem, study: &Study) -> ZonesReport {
                             configuration: configuration(problem, &rep.x_end),
                             count: o.members.len(),
                             starts: o.members.iter().map(|&m| run_of(m).start).collect(),
-                            design: in_file_units(problem, &rep.x_end),
+                            design: problem.design_in_file_units(&rep.x_end),
                         }
                     })
                     .collect(),
             })
             .collect(),
         not_feasible: study.runs.len() - study.feasible_runs.len(),
-        configuration_rule: problem.model().configuration_rule(),
+        configuration_rule: problem.depiction().configuration_rule(),
     }
 }
 
@@ -330,7 +321,7 @@ pub fn write_all_refined(
     // a model without a drawing of its configurations writes the first five
     let best = study.reported_design();
     let mut written: Vec<&str> = files[..5].to_vec();
-    if problem.model().skeleton(best).is_some() {
+    if problem.depiction().skeleton(best).is_some() {
         configurations_png(&path(files[5]), problem, study)?;
         written.push(files[5]);
     }

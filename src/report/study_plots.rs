@@ -104,18 +104,18 @@ pub(super) fn zones_png(path: &Path, problem: &Problem, study: &Study) -> Result
 }
 
 /// Fig. 5 analogue: the model's drawing of every feasible start's optimum as a chain of
-/// members ([`crate::model::Model::skeleton`]), one row per zone that has optima, drawn to
+/// members ([`crate::model::Depiction::skeleton`]), one row per zone that has optima, drawn to
 /// scale (one mm is as long across as along) with each member at its thickness.
 pub(super) fn configurations_png(
     path: &Path,
     problem: &Problem,
     study: &Study,
 ) -> Result<(), WriteError> {
-    let model = problem.model();
+    let depiction = problem.depiction();
     let lines: Vec<(usize, Skeleton)> = study
         .runs
         .iter()
-        .filter_map(|r| Some((r.zone?, model.skeleton(&r.x_end)?)))
+        .filter_map(|r| Some((r.zone?, depiction.skeleton(&r.x_end)?)))
         .collect();
     let ranks: Vec<usize> = study
         .clustering
@@ -150,7 +150,7 @@ pub(super) fn configurations_png(
     let title = format!(
         "{}: configurations by zone ({})",
         problem.name,
-        model.skeleton_legend()
+        problem.depiction().skeleton_legend()
     );
     let rows = ranks.len().max(1) as u32;
     render_png(path, (WIDTH, 36 + row * rows), |root| {

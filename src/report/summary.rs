@@ -51,9 +51,8 @@ impl Display for StudySummary<'_> {
             (false, _) => "least violating (infeasible)",
         };
         let x = study.reported_design();
-        let model = problem.model();
         let unit = super::display::output_unit(problem, problem.objective.index);
-        let configuration = match model.configuration(x) {
+        let configuration = match problem.depiction().configuration(x) {
             "-" => String::new(),
             c => format!(" ({c} configuration)"),
         };

@@ -45,7 +45,7 @@ fn analytic(problem: &Problem, x: &[f64], test_force: f64) -> IndexMap<&'static 
     };
     let mut out = IndexMap::new();
     for i in 0..model.outputs().len() {
-        if let (Some(fe), Some(v)) = (model.fe_counterpart(i), value(model, x, i)) {
+        if let (Some(fe), Some(v)) = (problem.mechanism().fe_counterpart(i), value(model, x, i)) {
             out.insert(fe, v);
         }
     }
@@ -157,12 +157,7 @@ impl VerifyReport {
         }
         VerifyReport {
             problem: problem.name.clone(),
-            design: problem
-                .variables
-                .iter()
-                .zip(x)
-                .map(|(var, &xi)| (var.name.clone(), var.unit.from_si(xi)))
-                .collect(),
+            design: problem.design_in_file_units(x),
             tolerance: v.tolerance,
             converged: v.converged,
             test_force: v.test_force,

@@ -24,7 +24,7 @@ use crate::optim::multistart;
 use crate::optim::sqp::{self, SqpSettings};
 use crate::optim::{Problem as _, Solution};
 use crate::problem::elastic::{Elastic, Goal, Treatment};
-use crate::problem::nlp::{DesignNlp, FEASIBILITY_TOLERANCE};
+use crate::problem::nlp::{feasible_end, DesignNlp, FEASIBILITY_TOLERANCE};
 
 /// The outcome of the search.
 #[derive(Debug, Clone)]
@@ -68,11 +68,7 @@ fn best_of(
     solutions
         .into_iter()
         .enumerate()
-        .filter(|(_, s)| {
-            s.objective.is_finite()
-                && s.x.iter().all(|x| x.is_finite())
-                && s.max_violation <= FEASIBILITY_TOLERANCE
-        })
+        .filter(|(_, s)| feasible_end(s))
         .min_by(|(a, sa), (b, sb)| sa.objective.total_cmp(&sb.objective).then(a.cmp(b)))
         .map(|(from, solution)| Best {
             v: solution.x.clone(),
@@ -187,9 +183,7 @@ fn search_scaled(
     let improved = sqp::solve(&improve, &u_least, settings);
     let mut c = vec![0.0; improve.constraint_count()];
     let merit_least = improve.evaluate(&u_least, &mut c);
-    let better = improved.objective.is_finite()
-        && improved.max_violation <= FEASIBILITY_TOLERANCE
-        && improved.objective <= merit_least;
+    let better = feasible_end(&improved) && improved.objective <= merit_least;
     // the last end is the first step's design
     let from = if least.from < ends.len() {
         least.from

@@ -14,7 +14,7 @@ use crate::optim::progress::Progress;
 use crate::optim::sqp::{self, SqpSettings};
 use crate::optim::{Problem as _, Solution, Status};
 use crate::problem::epigraph::Epigraph;
-use crate::problem::nlp::{DesignNlp, FEASIBILITY_TOLERANCE};
+use crate::problem::nlp::{feasible_end, DesignNlp, FEASIBILITY_TOLERANCE};
 use crate::problem::{Problem, Sampling, Sense, Solver};
 
 pub mod least_violating;
@@ -145,7 +145,7 @@ impl Ends {
 /// lies within the bounds, meets the constraints and has the same objective (relative
 /// `1e-12`): the same geometry, drawn the other way round.
 fn preferred_mirror(problem: &Problem, nlp: &DesignNlp, run: &Run) -> Option<Vec<f64>> {
-    if !problem.model().prefers_mirror(&run.x_end) {
+    if !problem.depiction().prefers_mirror(&run.x_end) {
         return None;
     }
     let u = nlp.mirror(&run.solution.x)?;
@@ -155,21 +155,9 @@ fn preferred_mirror(problem: &Problem, nlp: &DesignNlp, run: &Run) -> Option<Vec
         (nlp.objective_at(&u, f) - run.objective).abs() <= 1e-12 * run.objective.abs().max(1e-300);
     let feasible =
         crate::optim::problem::max_violation(&c, nlp.equality_count()) <= FEASIBILITY_TOLERANCE;
-    // the end's angles negated exactly, not through the scaling's rounding
-    let params = problem.model().parameters();
-    (same && feasible).then(|| {
-        run.x_end
-            .iter()
-            .zip(params)
-            .map(|(&x, p)| {
-                if p.dimension == crate::model::Dimension::Angle {
-                    -x
-                } else {
-                    x
-                }
-            })
-            .collect()
-    })
+    // the end mirrored exactly, not through the scaling's rounding
+    let mut x = run.x_end.clone();
+    (same && feasible && problem.model().mirror(&mut x)).then_some(x)
 }
 
 /// Runs the study of `problem`.
@@ -192,10 +180,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
     // the progress's best: a feasible end's objective as the problem states it
     let unit = crate::report::display::output_unit(problem, problem.objective.index);
     let label = |s: &Solution| -> Option<(f64, String)> {
-        let feasible = s.objective.is_finite()
-            && s.max_violation <= FEASIBILITY_TOLERANCE
-            && !matches!(s.status, Status::Failed(_) | Status::Infeasible);
-        feasible.then(|| {
+        feasible_end(s).then(|| {
             let value = nlp.objective_at(&s.x[..n], s.objective);
             let rank = crate::problem::nlp::merit(problem.objective.sense, false, value);
             let text = crate::report::display::with_unit(value, &unit);
@@ -268,9 +253,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
         .enumerate()
         .filter_map(|(i, s)| Some((i, s?)))
         .map(|(i, s)| {
-            let feasible = s.objective.is_finite()
-                && s.max_violation <= FEASIBILITY_TOLERANCE
-                && !matches!(s.status, Status::Failed(_) | Status::Infeasible);
+            let feasible = feasible_end(&s);
             Run {
                 start: i,
                 x_start: nlp.full_design(&starts[i]),

@@ -332,13 +332,14 @@ pub fn verify(
     })
 }
 
-/// Verifies the part of `model` at the design `x` (SI): the model's part and material.
+/// Verifies the part of `mechanism` at the design `x` (SI): its part and material.
 pub fn verify_design(
-    model: &dyn crate::model::Model,
+    mechanism: &crate::model::Mechanism,
     x: &[f64],
     settings: &VerifySettings,
 ) -> Result<Verification, FeError> {
-    let spec = match model.part(x) {
+    let model = mechanism.physics.as_ref();
+    let spec = match mechanism.part_spec(x) {
         None => {
             return Err(FeError::Setup(format!(
                 "the {} model has no part to check",

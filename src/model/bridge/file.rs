@@ -1,21 +1,19 @@
 //! The bridge's sections of a problem file: `[material]`, `[hinge]`, `[actuator]` and the
 //! optional `[dynamics]` and `[part]`, read and validated into a [`Bridge`].
 
-use std::sync::Arc;
-
 use serde::Deserialize;
 
 use super::dynamics::DynamicsSettings;
 use super::part::PartSettings;
 use super::{Actuator, Bridge, BridgeSettings};
+use crate::model::entry::SectionSchema;
 use crate::model::hinge::HingeKind;
 use crate::model::material::{Material, RawMaterial};
-use crate::model::registry::SectionSchema;
-use crate::model::{Dimension, Model};
-use crate::problem::error::Segment;
-use crate::problem::reader::{k, quoted, Res};
-use crate::problem::schema::{Number, Quantity};
-use crate::problem::sections::Sections;
+use crate::model::{Dimension, Mechanism};
+use crate::vocab::error::Segment;
+use crate::vocab::reader::{k, quoted, Res};
+use crate::vocab::sections::Sections;
+use crate::vocab::values::{Number, Quantity};
 
 /// The sections the bridge reads.
 pub const SECTIONS: &[&str] = &[
@@ -98,7 +96,7 @@ pub fn schema(g: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
 }
 
 /// Reads the bridge's sections and builds the model.
-pub fn build(s: &mut Sections) -> Res<Arc<dyn Model>> {
+pub fn build(s: &mut Sections) -> Res<Mechanism> {
     let m: RawMaterial = s.required("material")?;
     let h: RawHinge = s.required("hinge")?;
     let hs: RawHinges = s.optional("hinges")?.unwrap_or_default();
@@ -155,7 +153,7 @@ pub fn build(s: &mut Sections) -> Res<Arc<dyn Model>> {
             .transpose()?,
         part,
     };
-    Ok(Arc::new(Bridge::new(settings)))
+    Ok(Mechanism::complete(Bridge::new(settings)))
 }
 
 fn hinge_kind(s: &Sections, path: &[Segment], kind: &str) -> Res<HingeKind> {

@@ -25,11 +25,11 @@ pub use geometry::{Geometry, Layout, Trig};
 pub use outputs::{BridgeOutput, OUTPUTS};
 pub use quarter::QuarterBridge;
 
+use super::entry::ModelEntry;
 use super::hinge::HingeKind;
 use super::material::Material;
-use super::registry::ModelEntry;
 use super::scalar::Jet;
-use super::{unseed, Drawing, Model, OutputInfo, ParameterInfo, Skeleton};
+use super::{unseed, Depiction, Drawing, Model, OutputInfo, ParameterInfo, PartMaker, Skeleton};
 use dynamics::DynamicsSettings;
 
 /// How a problem file selects the bridge (`model = "bridge"`).
@@ -193,6 +193,13 @@ impl Model for Bridge {
         Some(std::f64::consts::FRAC_PI_2)
     }
 
+    /// Every angle negated: the arms mirrored about the actuator's axis.
+    fn mirror(&self, x: &mut [f64]) -> bool {
+        super::negate_angles(self.layout.parameters(), x)
+    }
+}
+
+impl Depiction for Bridge {
     fn configuration(&self, x: &[f64]) -> &'static str {
         configuration::configuration(&self.layout.geometry(x))
     }
@@ -223,10 +230,18 @@ impl Model for Bridge {
     fn prefers_mirror(&self, x: &[f64]) -> bool {
         x.len() == self.layout.parameters().len() && self.layout.geometry(x).span_y() < 0.0
     }
+}
 
-    fn part(&self, x: &[f64]) -> Option<Result<crate::part::PartSpec, Vec<String>>> {
-        (x.len() == self.layout.parameters().len())
-            .then(|| part::spec(&self.settings, &self.layout, x))
+impl PartMaker for Bridge {
+    fn part(&self, x: &[f64]) -> Result<crate::part::PartSpec, Vec<String>> {
+        if x.len() != self.layout.parameters().len() {
+            return Err(vec![format!(
+                "a bridge design has {} parameters, got {}",
+                self.layout.parameters().len(),
+                x.len()
+            )]);
+        }
+        part::spec(&self.settings, &self.layout, x)
     }
 
     fn fe_counterpart(&self, output: usize) -> Option<&'static str> {

@@ -4,10 +4,10 @@
 use serde::de::DeserializeSeed;
 
 use super::error::{Locator, Segment};
-use super::schema::{Number, Quantity};
 use super::units::{self, parse_quantity};
+use super::values::{Number, Quantity};
+use super::Dimension;
 use super::ProblemError;
-use crate::model::Dimension;
 
 pub(crate) type Res<T> = Result<T, ProblemError>;
 

@@ -1,6 +1,6 @@
 //! Units at the boundary: problem files speak mm, um, degrees, MPa...; the models speak SI.
 
-use crate::model::Dimension;
+use super::Dimension;
 
 /// The units accepted for each dimension, with their factor to SI.
 const UNITS: &[(Dimension, &[(&str, f64)])] = &[
@@ -138,42 +138,6 @@ impl Unit {
         };
         Unit::parse(name, dimension).expect("every display unit is in the table")
     }
-}
-
-/// The unit `"yield"` or `"ultimate"` of a stress constraint: a fraction of the
-/// material's strength; `None` for any other unit name.
-pub fn strength_fraction(
-    name: &str,
-    dimension: Dimension,
-    material: Option<&crate::model::material::Material>,
-    output: &str,
-) -> Result<Option<Unit>, String> {
-    let strength = match name {
-        "yield" => material.map(|m| m.yield_strength),
-        "ultimate" => material.map(|m| m.ultimate_strength),
-        _ => return Ok(None),
-    };
-    if dimension != Dimension::Stress {
-        return Err(format!(
-            "\"{name}\" (a fraction of the {name} strength) only fits stress outputs, not \
-             \"{output}\""
-        ));
-    }
-    let strength = match (material, strength.flatten()) {
-        (_, Some(s)) => s,
-        (Some(m), None) => {
-            return Err(format!(
-                "material \"{}\" has no {name} strength: set material.{name}_strength",
-                m.name
-            ))
-        }
-        (None, _) => return Err(format!("this model has no material, so no {name} strength")),
-    };
-    Ok(Some(Unit {
-        name: name.into(),
-        dimension,
-        to_si: strength,
-    }))
 }
 
 fn units_of(dimension: Dimension) -> &'static [(&'static str, f64)] {

@@ -1,0 +1,44 @@
+//! How a problem file selects and configures a model: the entry each model gives the
+//! registry ([`super::registry::MODELS`]).
+
+use super::Mechanism;
+use crate::vocab::sections::Sections;
+use crate::vocab::ProblemError;
+
+/// How a problem file selects and configures a model.
+#[derive(Clone, Copy)]
+pub struct ModelEntry {
+    /// The value of the file's `model` key.
+    pub name: &'static str,
+    /// The top-level sections of the file the model reads (`[material]`, `[hinge]`, ...);
+    /// any other section is refused before the model is built.
+    pub sections: &'static [&'static str],
+    /// Reads and validates the model's sections, and builds the model.
+    pub build: fn(&mut Sections) -> Result<Mechanism, ProblemError>,
+    /// The JSON Schema of each of its sections, and whether the section is required.
+    pub schema: fn(&mut schemars::SchemaGenerator) -> Vec<SectionSchema>,
+    /// Its part of the file `flexopt init` writes: its sections, commented, then a ready
+    /// set of variables, objective and constraints.
+    pub template: &'static str,
+}
+
+/// One section of a model's part of a problem file, for the JSON Schema.
+pub struct SectionSchema {
+    pub name: &'static str,
+    pub schema: schemars::Schema,
+    pub required: bool,
+}
+
+/// No sections: a model whose parameters are all variables.
+pub fn no_sections(_: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
+    Vec::new()
+}
+
+impl std::fmt::Debug for ModelEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ModelEntry")
+            .field("name", &self.name)
+            .field("sections", &self.sections)
+            .finish()
+    }
+}

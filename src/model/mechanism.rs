@@ -1,0 +1,159 @@
+//! A mechanism: its physics ([`Model`]) and what else it can do, each capability a trait of
+//! its own: pictures of a design ([`Depiction`]), the part that is cut and the finite-element
+//! check of it ([`PartMaker`]).
+//!
+//! The capabilities are held beside the physics in a [`Mechanism`] rather than as defaulted
+//! methods of one trait, so that a wrapper which changes the physics (the refinement's
+//! corrected model) replaces the physics alone ([`Mechanism::with_physics`]) and keeps every
+//! capability of the mechanism it wraps without forwarding a method.
+
+use std::sync::Arc;
+
+use super::{Drawing, Model, Skeleton};
+use crate::part::{Part, PartError, PartSpec};
+
+/// What a design report and the study's pictures show of a design besides its outputs.
+pub trait Depiction: Send + Sync + std::fmt::Debug {
+    /// The kind of configuration the design `x` (SI) is, by
+    /// [`Depiction::configuration_rule`]; `-` for a model whose topology does not change.
+    fn configuration(&self, _x: &[f64]) -> &'static str {
+        "-"
+    }
+
+    /// The rule by which [`Depiction::configuration`] names designs, for readers of the
+    /// results.
+    fn configuration_rule(&self) -> Option<&'static str> {
+        None
+    }
+
+    /// Nodes and mode shapes of the design `x` (SI) for its report.
+    fn drawing(&self, _x: &[f64]) -> Drawing {
+        Drawing::default()
+    }
+
+    /// The design `x` (SI) as a chain of members, for the configuration plot; `None` where
+    /// the model has no such picture, and then no plot is drawn.
+    fn skeleton(&self, _x: &[f64]) -> Option<Skeleton> {
+        None
+    }
+
+    /// The legend of the configuration plot: what the colours and the origin mean.
+    fn skeleton_legend(&self) -> &'static str {
+        ""
+    }
+
+    /// Whether the mirror image of `x` ([`Model::mirror`]) is the orientation to report: a
+    /// study that merges mirror images reports its optimum in the orientation a designer
+    /// draws (the bridge: output blocks outward, as paper 004's Fig. 1 and 3 draw them).
+    fn prefers_mirror(&self, _x: &[f64]) -> bool {
+        false
+    }
+}
+
+/// A mechanism that is cut as one part: its solids, faces and the finite-element check the
+/// part states ([`crate::part`]).
+pub trait PartMaker: Send + Sync + std::fmt::Debug {
+    /// The solids of the design `x` (SI) as a part, or what makes the part impossible.
+    fn part(&self, x: &[f64]) -> Result<PartSpec, Vec<String>>;
+
+    /// The finite-element output of the part ([`crate::fe::verify::OUTPUTS`], or
+    /// `fe_actuation_force`) that measures what the model's output `output` computes, if
+    /// one does: what `flexopt verify` compares it with and `run --refine fe` corrects it by.
+    fn fe_counterpart(&self, output: usize) -> Option<&'static str>;
+}
+
+/// A mechanism: its physics and the capabilities it has.
+#[derive(Debug, Clone)]
+pub struct Mechanism {
+    pub physics: Arc<dyn Model>,
+    pub depiction: Option<Arc<dyn Depiction>>,
+    pub part_maker: Option<Arc<dyn PartMaker>>,
+}
+
+/// The depiction of a mechanism without one: every default.
+#[derive(Debug)]
+struct Plain;
+
+impl Depiction for Plain {}
+
+impl Mechanism {
+    /// A mechanism with physics alone.
+    pub fn physics_only(physics: Arc<dyn Model>) -> Self {
+        Mechanism {
+            physics,
+            depiction: None,
+            part_maker: None,
+        }
+    }
+
+    /// A model that brings every capability itself.
+    pub fn complete<M: Model + Depiction + PartMaker + 'static>(model: M) -> Self {
+        let model = Arc::new(model);
+        Mechanism {
+            physics: model.clone(),
+            depiction: Some(model.clone()),
+            part_maker: Some(model),
+        }
+    }
+
+    /// A model with pictures but no part.
+    pub fn depicted<M: Model + Depiction + 'static>(model: M) -> Self {
+        let model = Arc::new(model);
+        Mechanism {
+            physics: model.clone(),
+            depiction: Some(model),
+            part_maker: None,
+        }
+    }
+
+    /// The same mechanism with other physics (the same parameters and outputs): its
+    /// pictures and part are the wrapped mechanism's.
+    pub fn with_physics(&self, physics: Arc<dyn Model>) -> Self {
+        Mechanism {
+            physics,
+            ..self.clone()
+        }
+    }
+
+    /// The depiction, every default where the mechanism has none.
+    pub fn depiction(&self) -> &dyn Depiction {
+        self.depiction.as_deref().unwrap_or(&Plain)
+    }
+
+    /// The part's spec at the design `x` (SI); `None` for a mechanism without a part.
+    pub fn part_spec(&self, x: &[f64]) -> Option<Result<PartSpec, Vec<String>>> {
+        Some(self.part_maker.as_ref()?.part(x))
+    }
+
+    /// The part at the design `x` (SI), joined, rounded and checked; `None` for a mechanism
+    /// without a part.
+    pub fn part(&self, x: &[f64]) -> Option<Result<Part, PartError>> {
+        Some(build_part(self.part_maker.as_deref()?, x))
+    }
+
+    /// As [`Mechanism::part`], a mechanism without a part being an error.
+    pub fn part_or_error(&self, x: &[f64]) -> Result<Part, PartError> {
+        self.part(x).unwrap_or_else(|| {
+            Err(PartError {
+                problems: vec![format!(
+                    "the {} model has no part to draw",
+                    self.physics.name()
+                )],
+            })
+        })
+    }
+
+    /// The finite-element counterpart of the model's output `output`
+    /// ([`PartMaker::fe_counterpart`]).
+    pub fn fe_counterpart(&self, output: usize) -> Option<&'static str> {
+        self.part_maker.as_ref()?.fe_counterpart(output)
+    }
+}
+
+/// The part of `maker` at the design `x` (SI), joined, rounded and checked.
+pub fn build_part(maker: &dyn PartMaker, x: &[f64]) -> Result<Part, PartError> {
+    match maker.part(x) {
+        Err(problems) => Err(PartError { problems }),
+        Ok(spec) => Part::build(&spec),
+    }
+}
