@@ -272,10 +272,10 @@ pub trait Model: Send + Sync + std::fmt::Debug {
         None
     }
 
-    /// The finite-element output of the part ([`crate::fe::verify::OUTPUTS`], or
-    /// `fe_actuation_force`) that measures what the model's output `output` computes, if
-    /// one does: what `flexopt verify` compares it with and `run --refine fe` corrects it by.
-    fn fe_counterpart(&self, _output: usize) -> Option<&'static str> {
+    /// What of the finite-element check its part states ([`crate::part::analysis`])
+    /// measures what the model's output `output` computes, if anything does: what `flexopt
+    /// verify` compares it with and `run --refine fe` corrects it by.
+    fn fe_counterpart(&self, _output: usize) -> Option<crate::part::analysis::FeCounterpart> {
         None
     }
 }

@@ -12,6 +12,7 @@
 //! Files: `outline.rs` (union, exact coordinates, fillets, loops), `checks.rs` (what cannot
 //! be made), `dxf.rs`, `svg.rs` (the writers).
 
+pub mod analysis;
 pub mod checks;
 pub mod dxf;
 pub mod half;
@@ -104,6 +105,9 @@ pub struct PartSpec {
     /// analysis.
     pub width: f64,
     pub actuation: Option<Actuation>,
+    /// The finite-element check the model asks of the part; `None` for a part that is only
+    /// drawn.
+    pub analysis: Option<analysis::Analysis>,
     /// Convex solids, counterclockwise (metres).
     pub solids: Vec<Solid>,
     /// The pairs of solids (indices) that are joined; every other pair keeps `min_slot`
