@@ -4,12 +4,13 @@
 //! A model gives a [`PartSpec`] (SI, metres): convex solids (hinges, links, blocks), the
 //! hinges' sites (where their thin sections start and end, for the fillets and the checks),
 //! groups of solids that form separate arms, named faces for load cases, the finite-element
-//! check stated on them ([`analysis`]), and annotations for the drawing. [`Part::build`] joins the solids (georust `geo`'s Boolean union), restores the
-//! exact coordinates the union snapped to its integer grid, rounds every hinge root with its
-//! fillet (an arc, kept as an arc in every export), orders the loops and runs the checks.
+//! check stated on them ([`analysis`]), and annotations for the drawing. [`Part::build`]
+//! joins the solids (georust `geo`'s Boolean union), restores the exact coordinates the
+//! union snapped to its integer grid, rounds every hinge root with its fillet (an arc, kept
+//! as an arc in every export), orders the loops and runs the checks.
 //! Coordinates in a [`Part`] are millimetres, the unit of the exported files.
 //!
-//! Files: `outline.rs` (union, exact coordinates, fillets, loops), `checks.rs` (what cannot
+//! Files: `analysis.rs` (the check a model asks of its part), `outline.rs` (union, exact coordinates, fillets, loops), `checks.rs` (what cannot
 //! be made), `dxf.rs`, `svg.rs` (the writers).
 
 pub mod analysis;
