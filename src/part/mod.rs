@@ -10,8 +10,9 @@
 //! as an arc in every export), orders the loops and runs the checks.
 //! Coordinates in a [`Part`] are millimetres, the unit of the exported files.
 //!
-//! Files: `analysis.rs` (the check a model asks of its part), `outline.rs` (union, exact coordinates, fillets, loops), `checks.rs` (what cannot
-//! be made), `dxf.rs`, `svg.rs` (the writers).
+//! Files: `analysis.rs` (the check a model asks of its part), `outline.rs` (union, exact
+//! coordinates, fillets, loops), `checks.rs` (what cannot be made), `dxf.rs`, `svg.rs` (the
+//! writers).
 
 pub mod analysis;
 pub mod checks;
