@@ -298,3 +298,21 @@ fn a_load_case_that_is_not_symmetric_is_refused() {
     let err = verify(&s, &STEEL, &VerifySettings::default()).unwrap_err();
     assert!(err.to_string().contains("not symmetric"), "{err}");
 }
+
+#[test]
+fn a_statement_that_points_nowhere_is_refused() {
+    let mut s = spec();
+    s.analysis.as_mut().unwrap().measures[1].case = 3;
+    let err = verify(&s, &STEEL, &VerifySettings::default()).unwrap_err();
+    assert!(err.to_string().contains("load case 3, of 1"), "{err}");
+    let mut s = spec();
+    s.analysis
+        .as_mut()
+        .unwrap()
+        .actuation
+        .as_mut()
+        .unwrap()
+        .stiffness = FeOutputId(0);
+    let err = verify(&s, &STEEL, &VerifySettings::default()).unwrap_err();
+    assert!(err.to_string().contains("no stiffness"), "{err}");
+}

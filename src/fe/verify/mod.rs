@@ -171,6 +171,7 @@ pub fn verify(
         .analysis
         .clone()
         .ok_or_else(|| FeError::Setup("the model states no finite-element check".into()))?;
+    statement::check(&analysis)?;
     let actuation_case = analysis
         .actuation
         .ok_or_else(|| FeError::Setup("the part's check states no actuation case".into()))?;

@@ -345,3 +345,55 @@ pub(super) fn case_forces(m: &Mesh, edges: &Edges, width: f64, applied: &[Applie
         })
         .unwrap_or_else(|| vec![0.0; 2 * m.nodes.len()])
 }
+
+/// That every index of the statement points into its lists: a statement that points
+/// nowhere is the model's mistake, and is said as such rather than found by a solve.
+pub(super) fn check(a: &Analysis) -> Result<(), FeError> {
+    let fail = |what: String| Err(FeError::Setup(format!("the part's check is wrong: {what}")));
+    let (cases, measures) = (a.cases.len(), a.measures.len());
+    for (k, m) in a.measures.iter().enumerate() {
+        if m.case >= cases {
+            return fail(format!(
+                "measure {k} is read under load case {}, of {cases}",
+                m.case
+            ));
+        }
+    }
+    for o in &a.outputs {
+        let read = match o.quantity {
+            Quantity::Displacement(i) | Quantity::Stiffness(i) => vec![i],
+            Quantity::Ratio {
+                numerator,
+                denominator,
+            } => vec![numerator, denominator],
+            _ => Vec::new(),
+        };
+        if let Some(i) = read.into_iter().find(|&i| i >= measures) {
+            return fail(format!("{} reads measure {i}, of {measures}", o.name));
+        }
+    }
+    if let Some(act) = &a.actuation {
+        if act.case >= cases {
+            return fail(format!(
+                "the actuation is load case {}, of {cases}",
+                act.case
+            ));
+        }
+        let stiffness = a.outputs.get(act.stiffness.0).map(|o| o.quantity);
+        if !matches!(stiffness, Some(Quantity::Stiffness(_))) {
+            return fail(format!(
+                "the actuation is scaled by output {}, which is no stiffness",
+                act.stiffness.0
+            ));
+        }
+    }
+    if let Some(m) = &a.modal {
+        if m.start >= cases {
+            return fail(format!(
+                "the modes start from load case {}, of {cases}",
+                m.start
+            ));
+        }
+    }
+    Ok(())
+}
