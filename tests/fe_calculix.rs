@@ -108,7 +108,7 @@ fn ccx_and_flexopt_agree_on_the_same_mesh_and_3d_lies_between_the_2d_bounds() {
     let mut bounds = Vec::new();
     for (k, idealization) in Idealization::BOTH.into_iter().enumerate() {
         let u = model.solve(&v.material, v.width, idealization).unwrap();
-        let ours = model.face_outputs(&u[0], &u[1]);
+        let ours = model.measures(&u);
         let half = &v.results[k].outputs;
         assert!(
             rel(half[0].values[0], ours[0]) < 1e-7,
@@ -140,7 +140,7 @@ fn ccx_and_flexopt_agree_on_the_same_mesh_and_3d_lies_between_the_2d_bounds() {
     }
     for idealization in Idealization::BOTH {
         let u = model.solve(&v.material, v.width, idealization).unwrap();
-        let ours = model.face_outputs(&u[0], &u[1]);
+        let ours = model.measures(&u);
         // ccx on the 2D deck agrees to its printed precision (7 digits)
         let (nu, e) = (v.material.poisson_ratio, v.material.youngs_modulus);
         let exact = match idealization {
@@ -155,7 +155,7 @@ fn ccx_and_flexopt_agree_on_the_same_mesh_and_3d_lies_between_the_2d_bounds() {
             .deck("printed design", &exact, v.width, 1.0)
             .two_d(Idealization::PlaneStrain);
         let theirs = run_ccx(&format!("{idealization:?}"), &deck, &model, 0);
-        let theirs = model.face_outputs(&theirs[0], &theirs[1]);
+        let theirs = model.measures(&theirs);
         for (o, t) in ours.iter().zip(theirs) {
             assert!(
                 rel(t, *o) < 1e-6,
@@ -167,7 +167,7 @@ fn ccx_and_flexopt_agree_on_the_same_mesh_and_3d_lies_between_the_2d_bounds() {
                 .deck("printed design", &v.material, v.width, 1e-4)
                 .two_d(idealization);
             let thin = run_ccx("thin", &deck, &model, 0);
-            let thin = model.face_outputs(&thin[0], &thin[1]);
+            let thin = model.measures(&thin);
             for (o, t) in ours.iter().zip(thin) {
                 assert!(
                     rel(t, *o) < 1e-4,
@@ -183,8 +183,8 @@ fn ccx_and_flexopt_agree_on_the_same_mesh_and_3d_lies_between_the_2d_bounds() {
         .deck("printed design", &v.material, v.width, 1.0)
         .three_d(layers);
     let u3 = run_ccx("3d", &deck, &model, layers);
-    let solid = model.face_outputs(&u3[0], &u3[1]);
-    let (stress, strain) = (bounds[0], bounds[1]);
+    let solid = model.measures(&u3);
+    let (stress, strain) = (&bounds[0], &bounds[1]);
     eprintln!("plane stress {stress:?}\n3D           {solid:?}\nplane strain {strain:?}");
     // stiffer than plane stress, softer than plane strain: displacements between
     for k in [0, 2] {

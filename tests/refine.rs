@@ -69,7 +69,7 @@ impl HighFidelity for Synthetic {
     fn describe(&self) -> String {
         "synthetic".into()
     }
-    fn measures(&self, output: usize) -> bool {
+    fn measures(&self, _x: &[f64], output: usize) -> bool {
         self.measured.contains(&output)
     }
     fn measure(&self, x: &[f64], outputs: &[usize]) -> Result<Measurement, String> {

@@ -10,6 +10,7 @@
 use std::sync::Arc;
 
 use super::{Drawing, Model, Skeleton};
+use crate::part::analysis::FeCounterpart;
 use crate::part::{Part, PartError, PartSpec};
 
 /// What a design report and the study's pictures show of a design besides its outputs.
@@ -56,10 +57,10 @@ pub trait PartMaker: Send + Sync + std::fmt::Debug {
     /// The solids of the design `x` (SI) as a part, or what makes the part impossible.
     fn part(&self, x: &[f64]) -> Result<PartSpec, Vec<String>>;
 
-    /// The finite-element output of the part ([`crate::fe::verify::OUTPUTS`], or
-    /// `fe_actuation_force`) that measures what the model's output `output` computes, if
-    /// one does: what `flexopt verify` compares it with and `run --refine fe` corrects it by.
-    fn fe_counterpart(&self, output: usize) -> Option<&'static str>;
+    /// What of the finite-element check its part states ([`crate::part::analysis`])
+    /// measures what the model's output `output` computes, if anything does: what `flexopt
+    /// verify` compares it with and `run --refine fe` corrects it by.
+    fn fe_counterpart(&self, output: usize) -> Option<FeCounterpart>;
 }
 
 /// A mechanism: its physics and the capabilities it has.
@@ -145,7 +146,7 @@ impl Mechanism {
 
     /// The finite-element counterpart of the model's output `output`
     /// ([`PartMaker::fe_counterpart`]).
-    pub fn fe_counterpart(&self, output: usize) -> Option<&'static str> {
+    pub fn fe_counterpart(&self, output: usize) -> Option<FeCounterpart> {
         self.part_maker.as_ref()?.fe_counterpart(output)
     }
 }

@@ -120,6 +120,7 @@ impl PartSpec {
         Some(PartSpec {
             width: self.width,
             actuation: self.actuation,
+            analysis: self.analysis.clone(),
             solids,
             joints,
             hinges,

@@ -3,15 +3,18 @@
 //!
 //! A model gives a [`PartSpec`] (SI, metres): convex solids (hinges, links, blocks), the
 //! hinges' sites (where their thin sections start and end, for the fillets and the checks),
-//! groups of solids that form separate arms, named faces for load cases, and annotations for
-//! the drawing. [`Part::build`] joins the solids (georust `geo`'s Boolean union), restores the
-//! exact coordinates the union snapped to its integer grid, rounds every hinge root with its
-//! fillet (an arc, kept as an arc in every export), orders the loops and runs the checks.
+//! groups of solids that form separate arms, named faces for load cases, the finite-element
+//! check stated on them ([`analysis`]), and annotations for the drawing. [`Part::build`]
+//! joins the solids (georust `geo`'s Boolean union), restores the exact coordinates the
+//! union snapped to its integer grid, rounds every hinge root with its fillet (an arc, kept
+//! as an arc in every export), orders the loops and runs the checks.
 //! Coordinates in a [`Part`] are millimetres, the unit of the exported files.
 //!
-//! Files: `outline.rs` (union, exact coordinates, fillets, loops), `checks.rs` (what cannot
-//! be made), `dxf.rs`, `svg.rs` (the writers).
+//! Files: `analysis.rs` (the check a model asks of its part), `outline.rs` (union, exact
+//! coordinates, fillets, loops), `checks.rs` (what cannot be made), `dxf.rs`, `svg.rs` (the
+//! writers).
 
+pub mod analysis;
 pub mod checks;
 pub mod dxf;
 pub mod half;
@@ -87,8 +90,9 @@ pub struct Actuator {
 /// How a model drives its part, for an analysis of it (SI).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Actuation {
-    /// The actuator's nominal stroke (m) and preload (N): the largest input force is
-    /// `nominal_stroke * k_in + preload`.
+    /// The actuator's nominal stroke (m) and preload (N): the largest force on the part is
+    /// `nominal_stroke * k + preload`, `k` the stiffness its analysis's actuation case names
+    /// ([`analysis::ActuationCase`]).
     pub nominal_stroke: f64,
     pub preload: f64,
     /// The actuator's stiffness (N/m); `None` for one much stiffer than the part.
@@ -104,6 +108,9 @@ pub struct PartSpec {
     /// analysis.
     pub width: f64,
     pub actuation: Option<Actuation>,
+    /// The finite-element check the model asks of the part; `None` for a part that is only
+    /// drawn.
+    pub analysis: Option<analysis::Analysis>,
     /// Convex solids, counterclockwise (metres).
     pub solids: Vec<Solid>,
     /// The pairs of solids (indices) that are joined; every other pair keeps `min_slot`

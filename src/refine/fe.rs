@@ -1,6 +1,6 @@
 //! The finite elements of the part as the high fidelity: [`crate::fe::verify`] at each
 //! design, the model's outputs read from their FE counterparts
-//! ([`crate::model::Model::fe_counterpart`]) in the chosen idealization.
+//! ([`crate::model::PartMaker::fe_counterpart`]) in the chosen idealization.
 
 use serde_json::json;
 
@@ -8,6 +8,7 @@ use super::{HighFidelity, Measurement};
 use crate::fe::verify::{verify_design, Verification, VerifySettings};
 use crate::fe::Idealization;
 use crate::model::Mechanism;
+use crate::part::analysis::{Analysis, FeCounterpart, Quantity};
 use crate::problem::refine::{RefineSettings, StressMeasure};
 
 /// The FE check of a model's part.
@@ -16,6 +17,22 @@ pub struct FeFidelity<'a> {
     pub idealization: Idealization,
     pub stress: StressMeasure,
     pub settings: VerifySettings,
+}
+
+/// The check the part of `mechanism` at `x` states, where it has a part that can be made.
+pub fn analysis_at(mechanism: &Mechanism, x: &[f64]) -> Option<Analysis> {
+    mechanism.part_spec(x)?.ok()?.analysis
+}
+
+/// Whether the FE counterpart of the model's output `output` is a natural frequency.
+pub fn is_modal(mechanism: &Mechanism, analysis: &Analysis, output: usize) -> bool {
+    match mechanism.fe_counterpart(output) {
+        Some(FeCounterpart::Output(id)) => analysis
+            .outputs
+            .get(id.0)
+            .is_some_and(|o| o.quantity.is_modal()),
+        _ => false,
+    }
 }
 
 impl<'a> FeFidelity<'a> {
@@ -34,24 +51,36 @@ impl<'a> FeFidelity<'a> {
         }
     }
 
-    /// The FE output that stands for the model's output `output`.
-    pub fn counterpart(&self, output: usize) -> Option<&'static str> {
+    /// What of the check `analysis` stands for the model's output `output`: with the
+    /// section stress asked for, the section stress in place of the peak stress.
+    pub fn counterpart(&self, analysis: &Analysis, output: usize) -> Option<FeCounterpart> {
         match self.mechanism.fe_counterpart(output)? {
-            "fe_stress_max" if self.stress == StressMeasure::Section => Some("fe_stress_section"),
-            name => Some(name),
+            FeCounterpart::Output(id)
+                if self.stress == StressMeasure::Section
+                    && analysis.outputs.get(id.0)?.quantity == Quantity::PeakStress =>
+            {
+                analysis
+                    .find(Quantity::SectionStress)
+                    .map(FeCounterpart::Output)
+            }
+            c => Some(c),
         }
     }
 }
 
-/// The value and estimated relative error of the FE output `name` in `result` (the
-/// idealization's index in `v.results`).
-fn read(v: &Verification, result: usize, name: &str) -> Option<(f64, Option<f64>)> {
-    if name == "fe_actuation_force" {
-        // from k_in, whose error it carries
-        let (_, e) = read(v, result, "fe_k_in")?;
-        return Some((v.actuation_force[result], e));
-    }
-    let o = v.results[result].outputs.iter().find(|o| o.name == name)?;
+/// The value and estimated relative error of `what` in `result` (the idealization's index
+/// in `v.results`).
+fn read(v: &Verification, result: usize, what: FeCounterpart) -> Option<(f64, Option<f64>)> {
+    let id = match what {
+        FeCounterpart::ActuationForce => {
+            // from its stiffness, whose error it carries
+            let stiffness = v.analysis.actuation?.stiffness;
+            let (_, e) = read(v, result, FeCounterpart::Output(stiffness))?;
+            return Some((v.actuation_force[result], e));
+        }
+        FeCounterpart::Output(id) => id,
+    };
+    let o = v.results[result].outputs.iter().find(|o| o.id == id)?;
     let e = &o.estimate;
     if e.converging {
         return Some((e.value, e.relative_error));
@@ -73,11 +102,18 @@ impl HighFidelity for FeFidelity<'_> {
         format!("finite elements, {}", self.idealization.name())
     }
 
-    fn measures(&self, output: usize) -> bool {
-        let Some(name) = self.counterpart(output) else {
-            return false;
+    fn measures(&self, x: &[f64], output: usize) -> bool {
+        let Some(analysis) = analysis_at(self.mechanism, x) else {
+            // no part here: the measurement will say why
+            return self.mechanism.fe_counterpart(output).is_some();
         };
-        self.settings.modal || !name.contains("frequency")
+        match self.counterpart(&analysis, output) {
+            None => false,
+            Some(FeCounterpart::ActuationForce) => true,
+            Some(FeCounterpart::Output(id)) => {
+                self.settings.modal || !analysis.outputs[id.0].quantity.is_modal()
+            }
+        }
     }
 
     fn measure(&self, x: &[f64], outputs: &[usize]) -> Result<Measurement, String> {
@@ -90,12 +126,19 @@ impl HighFidelity for FeFidelity<'_> {
         let mut values = Vec::new();
         let mut errors = Vec::new();
         for &o in outputs {
-            let name = self
-                .counterpart(o)
+            let what = self
+                .counterpart(&v.analysis, o)
                 .ok_or("an output without an FE counterpart")?;
-            let (value, error) =
-                read(&v, which, name).ok_or_else(|| format!("the FE check gave no {name}"))?;
-            if name == "fe_stress_max" && error.is_none_or(|e| e > PEAK_CHANGE_LIMIT) {
+            let (value, error) = read(&v, which, what).ok_or_else(|| {
+                let name = match what {
+                    FeCounterpart::Output(id) => v.analysis.outputs[id.0].name,
+                    FeCounterpart::ActuationForce => v.analysis.actuation.map_or("", |a| a.name),
+                };
+                format!("the FE check gave no {name}")
+            })?;
+            let peak = matches!(what, FeCounterpart::Output(id)
+                if v.analysis.outputs[id.0].quantity == Quantity::PeakStress);
+            if peak && error.is_none_or(|e| e > PEAK_CHANGE_LIMIT) {
                 return Err(
                     "the FE peak stress does not converge (a sharp root: give the part \
                             fillets, or set [refine] stress = \"section\")"
@@ -115,7 +158,9 @@ impl HighFidelity for FeFidelity<'_> {
                 for o in &r.outputs {
                     map.insert(o.name.to_string(), json!(o.estimate.value));
                 }
-                map.insert("fe_actuation_force".into(), json!(v.actuation_force[i]));
+                if let Some(a) = v.analysis.actuation {
+                    map.insert(a.name.into(), json!(v.actuation_force[i]));
+                }
                 (r.idealization.name().to_string(), serde_json::Value::Object(map))
             }).collect::<serde_json::Map<_, _>>(),
         });

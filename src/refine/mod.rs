@@ -60,8 +60,9 @@ const ACCEPT: f64 = 0.01;
 pub trait HighFidelity: Sync {
     /// What it is, for the reports.
     fn describe(&self) -> String;
-    /// Whether it measures the model's output `output`.
-    fn measures(&self, output: usize) -> bool;
+    /// Whether it measures the model's output `output` at designs like `x` (SI): the FE
+    /// check's outputs are stated by the part, which only a design gives.
+    fn measures(&self, x: &[f64], output: usize) -> bool;
     /// Measures `outputs` (model output indices it measures) at the design `x` (SI).
     fn measure(&self, x: &[f64], outputs: &[usize]) -> Result<Measurement, String>;
 }
@@ -226,7 +227,7 @@ pub fn refine(
 ) -> Refinement {
     let begin = Instant::now();
     let outputs = watched(problem);
-    let corrected: Vec<bool> = outputs.iter().map(|&o| high.measures(o)).collect();
+    let corrected: Vec<bool> = outputs.iter().map(|&o| high.measures(x0, o)).collect();
     let mut r = Refinement {
         fidelity: high.describe(),
         outputs: outputs.clone(),

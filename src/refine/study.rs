@@ -1,7 +1,7 @@
 //! The refinement of a study's optimum (or of each zone's best optimum) by the finite
 //! elements, as `run` does it with `[refine]` or `--refine fe`.
 
-use super::fe::FeFidelity;
+use super::fe::{analysis_at, is_modal, FeFidelity};
 use super::{refine, RefineStatus, Refinement};
 use crate::problem::refine::RefineFrom;
 use crate::problem::Problem;
@@ -43,18 +43,19 @@ fn starts(problem: &Problem, study: &Study) -> Vec<(usize, Vec<f64>)> {
 pub fn refine_study(problem: &Problem, study: &Study) -> StudyRefinement {
     let mechanism = problem.mechanism();
     let settings = &problem.refine;
-    let modal = problem
-        .constraints
-        .iter()
-        .map(|c| c.index)
-        .chain([problem.objective.index])
-        .any(|o| {
-            mechanism
-                .fe_counterpart(o)
-                .is_some_and(|n| n.contains("frequency"))
-        });
+    let starts = starts(problem, study);
+    // the modes only when a frequency is asked: the part's check says which outputs are
+    let analysis = starts.iter().find_map(|(_, x)| analysis_at(mechanism, x));
+    let modal = analysis.is_some_and(|a| {
+        problem
+            .constraints
+            .iter()
+            .map(|c| c.index)
+            .chain([problem.objective.index])
+            .any(|o| is_modal(mechanism, &a, o))
+    });
     let fe = FeFidelity::new(mechanism, settings, modal);
-    let all: Vec<(usize, Refinement)> = starts(problem, study)
+    let all: Vec<(usize, Refinement)> = starts
         .into_iter()
         .map(|(zone, x)| (zone, refine(problem, &x, &fe, settings)))
         .collect();

@@ -14,9 +14,13 @@ use serde::Serialize;
 use super::plot::{render_png, FAMILY};
 use super::{write_atomic, write_json, WriteError};
 use crate::fe::richardson::Estimate;
-use crate::fe::verify::{Level, Verification, OUTPUTS};
+use crate::fe::verify::{Level, Verification};
 use crate::fe::Idealization;
+use crate::part::analysis::{FeCounterpart, Quantity};
 use crate::problem::Problem;
+use compare::{analytic, displacements_at};
+
+mod compare;
 
 /// The files a verification writes, in order.
 pub const VERIFY_FILES: [&str; 5] = [
@@ -33,47 +37,13 @@ pub const VERIFY_FILES: [&str; 5] = [
 const DECK_LEVEL: usize = 0;
 const DECK_3D_LAYERS: usize = 2;
 
-/// The analytic output each FE output is compared with: the model's outputs with an FE
-/// counterpart ([`crate::model::Model::fe_counterpart`]), and `fe_x_in`, `fe_y_out` from
-/// `k_in` and `amplification` at the test force. The section stress is compared with beam
-/// theory (`stress_beam_max`, or `stress_max` for a model without it).
-fn analytic(problem: &Problem, x: &[f64], test_force: f64) -> IndexMap<&'static str, f64> {
-    let model = problem.model();
-    let get = |name: &str| -> Option<f64> {
-        let i = model.output_index(name)?;
-        value(model, x, i)
-    };
-    let mut out = IndexMap::new();
-    for i in 0..model.outputs().len() {
-        if let (Some(fe), Some(v)) = (problem.mechanism().fe_counterpart(i), value(model, x, i)) {
-            out.insert(fe, v);
-        }
-    }
-    if let Some(k) = get("k_in") {
-        out.insert("fe_x_in", test_force / k);
-        if let Some(a) = get("amplification") {
-            out.insert("fe_y_out", a * test_force / k);
-        }
-    }
-    if let (None, Some(s)) = (out.get("fe_stress_section"), get("stress_max")) {
-        out.insert("fe_stress_section", s);
-    }
-    out
-}
-
-/// The model's output `i` at `x`, where the model can compute it.
-fn value(model: &dyn crate::model::Model, x: &[f64], i: usize) -> Option<f64> {
-    model.unavailable(i).is_none().then(|| {
-        let mut v = [0.0];
-        model.evaluate(x, &[i], &mut v);
-        v[0]
-    })
-}
-
 /// One FE output in `verify.json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct OutputReport {
     pub unit: &'static str,
+    /// The factor and unit the table shows it in.
+    #[serde(skip)]
+    pub display: (f64, &'static str),
     pub meaning: &'static str,
     #[serde(flatten)]
     pub estimate: Estimate,
@@ -82,8 +52,8 @@ pub struct OutputReport {
     pub analytic: Option<f64>,
     /// `(analytic - FE) / FE`, in percent: how far the analytic model is from the FE.
     pub deviation_percent: Option<f64>,
-    /// For the stresses: the value at the analytic actuation force (`force_in_max`), the
-    /// FE's own force being `nominal_stroke * fe k_in + preload`.
+    /// For the stresses: the value at the model's actuation force, the FE's own force being
+    /// `nominal_stroke * (FE stiffness) + preload`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub at_analytic_force: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -102,10 +72,13 @@ pub struct VerifyReport {
     /// Every output meant to converge (all but the peak stress) did, within the tolerance.
     pub converged: bool,
     pub test_force: f64,
-    /// The actuation force on each input face, per idealization (N).
+    /// The actuation force on each loaded face of the actuation case, per idealization (N).
     pub actuation_force: IndexMap<&'static str, f64>,
-    /// The analytic actuation force `force_in_max` (N), where the model has one.
+    /// The model's actuation force (N), where it has one.
     pub analytic_actuation_force: Option<f64>,
+    /// What the displacements are measured under, for the table.
+    #[serde(skip)]
+    pub displacements_at: String,
     pub levels: Vec<Level>,
     pub outputs: IndexMap<&'static str, IndexMap<&'static str, OutputReport>>,
     /// The whole check's time (s).
@@ -121,31 +94,34 @@ fn key(i: Idealization) -> &'static str {
 
 impl VerifyReport {
     pub fn new(problem: &Problem, x: &[f64], v: &Verification) -> Self {
-        let a = analytic(problem, x, v.test_force);
+        let a = analytic(problem, x, v);
         let model = problem.model();
-        let force_in_max = model.output_index("force_in_max").map(|i| {
-            let mut f = [0.0];
-            model.evaluate(x, &[i], &mut f);
-            f[0]
-        });
+        let actuation_force = (0..model.outputs().len())
+            .find(|&i| problem.mechanism().fe_counterpart(i) == Some(FeCounterpart::ActuationForce))
+            .map(|i| {
+                let mut f = [0.0];
+                model.evaluate(x, &[i], &mut f);
+                f[0]
+            });
         let mut outputs = IndexMap::new();
         for (r, &own_force) in v.results.iter().zip(&v.actuation_force) {
             let mut map = IndexMap::new();
             for o in &r.outputs {
-                let meaning = OUTPUTS.iter().find(|m| m.0 == o.name).map_or("", |m| m.2);
-                let analytic = a.get(o.name).copied();
+                let stated = &v.analysis.outputs[o.id.0];
+                let analytic = a[o.id.0];
                 let fe = o.estimate.value;
-                let stress = o.name.starts_with("fe_stress");
+                let stress = stated.quantity.is_stress();
                 map.insert(
                     o.name,
                     OutputReport {
                         unit: o.unit,
-                        meaning,
+                        display: stated.display,
+                        meaning: stated.meaning,
                         estimate: o.estimate,
                         values: o.values.clone(),
                         analytic,
                         deviation_percent: analytic.map(|an| 100.0 * (an - fe) / fe),
-                        at_analytic_force: force_in_max
+                        at_analytic_force: actuation_force
                             .filter(|_| stress)
                             .map(|f| fe * f / own_force),
                         location_mm: o.location_mm,
@@ -157,7 +133,12 @@ impl VerifyReport {
         }
         VerifyReport {
             problem: problem.name.clone(),
-            design: problem.design_in_file_units(x),
+            design: problem
+                .variables
+                .iter()
+                .zip(x)
+                .map(|(var, &xi)| (var.name.clone(), var.unit.from_si(xi)))
+                .collect(),
             tolerance: v.tolerance,
             converged: v.converged,
             test_force: v.test_force,
@@ -167,7 +148,8 @@ impl VerifyReport {
                 .zip(&v.actuation_force)
                 .map(|(r, &f)| (key(r.idealization), f))
                 .collect(),
-            analytic_actuation_force: force_in_max,
+            analytic_actuation_force: actuation_force,
+            displacements_at: displacements_at(v),
             levels: v.levels.clone(),
             outputs,
             seconds: v.seconds,
@@ -283,7 +265,10 @@ fn stress_png(path: &Path, problem: &str, v: &Verification) -> Result<(), WriteE
         for (k, (area, r)) in areas.iter().zip(&v.results).enumerate() {
             let tris = triangles(v, k, &|_| [0.0, 0.0]);
             let top = r.fields.von_mises.iter().copied().fold(0.0, f64::max);
-            let peak = r.outputs.iter().find(|o| o.name == "fe_stress_max");
+            let peak = v
+                .analysis
+                .find(Quantity::PeakStress)
+                .and_then(|id| r.outputs.iter().find(|o| o.id == id));
             let caption = format!(
                 "{} (largest {:.1} MPa{})",
                 r.idealization.name(),
@@ -401,15 +386,8 @@ fn significant(v: f64, digits: i32) -> String {
 }
 
 /// A value in the unit a designer reads, with that unit.
-fn shown(name: &str, unit: &str, v: f64) -> (f64, &'static str) {
-    match (name, unit) {
-        ("fe_x_in" | "fe_y_out", _) => (v * 1e6, "um"),
-        ("fe_k_out", _) => (v * 1e-3, "N/mm"),
-        (_, "N/m") => (v * 1e-6, "N/um"),
-        (_, "Pa") => (v * 1e-6, "MPa"),
-        (_, "Hz") => (v, "Hz"),
-        _ => (v, ""),
-    }
+fn shown(o: &OutputReport, v: f64) -> (f64, &'static str) {
+    (v * o.display.0, o.display.1)
 }
 
 impl Display for VerifyTable<'_> {
@@ -438,9 +416,9 @@ impl Display for VerifyTable<'_> {
         let (ps, pe) = (&r.outputs["plane_stress"], &r.outputs["plane_strain"]);
         for (name, a) in ps {
             let b = &pe[name];
-            let (_, unit) = shown(name, a.unit, 1.0);
+            let (_, unit) = shown(a, 1.0);
             let cell = |o: &OutputReport| {
-                let (v, _) = shown(name, o.unit, o.estimate.value);
+                let (v, _) = shown(o, o.estimate.value);
                 match o.estimate.relative_error {
                     Some(e) if o.estimate.converging => {
                         format!("{} (+-{} %)", significant(v, 5), significant(100.0 * e, 2))
@@ -448,9 +426,9 @@ impl Display for VerifyTable<'_> {
                     _ => format!("{} (not conv.)", significant(v, 5)),
                 }
             };
-            let analytic = a.analytic.map_or("-".to_string(), |v| {
-                significant(shown(name, a.unit, v).0, 5)
-            });
+            let analytic = a
+                .analytic
+                .map_or("-".to_string(), |v| significant(shown(a, v).0, 5));
             let deviation = match (a.deviation_percent, b.deviation_percent) {
                 (Some(x), Some(y)) => format!("{x:+.1} % / {y:+.1} %"),
                 _ => "-".to_string(),
@@ -469,10 +447,9 @@ impl Display for VerifyTable<'_> {
         }
         writeln!(
             s,
-            "fe_x_in, fe_y_out at {} N on each input face; stresses at the actuation force ({:.1} N plane \
-             stress, {:.1} N plane strain{}); read plane strain for a part much wider than its \
-             hinges are thick",
-            r.test_force,
+            "{}stresses at the actuation force ({:.1} N plane stress, {:.1} N plane strain{}); read \
+             plane strain for a part much wider than its hinges are thick",
+            r.displacements_at,
             r.actuation_force.get("plane_stress").copied().unwrap_or(f64::NAN),
             r.actuation_force.get("plane_strain").copied().unwrap_or(f64::NAN),
             r.analytic_actuation_force

@@ -6,8 +6,11 @@ use crate::fe::geometry::Domain;
 use crate::fe::mesh::Mesh;
 use crate::fe::stress::{nodal_stresses, peak_von_mises, section, Locator};
 use crate::fe::{loads, modal, FeError};
+use crate::part::analysis::{ActuationCase, Analysis, Quantity};
 use crate::part::half::SYMMETRY;
 use crate::part::Actuation;
+
+use super::statement::{case_forces, measure, static_value, Edges, Stated};
 
 /// What the part gives the analysis.
 pub(super) struct Setup {
@@ -16,6 +19,11 @@ pub(super) struct Setup {
     pub(super) width: f64,
     pub(super) actuation: Actuation,
     pub(super) body_stiffening: f64,
+    /// The part's statement, for its outputs and its actuation case.
+    pub(super) analysis: Analysis,
+    pub(super) actuation_case: ActuationCase,
+    /// The statement on the half.
+    pub(super) stated: Stated,
 }
 
 /// The element size at `p`: `t / n` on and around each hinge's thin section, growing by 0.3
@@ -81,16 +89,17 @@ pub(super) fn face_edges(
     Ok(edges)
 }
 
-/// A mesh's one pattern: the clamping face fixed, every other condition held by springs on
+/// A mesh's one pattern: the clamped faces fixed, every other condition held by springs on
 /// the diagonal (stiff ones, [`PENALTY`] times the stiffest diagonal entry, for conditions
 /// that are exact), so that one ordering and one symbolic factorization serve the static
 /// cases and both families of modes.
 pub(super) struct Holds {
     pub(super) pattern: Pattern,
-    /// The degrees of freedom of the cut, in x and in y, and of the input face in x.
+    /// The degrees of freedom of the cut, in x and in y, and of the actuator's face along
+    /// its axis (held when the actuator is much stiffer than the part).
     pub(super) cut_x: Vec<usize>,
     pub(super) cut_y: Vec<usize>,
-    pub(super) input_x: Vec<usize>,
+    pub(super) actuator: Vec<usize>,
 }
 
 /// The stiffness of a spring that stands for a fixed degree of freedom, relative to the
@@ -100,28 +109,40 @@ const PENALTY: f64 = 1e9;
 
 pub(super) fn holds(m: &Mesh, setup: &Setup) -> Result<Holds, FeError> {
     let d = &setup.domain;
-    let clamp = face_nodes(m, d, "clamp_bottom");
+    let mut clamp: Vec<usize> = setup
+        .stated
+        .clamped
+        .iter()
+        .flat_map(|name| face_nodes(m, d, name))
+        .collect();
+    clamp.sort_unstable();
+    clamp.dedup();
     let mut fixed = vec![false; 2 * m.nodes.len()];
     for &n in &clamp {
         fixed[2 * n] = true;
         fixed[2 * n + 1] = true;
     }
     let cut = face_nodes(m, d, SYMMETRY);
+    // an actuator along x holds the x degrees of freedom, one along y the y ones
+    let actuator = setup.stated.spring.as_ref().map_or(Vec::new(), |s| {
+        let along = usize::from(s.direction[1].abs() > s.direction[0].abs());
+        face_nodes(m, d, &s.face)
+            .iter()
+            .map(|&n| 2 * n + along)
+            .collect()
+    });
     Ok(Holds {
         pattern: Pattern::new(m, &fixed)?,
         cut_x: cut.iter().map(|&n| 2 * n).collect(),
         cut_y: cut.iter().map(|&n| 2 * n + 1).collect(),
-        input_x: face_nodes(m, d, "input_right")
-            .iter()
-            .map(|&n| 2 * n)
-            .collect(),
+        actuator,
     })
 }
 
-/// One level's values (in the order of [`OUTPUTS`]; the modal ones NaN without a density),
-/// with the locations of the stresses and the actuation fields.
+/// One level's values (in the order of the analysis's outputs; the modal ones NaN without
+/// a density), with the locations of the stresses and the actuation fields.
 pub(super) struct LevelResult {
-    pub(super) values: [f64; 9],
+    pub(super) values: Vec<f64>,
     pub(super) peak_at: [f64; 2],
     pub(super) section_at: String,
     pub(super) section_point: [f64; 2],
@@ -143,9 +164,8 @@ pub(super) fn solve_level(
 ) -> Result<LevelResult, FeError> {
     let d = &setup.domain;
     let (w, mat) = (setup.width, &setup.material);
-    let input = face_edges(m, d, "input_right")?;
-    let output = face_edges(m, d, "output_top")?;
-    face_edges(m, d, "clamp_bottom")?;
+    let stated = &setup.stated;
+    let edges = Edges::of(m, d, &stated.faces())?;
     let p = &holds.pattern;
     let in_hinge = |e: usize| {
         let c = crate::fe::element::point(&m.element_nodes(e), [1.0 / 3.0; 3]);
@@ -175,12 +195,13 @@ pub(super) fn solve_level(
         |dofs: &[usize]| -> Vec<(usize, f64)> { dofs.iter().map(|&d| (d, penalty)).collect() };
     let factor = p.factor(&p.with_diagonal(&k0, &held(&holds.cut_x)))?;
     let n = p.dofs.count();
-    // the test force on the input face, and half the test force on the half output face
-    let loads = [
-        loads::uniform_force(m, &input, w, [force, 0.0]),
-        loads::uniform_force(m, &output, w, [0.0, 0.5 * force]),
-    ];
-    let mut rhs = faer::Mat::<f64>::zeros(n, 2);
+    // the cases' loads on the half (a face across the axis carries half of its load)
+    let loads: Vec<Vec<f64>> = stated
+        .cases
+        .iter()
+        .map(|c| case_forces(m, &edges, w, c))
+        .collect();
+    let mut rhs = faer::Mat::<f64>::zeros(n, loads.len());
     for (j, f) in loads.iter().enumerate() {
         for (dof, &v) in f.iter().enumerate() {
             if let Some(i) = p.dofs.free(dof) {
@@ -190,18 +211,23 @@ pub(super) fn solve_level(
     }
     factor.solve(&mut rhs);
     let zero = vec![0.0; 2 * m.nodes.len()];
-    let u_in = p.dofs.expand(&column(&rhs, 0), &zero);
-    let u_out = p.dofs.expand(&column(&rhs, 1), &zero);
-    let x_in = 2.0 * loads::mean_displacement(m, &input, &u_in)[0];
-    let y_out = -loads::mean_displacement(m, &output, &u_in)[1];
-    let k_in = force / x_in;
-    let k_out = force / loads::mean_displacement(m, &output, &u_out)[1];
+    let fields: Vec<Vec<f64>> = (0..loads.len())
+        .map(|j| p.dofs.expand(&column(&rhs, j), &zero))
+        .collect();
+    let measured: Vec<f64> = stated
+        .measures
+        .iter()
+        .map(|(case, terms)| measure(m, &edges, terms, &fields[*case]))
+        .collect();
+    let quantity = |k: usize| setup.analysis.outputs[k].quantity;
 
     // the actuation: the largest input force, the stresses it gives
     let a = &setup.actuation;
-    let actuation_force = a.nominal_stroke * k_in + a.preload;
+    let act = &setup.actuation_case;
+    let stiffness = static_value(quantity(act.stiffness.0), &measured, force).unwrap_or(f64::NAN);
+    let actuation_force = a.nominal_stroke * stiffness + a.preload;
     let scale = actuation_force / force;
-    let u_act: Vec<f64> = u_in.iter().map(|v| v * scale).collect();
+    let u_act: Vec<f64> = fields[act.case].iter().map(|v| v * scale).collect();
     let dm = mat.d_matrix(idealization);
     let nodal = nodal_stresses(m, &dm, &u_act);
     let von_mises: Vec<f64> = nodal
@@ -257,20 +283,22 @@ pub(super) fn solve_level(
         }
     }
 
-    // the modes: the symmetric family with the actuator holding the input face (springs of
-    // its stiffness, each face node its share of 2 k_a as the other face is the mirror, or
-    // held in x for an actuator much stiffer than the part); the antisymmetric family with
-    // the cut held in y; each started from a static deflection close to its lowest mode
+    // the modes: the symmetric family with the actuator holding its face (springs of its
+    // stiffness, each face node its share of 2 k_a as the other face is the mirror, or
+    // held along its axis for an actuator much stiffer than the part); the antisymmetric
+    // family with the cut held in y; each started from a static deflection close to its
+    // lowest mode
     let mut f_output = f64::NAN;
     let mut f_first = f64::NAN;
-    if let Some(mass) = mass {
-        let actuator: Vec<(usize, f64)> = match a.stiffness {
-            None => held(&holds.input_x),
-            Some(ka) => loads::uniform_force(m, &input, w, [1.0, 0.0])
+    if let (Some(mass), Some(modal)) = (mass, &setup.analysis.modal) {
+        let actuator: Vec<(usize, f64)> = match (&stated.spring, a.stiffness) {
+            (None, _) => Vec::new(),
+            (Some(_), None) => held(&holds.actuator),
+            (Some(s), Some(ka)) => loads::uniform_force(m, edges.get(&s.face), w, s.direction)
                 .iter()
                 .enumerate()
                 .filter(|(_, &v)| v != 0.0)
-                .map(|(dof, &v)| (dof, 2.0 * ka * v))
+                .map(|(dof, &v)| (dof, s.factor * ka * v))
                 .collect(),
         };
         let lowest = |springs: Vec<(usize, f64)>, load: &[f64]| -> Result<f64, FeError> {
@@ -286,23 +314,26 @@ pub(super) fn solve_level(
             Ok(modes[0].frequency)
         };
         let symmetric = [held(&holds.cut_x), actuator].concat();
-        f_output = lowest(symmetric, &loads[1])?;
-        let sideways = loads::uniform_force(m, &output, w, [force, 0.0]);
+        f_output = lowest(symmetric, &loads[modal.start])?;
+        let payload = stated.payload.as_ref().map_or(&modal.payload, |p| &p.0);
+        let sideways = loads::uniform_force(m, edges.get(payload), w, [force, 0.0]);
         f_first = f_output.min(lowest(held(&holds.cut_y), &sideways)?);
     }
-    let amplification = y_out / x_in;
+    let values = setup
+        .analysis
+        .outputs
+        .iter()
+        .map(|o| {
+            static_value(o.quantity, &measured, force).unwrap_or(match o.quantity {
+                Quantity::SectionStress => best.0,
+                Quantity::PeakStress => peak,
+                Quantity::SymmetricFrequency => f_output,
+                _ => f_first,
+            })
+        })
+        .collect();
     Ok(LevelResult {
-        values: [
-            x_in,
-            y_out,
-            amplification,
-            k_in,
-            k_out,
-            best.0,
-            peak,
-            f_output,
-            f_first,
-        ],
+        values,
         peak_at: m.nodes[peak_node],
         section_at: best.1,
         section_point: best.2,

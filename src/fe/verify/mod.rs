@@ -1,40 +1,33 @@
-//! Paper 004's finite-element check (Sec. 4.1) on a part: the lower output block's clamping
-//! face held, 10 N on each input face along the actuator's axis, 10 N on the output face
-//! with the input faces free, and the stress under the actuation `nominal_stroke * k_in +
-//! preload`; with a density, the lowest in-plane natural modes. Both 2D idealizations, each
-//! on a sequence of uniformly refined meshes until every output's estimated error is below
-//! the tolerance.
+//! The finite-element check a part's model states ([`crate::part::analysis`]): the clamped
+//! faces held, each load case at the test force, the measures read from the mean
+//! displacements of faces, the stresses under the actuation case scaled to the actuator's
+//! largest force; with a density, the lowest in-plane natural modes. Both 2D idealizations,
+//! each on a sequence of uniformly refined meshes until every output meant to converge has
+//! an estimated error below the tolerance.
 //!
-//! The part is symmetric about the output axis, so the half at `x >= 0` is solved: its cut
-//! held in x (the symmetric response, which every load case is), or in y for the
-//! antisymmetric modes. Definitions, each comparable with the analytic output of the same
-//! meaning:
+//! The part must be symmetric about the y axis, and every load case symmetric too: the half
+//! at `x >= 0` is solved, its cut held in x (the symmetric response), or in y for the
+//! antisymmetric modes; `statement.rs` derives the half's loads and measures from the
+//! whole part's statement. What the quantities mean:
 //!
-//! - `x_in`: the increase of the distance between the input faces' mean positions under the
-//!   test force on each; `k_in = force / x_in` (the analytic `k_in` is the same face-to-face
-//!   stiffness, `1 / a11`).
-//! - `y_out`: the output face's mean displacement towards the actuator's axis under the same
-//!   load; `amplification = y_out / x_in` (positive when the output face moves inward as the
-//!   input faces move apart, the sign of the analytic `amplification` of a bridge whose arms
-//!   rise towards the output blocks).
-//! - `k_out = force / (mean displacement of the output face)` under the test force on it,
-//!   the input faces free (the analytic `k_out`).
-//! - `stress_section`: the largest `|N| / (w t) + 6 |M| / (w t^2)` over the hinges' root
+//! - a stiffness is `test force / measure`, a ratio one measure over another.
+//! - the section stress: the largest `|N| / (w t) + 6 |M| / (w t^2)` over the hinges' root
 //!   sections (the ends of their thin sections), from the section resultants of the FE
-//!   stresses under the actuation: what Eq. 12-17 predict (`stress_max`). The resultants are
-//!   integrated across two inner sections, at a quarter and three quarters of the thin
-//!   section, and carried to its ends by statics (`N` constant, `M` linear along a strip
-//!   without loads): integrated across a sharp root itself they would meet its singular
-//!   stress.
-//! - `stress_peak`: the largest von Mises stress at a node under the actuation; at filleted
-//!   roots it converges, at sharp ones it grows without bound and is reported as not
-//!   converging.
-//! - `frequency_output`: the lowest symmetric mode (the output mode, the analytic
-//!   `natural_frequency`), the actuator holding the input faces (as springs of its stiffness,
-//!   or fixed in x for an actuator much stiffer than the part), the payload on the output
-//!   face; `frequency_first`: the lowest mode of either symmetry.
+//!   stresses under the actuation: what a beam model of the hinges predicts. The
+//!   resultants are integrated across two inner sections, at a quarter and three quarters
+//!   of the thin section, and carried to its ends by statics (`N` constant, `M` linear
+//!   along a strip without loads): integrated across a sharp root itself they would meet
+//!   its singular stress.
+//! - the peak stress: the largest von Mises stress at a node under the actuation; at
+//!   filleted roots it converges, at sharp ones it grows without bound and is reported as
+//!   not converging.
+//! - the symmetric frequency: the lowest symmetric mode, the actuator holding its faces (as
+//!   springs of its stiffness, or fixed along its axis for an actuator much stiffer than
+//!   the part), the payload on its face; the lowest frequency: the lowest mode of either
+//!   symmetry.
 
 mod level;
+mod statement;
 mod whole;
 
 pub use whole::FullModel;
@@ -47,6 +40,7 @@ use super::loads;
 use super::mesh::{mesh, Mesh};
 use super::richardson::{estimate, Estimate};
 use super::FeError;
+use crate::part::analysis::{Analysis, FeOutputId, Quantity};
 use crate::part::{Part, PartSpec};
 use level::{face_edges, holds, size_function, solve_level, LevelResult, Setup};
 
@@ -57,7 +51,7 @@ pub struct VerifySettings {
     pub tolerance: f64,
     /// The most meshes in the sequence (at least three).
     pub max_levels: usize,
-    /// The test force on each input face and on the output face (N).
+    /// The force a load of share 1 carries (N).
     pub test_force: f64,
     /// Elements through a hinge's thickness on the first mesh (element size `t / n` at the
     /// hinges).
@@ -83,23 +77,6 @@ impl Default for VerifySettings {
     }
 }
 
-/// The outputs, in the order of every level's values.
-pub const OUTPUTS: [(&str, &str, &str); 9] = [
-    ("fe_x_in", "m", "increase of the distance between the input faces under the test force"),
-    ("fe_y_out", "m", "output face's displacement towards the axis under the same load"),
-    ("fe_amplification", "1", "y_out / x_in"),
-    ("fe_k_in", "N/m", "test force / x_in"),
-    ("fe_k_out", "N/m", "test force on the output face / its displacement, inputs free"),
-    ("fe_stress_section", "Pa", "largest beam stress |N|/(w t) + 6|M|/(w t^2) at the hinges' root sections under the actuation"),
-    ("fe_stress_max", "Pa", "largest nodal von Mises stress under the actuation"),
-    ("fe_output_frequency", "Hz", "lowest symmetric (output) mode"),
-    ("fe_natural_frequency", "Hz", "lowest mode of either symmetry"),
-];
-
-/// Index of the peak stress among [`OUTPUTS`]: reported, never a reason to refine.
-const PEAK: usize = 6;
-const MODAL: [usize; 2] = [7, 8];
-
 /// One mesh of the sequence.
 #[derive(Debug, Clone, Serialize)]
 pub struct Level {
@@ -114,6 +91,9 @@ pub struct Level {
 /// An output of one idealization over the sequence.
 #[derive(Debug, Clone, Serialize)]
 pub struct Output {
+    /// Which of the part's analysis's outputs it is.
+    #[serde(skip)]
+    pub id: FeOutputId,
     pub name: &'static str,
     pub unit: &'static str,
     pub values: Vec<f64>,
@@ -149,6 +129,8 @@ pub struct Result2d {
 #[derive(Debug, Clone)]
 pub struct Verification {
     pub part: Part,
+    /// The check the part's model stated.
+    pub analysis: Analysis,
     pub half: Part,
     pub levels: Vec<Level>,
     /// The half part's mesh at each level.
@@ -160,8 +142,8 @@ pub struct Verification {
     pub converged: bool,
     pub tolerance: f64,
     pub test_force: f64,
-    /// The actuation force on each input face for the stresses, from each idealization's
-    /// finest `k_in` (N).
+    /// The actuation force on each loaded face of the actuation case, for the stresses,
+    /// from each idealization's finest value of the stiffness it is stated with (N).
     pub actuation_force: Vec<f64>,
     pub seconds: f64,
     /// The modal outputs were computed (the material has a density).
@@ -185,14 +167,26 @@ pub fn verify(
     let actuation = spec
         .actuation
         .ok_or_else(|| FeError::Setup("the model gives no actuation for its part".into()))?;
+    let analysis = spec
+        .analysis
+        .clone()
+        .ok_or_else(|| FeError::Setup("the model states no finite-element check".into()))?;
+    statement::check(&analysis)?;
+    let actuation_case = analysis
+        .actuation
+        .ok_or_else(|| FeError::Setup("the part's check states no actuation case".into()))?;
+    let stated = statement::half(&analysis, &spec.faces, settings.test_force)?;
     let setup = Setup {
         domain: Domain::of_part(&half),
         material: *material,
         width: spec.width,
         actuation,
         body_stiffening: settings.body_stiffening,
+        analysis,
+        actuation_case,
+        stated,
     };
-    let modal = settings.modal && material.density > 0.0;
+    let modal = settings.modal && material.density > 0.0 && setup.analysis.modal.is_some();
     let (size, coarse) = size_function(&setup.domain, settings.per_thickness);
     let mut m = mesh(&setup.domain, &size, coarse)?;
     let mut levels = Vec::new();
@@ -202,29 +196,30 @@ pub fn verify(
     let converged = loop {
         let start = std::time::Instant::now();
         let h = holds(&m, &setup)?;
-        // the mass does not depend on the idealization: the payload on the output face,
-        // half of it on the half
-        let mass = if modal {
-            let output = face_edges(&m, &setup.domain, "output_top")?;
-            let share = loads::uniform_force(
-                &m,
-                &output,
-                setup.width,
-                [0.5 * actuation.payload_mass, 0.0],
-            );
-            let points: Vec<(usize, f64)> = share
-                .iter()
-                .enumerate()
-                .step_by(2)
-                .filter(|(_, &v)| v != 0.0)
-                .flat_map(|(dof, &v)| [(dof, v), (dof + 1, v)])
-                .collect();
-            Some(
-                h.pattern
-                    .mass_with(&m, &setup.material, setup.width, &points)?,
-            )
-        } else {
-            None
+        // the mass does not depend on the idealization: the payload on its face, half of
+        // it on the half where the face crosses the axis
+        let mass = match &setup.stated.payload {
+            Some((face, share)) if modal => {
+                let payload = face_edges(&m, &setup.domain, face)?;
+                let share = loads::uniform_force(
+                    &m,
+                    &payload,
+                    setup.width,
+                    [share * actuation.payload_mass, 0.0],
+                );
+                let points: Vec<(usize, f64)> = share
+                    .iter()
+                    .enumerate()
+                    .step_by(2)
+                    .filter(|(_, &v)| v != 0.0)
+                    .flat_map(|(dof, &v)| [(dof, v), (dof + 1, v)])
+                    .collect();
+                Some(
+                    h.pattern
+                        .mass_with(&m, &setup.material, setup.width, &points)?,
+                )
+            }
+            _ => None,
         };
         let solve = |idealization| {
             solve_level(
@@ -251,9 +246,10 @@ pub fn verify(
         per[1].push(b?);
         meshes.push(m.clone());
         if levels.len() >= 3 {
+            let outputs = &setup.analysis.outputs;
             let done = per.iter().all(|results| {
-                (0..OUTPUTS.len())
-                    .filter(|&k| k != PEAK && (modal || !MODAL.contains(&k)))
+                (0..outputs.len())
+                    .filter(|&k| outputs[k].converges && (modal || !outputs[k].quantity.is_modal()))
                     .all(|k| {
                         let values: Vec<f64> = results.iter().map(|r| r.values[k]).collect();
                         let e = estimate(&values);
@@ -272,23 +268,27 @@ pub fn verify(
         .map(|(&idealization, mut results)| {
             let last = results.last().expect("three levels at least");
             let mm = |p: [f64; 2]| [p[0] * 1e3, p[1] * 1e3];
-            let outputs = OUTPUTS
+            let outputs = setup
+                .analysis
+                .outputs
                 .iter()
                 .enumerate()
-                .filter(|(k, _)| modal || !MODAL.contains(k))
-                .map(|(k, &(name, unit, _))| {
+                .filter(|(_, o)| modal || !o.quantity.is_modal())
+                .map(|(k, o)| {
                     let values: Vec<f64> = results.iter().map(|r| r.values[k]).collect();
                     Output {
-                        name,
-                        unit,
+                        id: FeOutputId(k),
+                        name: o.name,
+                        unit: o.unit,
                         estimate: estimate(&values),
                         values,
-                        location_mm: match k {
-                            5 => Some(mm(last.section_point)),
-                            PEAK => Some(mm(last.peak_at)),
+                        location_mm: match o.quantity {
+                            Quantity::SectionStress => Some(mm(last.section_point)),
+                            Quantity::PeakStress => Some(mm(last.peak_at)),
                             _ => None,
                         },
-                        at: (k == 5).then(|| last.section_at.clone()),
+                        at: (o.quantity == Quantity::SectionStress)
+                            .then(|| last.section_at.clone()),
                     }
                 })
                 .collect();
@@ -307,16 +307,17 @@ pub fn verify(
     let actuation_force = results
         .iter()
         .map(|r| {
-            let k_in = r
+            let k = r
                 .outputs
                 .iter()
-                .find(|o| o.name == "fe_k_in")
+                .find(|o| o.id == setup.actuation_case.stiffness)
                 .map_or(f64::NAN, |o| o.estimate.value);
-            actuation.nominal_stroke * k_in + actuation.preload
+            actuation.nominal_stroke * k + actuation.preload
         })
         .collect();
     Ok(Verification {
         part,
+        analysis: setup.analysis,
         half,
         levels,
         meshes,

@@ -1,14 +1,15 @@
 //! The whole part's model at one level of a verification, for CalculiX and for checks.
 
-use super::level::{face_edges, face_nodes};
+use super::level::face_nodes;
+use super::statement::{case_forces, measure, whole, Edges, Read};
 use super::Verification;
 use crate::fe::element::{Elastic, Idealization};
 use crate::fe::geometry::Domain;
 use crate::fe::mesh::Mesh;
 use crate::fe::{loads, FeError};
 
-/// The whole part's mesh at one level of a verification, with its faces and the two static
-/// load cases on it: the model the CalculiX decks describe.
+/// The whole part's mesh at one level of a verification, with its faces and the static load
+/// cases of its statement on it: the model the CalculiX decks describe.
 pub struct FullModel {
     pub mesh: Mesh,
     pub domain: Domain,
@@ -16,61 +17,63 @@ pub struct FullModel {
     pub sets: Vec<(String, Vec<usize>)>,
     pub clamp: Vec<usize>,
     pub cases: Vec<crate::fe::calculix::LoadCase>,
-    /// The edges of the input faces (left, right) and of the output face.
-    pub input: [Vec<[usize; 3]>; 2],
-    pub output: Vec<[usize; 3]>,
+    /// The edges of every face the statement names.
+    edges: Edges,
+    /// Each measure's load case and terms.
+    measures: Vec<(usize, Vec<Read>)>,
 }
 
 impl Verification {
-    /// The whole part's model at `level`: the half mesh mirrored, the test force on each
-    /// input face (pushing them apart), then on the output face (pulling it outward).
+    /// The whole part's model at `level`: the half mesh mirrored, each load case of the
+    /// part's statement at the test force.
     pub fn full_model(&self, level: usize) -> Result<FullModel, FeError> {
         let domain = Domain::of_part(&self.part);
         let tol = 1e-9 * domain.size();
         let mesh = self.meshes[level].mirrored_about_y(tol);
-        let edges = |name: &str| face_edges(&mesh, &domain, name);
-        let (left, right, output) = (
-            edges("input_left")?,
-            edges("input_right")?,
-            edges("output_top")?,
-        );
+        let stated = whole(&self.analysis, self.test_force);
+        let named = self.analysis.faces();
+        let edges = Edges::of(&mesh, &domain, &named)?;
         let w = self.width;
         let f = self.test_force;
         let area = |e: &[[usize; 3]]| loads::length(&mesh, e) * w;
-        let mut inputs = loads::uniform_force(&mesh, &left, w, [-f, 0.0]);
-        for (a, b) in inputs
-            .iter_mut()
-            .zip(loads::uniform_force(&mesh, &right, w, [f, 0.0]))
-        {
-            *a += b;
-        }
-        let cases = vec![
-            crate::fe::calculix::LoadCase {
-                name: format!("{f} N on each input face, pushing them apart"),
-                forces: inputs,
-                tractions: vec![
-                    (left.clone(), [-f / area(&left), 0.0]),
-                    (right.clone(), [f / area(&right), 0.0]),
-                ],
-            },
-            crate::fe::calculix::LoadCase {
-                name: format!("{f} N on the output face, the input faces free"),
-                forces: loads::uniform_force(&mesh, &output, w, [0.0, f]),
-                tractions: vec![(output.clone(), [0.0, f / area(&output)])],
-            },
-        ];
-        let sets = ["input_left", "input_right", "output_top", "clamp_bottom"]
+        let cases = self
+            .analysis
+            .cases
             .iter()
-            .map(|&name| (name.to_string(), face_nodes(&mesh, &domain, name)))
+            .zip(&stated.cases)
+            .map(|(case, applied)| crate::fe::calculix::LoadCase {
+                name: format!("{f} N {}", case.name),
+                forces: case_forces(&mesh, &edges, w, applied),
+                tractions: applied
+                    .iter()
+                    .map(|a| {
+                        let e = edges.get(&a.face);
+                        (e.to_vec(), [a.total[0] / area(e), a.total[1] / area(e)])
+                    })
+                    .collect(),
+            })
             .collect();
+        // the named faces in the part's order
+        let mut sets: Vec<(String, Vec<usize>)> = Vec::new();
+        for face in &self.part.faces {
+            if named.contains(&face.name.as_str()) && sets.iter().all(|(n, _)| *n != face.name) {
+                sets.push((face.name.clone(), face_nodes(&mesh, &domain, &face.name)));
+            }
+        }
+        let mut clamp: Vec<usize> = Vec::new();
+        for name in &stated.clamped {
+            clamp.extend(face_nodes(&mesh, &domain, name));
+        }
+        clamp.sort_unstable();
+        clamp.dedup();
         Ok(FullModel {
-            clamp: face_nodes(&mesh, &domain, "clamp_bottom"),
+            clamp,
             mesh,
             domain,
             sets,
             cases,
-            input: [left, right],
-            output,
+            edges,
+            measures: stated.measures,
         })
     }
 }
@@ -96,8 +99,8 @@ impl FullModel {
         }
     }
 
-    /// The displacements (full vectors) of the two load cases, by flexopt's own solve of
-    /// this whole mesh, the clamping face held.
+    /// The displacements (full vectors) of the load cases, by flexopt's own solve of this
+    /// whole mesh, the clamped faces held.
     pub fn solve(
         &self,
         material: &Elastic,
@@ -122,15 +125,12 @@ impl FullModel {
         )
     }
 
-    /// `x_in`, `y_out` (input case) and the output face's displacement (output case) of
-    /// the displacement fields of the two cases (full vectors).
-    pub fn face_outputs(&self, u_input: &[f64], u_output: &[f64]) -> [f64; 3] {
-        let left = loads::mean_displacement(&self.mesh, &self.input[0], u_input);
-        let right = loads::mean_displacement(&self.mesh, &self.input[1], u_input);
-        [
-            right[0] - left[0],
-            -loads::mean_displacement(&self.mesh, &self.output, u_input)[1],
-            loads::mean_displacement(&self.mesh, &self.output, u_output)[1],
-        ]
+    /// The part's measures, in the statement's order, of the displacement fields of its
+    /// load cases (full vectors, one a case).
+    pub fn measures(&self, u: &[Vec<f64>]) -> Vec<f64> {
+        self.measures
+            .iter()
+            .map(|(case, terms)| measure(&self.mesh, &self.edges, terms, &u[*case]))
+            .collect()
     }
 }

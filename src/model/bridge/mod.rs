@@ -244,19 +244,7 @@ impl PartMaker for Bridge {
         part::spec(&self.settings, &self.layout, x)
     }
 
-    fn fe_counterpart(&self, output: usize) -> Option<&'static str> {
-        use BridgeOutput::*;
-        match BridgeOutput::ALL[output] {
-            Amplification => Some("fe_amplification"),
-            KIn => Some("fe_k_in"),
-            KOut => Some("fe_k_out"),
-            // the part's real peak (at a fillet); the beam stress the model computes is
-            // stress_beam_max's counterpart
-            StressMax => Some("fe_stress_max"),
-            StressBeamMax => Some("fe_stress_section"),
-            ForceInMax => Some("fe_actuation_force"),
-            NaturalFrequency => Some("fe_output_frequency"),
-            _ => None,
-        }
+    fn fe_counterpart(&self, output: usize) -> Option<crate::part::analysis::FeCounterpart> {
+        part::fe_cases::counterpart(BridgeOutput::ALL[output])
     }
 }

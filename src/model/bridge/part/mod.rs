@@ -38,6 +38,7 @@
 use serde::Serialize;
 
 mod drawing;
+pub mod fe_cases;
 
 use super::geometry::{Geometry, Layout};
 use super::BridgeSettings;
@@ -378,22 +379,22 @@ pub fn spec(
 
     let faces = vec![
         Face {
-            name: "input_left".into(),
+            name: fe_cases::INPUT_LEFT.into(),
             a: mirror_y(a),
             b: a,
         },
         Face {
-            name: "input_right".into(),
+            name: fe_cases::INPUT_RIGHT.into(),
             a: mirror_x(a),
             b: mirror_xy(a),
         },
         Face {
-            name: "output_top".into(),
+            name: fe_cases::OUTPUT_TOP.into(),
             a: [-side(out_top), out_top],
             b: [side(out_top), out_top],
         },
         Face {
-            name: "clamp_bottom".into(),
+            name: fe_cases::CLAMP_BOTTOM.into(),
             a: [side(out_top), -out_top],
             b: [-side(out_top), -out_top],
         },
@@ -415,6 +416,7 @@ pub fn spec(
             stiffness: settings.actuator.stiffness,
             payload_mass: settings.dynamics.as_ref().map_or(0.0, |d| d.payload_mass),
         }),
+        analysis: Some(fe_cases::analysis()),
         caption: if rb.max(rd) > 0.0 {
             format!(
                 "fillets r {}, links {} thick",
