@@ -4,7 +4,7 @@
 //! Reference values are exact: the closed form evaluated in rational arithmetic on the same
 //! f64 inputs (tests/common/exact.rs).
 
-mod common;
+use crate::common;
 
 use common::exact::Exact;
 use common::*;
@@ -422,6 +422,11 @@ mod properties {
         cases: 2000,
         // a fixed seed: CI runs the same cases every time
         rng_seed: proptest::test_runner::RngSeed::Fixed(2017),
+        // the saved failures beside this file (by default, proptest would look in
+        // tests/proptest-regressions/, next to the folder of the nearest main.rs)
+        failure_persistence: Some(Box::new(
+            proptest::test_runner::FileFailurePersistence::WithSource("proptest-regressions"),
+        )),
         ..ProptestConfig::default()
     })]
 

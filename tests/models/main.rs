@@ -1,0 +1,19 @@
+//! The mechanism models: the general bridge (statics, dynamics, hinges, stability far beyond
+//! Table 1's bounds), the papers' tables and equations, the 3-PRR and 3-PSS mechanisms, the
+//! Runge-Kutta step responses, and a model added from outside the library.
+//!
+//! One test binary per subject (issue 21): each file is a module, the fixtures are shared.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod bridge_dynamics;
+mod bridge_model;
+mod hinges;
+mod model_stability;
+mod paper001;
+mod paper004_tables;
+mod prr3;
+mod pss3;
+mod step_response;
+mod toy_model;
