@@ -1,6 +1,5 @@
 //! The `flexopt` command line: parse, call the library, print.
 
-use std::fmt::Display;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -8,13 +7,16 @@ use std::process::ExitCode;
 use clap::Parser;
 
 mod args;
+mod failure;
 mod start_command;
 mod study_command;
+mod verify_command;
 use args::{Cli, Command, DesignArgs};
+use failure::{emit, print_json, Failure};
 use start_command::load_problem;
 use study_command::{run_pareto, run_study, study_setup};
+use verify_command::{run_verify, verify_settings};
 
-use flexopt::fe::verify::{verify_design, VerifySettings};
 use flexopt::model::hinge::calculator;
 use flexopt::pareto::ParetoSpec;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
@@ -23,50 +25,8 @@ use flexopt::report::part::write_part;
 use flexopt::report::summary::Wrote;
 use flexopt::report::sweep::write_sweep;
 use flexopt::report::table::DesignTable;
-use flexopt::report::verify::{write_verify, VerifyReport, VerifyTable};
 use flexopt::report::{check_writable, DesignReport};
 use flexopt::sweep::{sweep, SweepSpec};
-
-/// Why the command stopped: the message to print and the exit code.
-struct Failure {
-    code: u8,
-    message: String,
-}
-
-impl Failure {
-    /// Exit code 2: a rejected problem file, design or option.
-    fn bad_input(e: impl Display) -> Self {
-        Failure {
-            code: 2,
-            message: e.to_string(),
-        }
-    }
-
-    /// Exit code 1: results that could not be written or printed.
-    fn write_failed(e: impl Display) -> Self {
-        Failure {
-            code: 1,
-            message: e.to_string(),
-        }
-    }
-
-    /// Exit code 130, the shell's for an interrupt: the run was stopped by Ctrl-C.
-    fn interrupted(e: impl Display) -> Self {
-        Failure {
-            code: 130,
-            message: e.to_string(),
-        }
-    }
-
-    /// Exit code 3: no feasible design; the results were written all the same. (Exit code
-    /// 4, a feasible design that did not converge, is built where it arises.)
-    fn no_feasible(e: impl Display) -> Self {
-        Failure {
-            code: 3,
-            message: e.to_string(),
-        }
-    }
-}
 
 fn main() -> ExitCode {
     match run(Cli::parse().command) {
@@ -184,21 +144,6 @@ fn output_dir(problem: &Problem, out: Option<PathBuf>) -> Result<PathBuf, Failur
     Ok(dir)
 }
 
-/// Writes to stdout; a reader that has gone away (a closed pipe) is not an error worth a
-/// panic, and the command just stops printing.
-fn emit(text: &impl Display) {
-    use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    let _ = write!(out, "{text}").and_then(|()| out.flush());
-}
-
-fn print_json(value: &impl serde::Serialize) -> Result<(), Failure> {
-    let s = serde_json::to_string_pretty(value)
-        .map_err(|e| Failure::write_failed(format!("cannot format the result: {e}")))?;
-    emit(&format!("{s}\n"));
-    Ok(())
-}
-
 fn load_design(path: &Path, design: &str) -> Result<(Problem, Vec<f64>), Failure> {
     let problem = load_problem(path)?;
     let parsed = parse_design(&problem, design).map_err(Failure::bad_input)?;
@@ -302,41 +247,6 @@ fn hinge(
     let report = calculator::from_options(kind, &given, width, material, stress_limit)
         .map_err(Failure::bad_input)?;
     print_json(&report)
-}
-
-/// The settings of a verification: the defaults, the tolerance from `--tolerance`.
-fn verify_settings(path: &Path, tolerance: Option<f64>) -> Result<VerifySettings, Failure> {
-    let mut settings = VerifySettings::default();
-    if let Some(t) = tolerance {
-        if !(1e-6..=0.1).contains(&t) {
-            return Err(Failure::bad_input(format!(
-                "{}: key `--tolerance`: must lie between 1e-6 and 0.1, got {t}",
-                path.display()
-            )));
-        }
-        settings.tolerance = t;
-    }
-    Ok(settings)
-}
-
-/// Checks the design `x` on its part, writes the files into `dir` and prints the table.
-fn run_verify(
-    problem: &Problem,
-    x: &[f64],
-    settings: &VerifySettings,
-    dir: &Path,
-) -> Result<(), Failure> {
-    let v = verify_design(problem.mechanism(), x, settings).map_err(|e| {
-        Failure::bad_input(format!(
-            "{}: cannot check this design: {e}",
-            problem.file.display()
-        ))
-    })?;
-    let report = VerifyReport::new(problem, x, &v);
-    let files = write_verify(|name| dir.join(name), &report, &v).map_err(Failure::write_failed)?;
-    emit(&VerifyTable(&report));
-    emit(&Wrote(&files));
-    Ok(())
 }
 
 fn run_sweep(

@@ -7,7 +7,7 @@ use std::path::Path;
 use clap::CommandFactory;
 
 use crate::args::Cli;
-use crate::{emit, Failure};
+use crate::failure::{emit, Failure};
 use flexopt::model::registry::{find, MODELS};
 use flexopt::problem::init::{json_schema, name_from, template};
 use flexopt::problem::units::Unit;
@@ -68,7 +68,7 @@ pub(crate) fn init(model: &str, file: Option<&Path>, force: bool) -> Result<(), 
 
 /// `flexopt schema`.
 pub(crate) fn schema() -> Result<(), Failure> {
-    crate::print_json(&json_schema())
+    crate::failure::print_json(&json_schema())
 }
 
 /// `flexopt completions SHELL`.

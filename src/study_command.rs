@@ -4,7 +4,8 @@
 use std::path::Path;
 
 use crate::args::StudyArgs;
-use crate::{emit, run_verify, Failure};
+use crate::failure::{emit, Failure};
+use crate::verify_command::run_verify;
 use flexopt::fe::verify::VerifySettings;
 use flexopt::pareto::{pareto, ParetoSpec};
 use flexopt::problem::{Problem, Solver};
@@ -26,7 +27,7 @@ pub(crate) fn study_setup(
         threads,
         ..
     } = *args;
-    let problem = crate::load_problem(path)?;
+    let problem = crate::start_command::load_problem(path)?;
     if problem.free_variables().next().is_none() {
         return Err(Failure::bad_input(format!(
             "{}: key `variables`: every variable has a fixed `value`, so there is nothing to \

@@ -138,7 +138,7 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
     }
     let display: Vec<crate::problem::units::Unit> = wanted
         .iter()
-        .map(|&k| crate::report::display::output_unit(problem, k))
+        .map(|&k| crate::problem::display::output_unit(problem, k))
         .collect();
     let name = |k: usize| infos[k].name.to_string();
     Ok(Sweep {

@@ -37,7 +37,7 @@
 //! `J_i = (w_i, (R' c_i) . w_i) / (e_i . w_i)` and
 //! `J_theta,i = ((w_i^perp, (R' c_i) . w_i^perp) - J_i (e_i . w_i^perp)) / l`.
 //!
-//! # Against the paper (tests/prr3.rs)
+//! # Against the paper (tests/models/prr3.rs)
 //!
 //! At the example of Sec. 2 and 4.3 this model gives 1106.87, 1106.87 and 1440.17 Hz. The
 //! paper's FEA (Fig. 6) gives 1106.4, 1106.7 and 1446.3 Hz: 0.04, 0.02 and 0.4 % away. The

@@ -62,7 +62,7 @@
 //! The tests build the full matrices, check them diagonal, and solve the generalized
 //! eigenproblem independently. Units: the paper gives `kbm = 5.18 N/m`; a hinge's bending
 //! stiffness is a moment per angle, and 5.18 N m/rad is the reading that reproduces its
-//! frequencies (tests/pss3.rs).
+//! frequencies (tests/models/pss3.rs).
 
 use super::entry::ModelEntry;
 use super::scalar::Scalar;

@@ -11,7 +11,7 @@
 //! `Option<SVector>`, and that bookkeeping dominated the cost of the bridge model. On the
 //! eight-parameter bridge the `Jet<8>` evaluation of wei2017's objective and constraints
 //! with gradients ran about 2.5 times faster than `DualSVec64<8>` in the same criterion run
-//! (see `benches/bridge.rs`). `tests/bridge_model.rs` checks that both give the same gradients.
+//! (see `benches/bridge.rs`). `tests/models/bridge_model.rs` checks that both give the same gradients.
 
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};

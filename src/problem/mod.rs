@@ -5,6 +5,7 @@
 //! a complete example.
 
 pub mod design;
+pub mod display;
 pub mod elastic;
 pub mod epigraph;
 pub mod init;

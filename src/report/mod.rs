@@ -4,7 +4,9 @@
 //! Every file is written whole or not at all: it is written beside its target under a
 //! temporary name and renamed into place.
 
-pub mod display;
+// how quantities read where a person reads them: since it moved below the study, kept
+// reachable here for the writers
+pub use crate::problem::display;
 pub mod folder;
 pub mod pareto;
 pub mod part;

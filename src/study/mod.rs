@@ -178,12 +178,12 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
     let tolerance = problem.search.tolerance;
     let max_iterations = problem.search.max_iterations;
     // the progress's best: a feasible end's objective as the problem states it
-    let unit = crate::report::display::output_unit(problem, problem.objective.index);
+    let unit = crate::problem::display::output_unit(problem, problem.objective.index);
     let label = |s: &Solution| -> Option<(f64, String)> {
         feasible_end(s).then(|| {
             let value = nlp.objective_at(&s.x[..n], s.objective);
             let rank = crate::problem::nlp::merit(problem.objective.sense, false, value);
-            let text = crate::report::display::with_unit(value, &unit);
+            let text = crate::problem::display::with_unit(value, &unit);
             (rank, format!("{} {text}", problem.objective.output))
         })
     };

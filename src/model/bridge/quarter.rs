@@ -16,7 +16,7 @@
 //! The text of the paper lost its minus signs and fraction bars; the `+` signs survived.
 //! Every equation below was rebuilt by putting a minus wherever two terms stand side by
 //! side without an operator, and was then checked three ways: by re-deriving it from
-//! Eq. 1 and Eq. 3-7, against the paper's own Tables 2 and 3 (see `tests/paper004.rs`),
+//! Eq. 1 and Eq. 3-7, against the paper's own Tables 2 and 3 (see `tests/models/paper004_tables.rs`),
 //! and against the independent matrix formulation of [`crate::model::reference::bridge_matrix`], which
 //! shares no formula with this file.
 //!
@@ -130,7 +130,7 @@ impl<D: Scalar> QuarterBridge<D> {
             // C = c32b c33d t2 + c32d c33b t4 + c33b c33d l3 t3, as the paper writes it
             // (factored over c33d, which adds no cancellation): the shorter
             // c33b Pb + c32b t2 S is the same number, but when hinge b dominates
-            // (c33b >> c33d) its two parts cancel to eight digits (tests/model_stability.rs)
+            // (c33b >> c33d) its two parts cancel to eight digits (tests/models/model_stability.rs)
             let cc = d.c33 * (b.c23 * t[0] + l3_b * t[1]) + c23d_c33b * t[2];
             (pb, pd, cc)
         };

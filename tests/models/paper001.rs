@@ -4,7 +4,7 @@
 //! energies, symmetry, monotonic trends, and the step responses against Eq. 17 for every
 //! damping ratio and frequency of Table 4. See the README, "Paper 001".
 
-mod common;
+use crate::common;
 
 use common::{rel, rng, DEG, MM};
 use flexopt::dynamics::PAPER001_TABLE4;

@@ -2,7 +2,7 @@
 //! paper's energies computed from the exact geometry, its frequencies against an independent
 //! eigen-solve, the trends of Sec. 5.2, and Table 4 with the unknown masses inferred.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -4,7 +4,7 @@
 //! Reference values are exact: the closed form evaluated in rational arithmetic on the same
 //! f64 inputs (tests/common/exact.rs).
 
-mod common;
+use crate::common;
 
 use common::exact::Exact;
 use common::*;
@@ -339,7 +339,7 @@ mod properties {
     /// Only the closed-form outputs are checked here; the dynamic ones go through the serial
     /// chain of bridge_dynamics, which loses digits like the linear system does far out
     /// (`chain_compliance_is_accurate_to_its_conditioning` below bounds that) and is checked
-    /// for gradients within the bounds (tests/bridge_dynamics.rs).
+    /// for gradients within the bounds (tests/models/bridge_dynamics.rs).
     pub(super) fn gradient_check(x: [f64; 8]) -> (usize, f64) {
         let model = wei2017();
         let all: Vec<usize> = (0..STATIC_OUTPUTS).collect();
@@ -422,6 +422,11 @@ mod properties {
         cases: 2000,
         // a fixed seed: CI runs the same cases every time
         rng_seed: proptest::test_runner::RngSeed::Fixed(2017),
+        // the saved failures beside this file (by default, proptest would look in
+        // tests/proptest-regressions/, next to the folder of the nearest main.rs)
+        failure_persistence: Some(Box::new(
+            proptest::test_runner::FileFailurePersistence::WithSource("proptest-regressions"),
+        )),
         ..ProptestConfig::default()
     })]
 

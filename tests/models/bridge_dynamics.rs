@@ -2,7 +2,7 @@
 //! stiffness against the closed form of paper 004, the equivalent mass against limits and
 //! scaling laws, the settling time against Runge-Kutta, gradients against differences.
 
-mod common;
+use crate::common;
 
 use common::{random_design, rel, rng, table1_optimum, wei2017_settings};
 use flexopt::dynamics::{step_response, Oscillator};

@@ -1,7 +1,7 @@
 //! The 300-start study of paper 004 (Sec. 3.1, Table 1, Fig. 4-5), and the engine's
 //! guarantees: reproducibility across thread counts, the infeasible case.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! `eval`'s table, `init` for every model, the JSON Schema against every shipped problem,
 //! shell completions, a problem read from standard input, and a new user's first run.
 
-mod common;
+use crate::common;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 //! type implementing `Model` (the physics; a toy without pictures or a part has no other
 //! capability) and one `ModelEntry`. Problem files, the study, its files, the
 //! sweep and the error messages all work with it and nothing else is touched, which is what
-//! the layout promises (README, "Layout").
+//! the layout promises (docs/architecture.md, "What an extension touches").
 //!
 //! The toy is a mass on a spring under a preload: parameters `k` (N/m) and `m` (kg), outputs
 //! `frequency = sqrt(k/m) / 2 pi` and `deflection = preload / k`, the preload from its own

@@ -1,7 +1,7 @@
 //! Every rejection rule of the problem-file format: the message names the file, the key
 //! path and the bad value; the CLI exits with code 2.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

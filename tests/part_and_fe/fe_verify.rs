@@ -3,7 +3,7 @@
 //! fall as Table 2's do (or where they do not, the reason holds as a measurement), and a
 //! sharp hinge root's peak stress is reported as not converging.
 
-mod common;
+use crate::common;
 
 use common::{table1_optimum, wei2017_settings};
 use flexopt::fe::stress::Locator;

@@ -3,7 +3,7 @@
 //! independent linear system, the problem file's per-hinge kinds and checks, the part's
 //! notches measured on its outline, `flexopt hinge`, and the README's accuracy table.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -7,7 +7,7 @@ use flexopt::problem::Problem;
 use flexopt::report::DesignReport;
 use proptest::prelude::*;
 
-const BASE: &str = include_str!("../problems/wei2017.toml");
+const BASE: &str = include_str!("../../problems/wei2017.toml");
 
 /// Values a careless or hostile file might hold.
 const TOKENS: &[&str] = &[
@@ -159,6 +159,11 @@ proptest! {
         cases: 3000,
         // a fixed seed: CI runs the same cases every time
         rng_seed: proptest::test_runner::RngSeed::Fixed(2017),
+        // the saved failures beside this file (by default, proptest would look in
+        // tests/proptest-regressions/, next to the folder of the nearest main.rs)
+        failure_persistence: Some(Box::new(
+            proptest::test_runner::FileFailurePersistence::WithSource("proptest-regressions"),
+        )),
         ..ProptestConfig::default()
     })]
 

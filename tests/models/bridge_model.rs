@@ -1,7 +1,7 @@
 //! Properties of the general bridge model over Table 1's bounds: the paper's special
 //! closed forms, an independent linear-system formulation, reciprocity, signs, gradients.
 
-mod common;
+use crate::common;
 
 use common::*;
 use flexopt::model::bridge::{BridgeOutput, QuarterBridge, OUTPUTS};

@@ -2,7 +2,7 @@
 //! tolerances outside a sensible range are refused, counts have limits, and messages show
 //! the bad value.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -1,6 +1,6 @@
 //! The local solvers on Hock-Schittkowski problems from their standard start points.
 
-mod common;
+use crate::common;
 
 use common::hs::*;
 use flexopt::optim::nelder_mead::{self, NelderMeadSettings};

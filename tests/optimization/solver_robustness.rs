@@ -2,7 +2,7 @@
 //! inconsistent linearisations, redundant and degenerate constraints, iteration limits, no
 //! feasible point. Nothing panics, and no NaN or infeasible point is reported as converged.
 
-mod common;
+use crate::common;
 
 use common::hs::{hs21, hs35, Hs};
 use flexopt::model::scalar::Jet;

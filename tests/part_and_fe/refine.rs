@@ -3,7 +3,7 @@
 //! problem, on a one-variable stiffness target whose FE answer the test finds by itself,
 //! and on a target the finite elements cannot meet.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::sync::Arc;

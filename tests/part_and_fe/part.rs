@@ -2,7 +2,7 @@
 //! outline itself, the area and extent against independent sums, symmetry, the exported
 //! files read back, and every manufacturability check tripped by a design.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -1,6 +1,6 @@
 //! Paper 004 (Wei et al. 2017), Tables 2 and 3: the analytical columns at Table 1's optimum.
 
-mod common;
+use crate::common;
 
 use common::*;
 use flexopt::model::bridge::{BridgeOutput, OUTPUTS};

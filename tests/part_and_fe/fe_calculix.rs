@@ -17,8 +17,6 @@
 //! The test needs `ccx` on the PATH: `.ci/run` installs the Debian package `calculix-ccx`.
 //! Without it the test fails under CI (the variable `CI` set) and says so elsewhere.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

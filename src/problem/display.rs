@@ -2,8 +2,8 @@
 //! used for each (a variable's, a constraint's) or a designer's usual one, with the digits
 //! that matter. JSON keeps SI and full precision; these are for terminals, plots and CSV.
 
-use crate::problem::units::Unit;
-use crate::problem::Problem;
+use super::Problem;
+use crate::vocab::units::Unit;
 
 /// A number as a person reads it: exactly as written when it has few digits (a value from
 /// the file: `1.96`, `-15`, `0.333`), else to six significant digits (`1.98403`), plain

@@ -1,6 +1,6 @@
 //! The command line end to end: `flexopt eval` and `flexopt sweep`.
 
-mod common;
+use crate::common;
 
 use common::{flexopt, flexopt_ok, printed};
 use serde_json::Value;

@@ -1,7 +1,8 @@
 //! A part that is not the bridge, with a finite-element check of its own, stated from
 //! outside the library with the part layer's types ([`flexopt::part::analysis`]): the
 //! verifier knows no model's faces or outputs, so any part that names its faces can be
-//! checked.
+//! checked. The same part then comes as a model of its own from a problem file (physics, no
+//! pictures, a part that states its check), and `verify` compares its output with the FE.
 //!
 //! The part: a straight strip clamped at both ends, pushed down at its middle by the test
 //! force on a short pad of its upper side. Timoshenko's beam clamped at both ends under a
@@ -10,12 +11,23 @@
 //! shear leaves as it is for a symmetric load; the mean deflection along each half of the
 //! span half the middle's (the bending shape and the shear's straight line alike).
 
-use flexopt::fe::verify::{verify, Verification, VerifySettings};
+use std::path::Path;
+use std::sync::Arc;
+
+use flexopt::fe::verify::{verify, verify_design, Verification, VerifySettings};
 use flexopt::fe::{Elastic, Idealization};
+use flexopt::model::entry::{no_sections, ModelEntry};
+use flexopt::model::material::Material;
+use flexopt::model::{
+    Depiction, Dimension, Mechanism, Model, OutputInfo, ParameterInfo, PartMaker,
+};
 use flexopt::part::analysis::{
-    ActuationCase, Analysis, FeOutput, FeOutputId, Load, LoadCase, Measure, Quantity, Term,
+    ActuationCase, Analysis, FeCounterpart, FeOutput, FeOutputId, Load, LoadCase, Measure,
+    Quantity, Term,
 };
 use flexopt::part::{Actuation, Face, HingeSite, PartSpec, Solid};
+use flexopt::problem::Problem;
+use flexopt::report::verify::VerifyReport;
 
 const STEEL: Elastic = Elastic {
     youngs_modulus: 200e9,
@@ -111,18 +123,23 @@ fn analysis() -> Analysis {
 }
 
 fn spec() -> PartSpec {
+    spec_with(L, T)
+}
+
+/// The part with strips `l` long and `t` thick (m).
+fn spec_with(l: f64, t: f64) -> PartSpec {
     let strip = |name: &str, sign: f64, solid: usize| HingeSite {
         name: name.into(),
         start: [sign * C, 0.0],
-        end: [sign * (C + L), 0.0],
-        thickness: T,
-        root: T,
+        end: [sign * (C + l), 0.0],
+        thickness: t,
+        root: t,
         fillet: 0.0,
         kind: "strip",
-        profile: vec![[0.0, 0.5 * T, 0.0], [L, 0.5 * T, 0.0]],
+        profile: vec![[0.0, 0.5 * t, 0.0], [l, 0.5 * t, 0.0]],
         solid,
     };
-    let (top, bottom, end) = (0.5 * T, -0.5 * T, C + L);
+    let (top, bottom, end) = (0.5 * t, -0.5 * t, C + l);
     PartSpec {
         width: W,
         actuation: Some(Actuation {
@@ -315,4 +332,167 @@ fn a_statement_that_points_nowhere_is_refused() {
         .stiffness = FeOutputId(0);
     let err = verify(&s, &STEEL, &VerifySettings::default()).unwrap_err();
     assert!(err.to_string().contains("no stiffness"), "{err}");
+}
+
+/// Timoshenko's stiffness of the strip clamped at both ends under a central load, the
+/// span the two strips and the pad (Cowper's shear coefficient of a rectangle).
+fn timoshenko(l: f64, t: f64) -> f64 {
+    let (e, nu) = (STEEL.youngs_modulus, STEEL.poisson_ratio);
+    let g = e / (2.0 * (1.0 + nu));
+    let kappa = 10.0 * (1.0 + nu) / (12.0 + 11.0 * nu);
+    let (i, area, span) = (W * t.powi(3) / 12.0, W * t, 2.0 * (C + l));
+    1.0 / (span.powi(3) / (192.0 * e * i) + span / (4.0 * kappa * g * area))
+}
+
+/// The same part as a model from outside the library, the way a mechanism with a part is
+/// added inside it: its physics (`k_mid`, the beam theory's stiffness, with its exact
+/// gradient), no pictures of its own, and a part that states its check, whose stiffness is
+/// `k_mid`'s counterpart.
+#[derive(Debug)]
+struct ClampedStrip {
+    material: Material,
+}
+
+static PARAMETERS: [ParameterInfo; 2] = [
+    ParameterInfo::new("l", Dimension::Length, "length of each strip"),
+    ParameterInfo::new("t", Dimension::Length, "thickness of the strips"),
+];
+
+static OUTPUTS: [OutputInfo; 1] = [OutputInfo::new(
+    "k_mid",
+    Dimension::Stiffness,
+    "stiffness at the middle, Timoshenko's beam clamped at both ends",
+)];
+
+impl Model for ClampedStrip {
+    fn name(&self) -> &'static str {
+        "clamped_strip"
+    }
+    fn parameters(&self) -> &[ParameterInfo] {
+        &PARAMETERS
+    }
+    fn outputs(&self) -> &[OutputInfo] {
+        &OUTPUTS
+    }
+    fn evaluate(&self, x: &[f64], _: &[usize], out: &mut [f64]) {
+        out[0] = timoshenko(x[0], x[1]);
+    }
+    fn evaluate_with_gradient(&self, x: &[f64], w: &[usize], out: &mut [f64], jac: &mut [f64]) {
+        // central differences: the test needs values, the trait asks for gradients too
+        self.evaluate(x, w, out);
+        for j in 0..2 {
+            let h = 1e-6 * x[j];
+            let (mut a, mut b) = (x.to_vec(), x.to_vec());
+            a[j] += h;
+            b[j] -= h;
+            jac[j] = (timoshenko(a[0], a[1]) - timoshenko(b[0], b[1])) / (2.0 * h);
+        }
+    }
+    fn domain_error(&self, x: &[f64]) -> Option<String> {
+        x.iter()
+            .any(|&v| v <= 0.0)
+            .then(|| "lengths must be positive".into())
+    }
+    fn box_error(&self, _: &[f64], _: &[f64]) -> Option<(usize, String)> {
+        None
+    }
+    fn max_of(&self, _: usize) -> Option<&[usize]> {
+        None
+    }
+    fn unavailable(&self, _: usize) -> Option<String> {
+        None
+    }
+    fn material(&self) -> Option<&Material> {
+        Some(&self.material)
+    }
+    fn angle_limit(&self) -> Option<f64> {
+        None
+    }
+    fn mirror(&self, _: &mut [f64]) -> bool {
+        false
+    }
+}
+
+impl Depiction for ClampedStrip {}
+
+impl PartMaker for ClampedStrip {
+    fn part(&self, x: &[f64]) -> Result<PartSpec, Vec<String>> {
+        Ok(spec_with(x[0], x[1]))
+    }
+    fn fe_counterpart(&self, output: usize) -> Option<FeCounterpart> {
+        (output == 0).then_some(FeCounterpart::Output(FeOutputId(2)))
+    }
+}
+
+const STRIP_ENTRY: ModelEntry = ModelEntry {
+    name: "clamped_strip",
+    sections: &[],
+    build: |_| {
+        Ok(Mechanism::complete(ClampedStrip {
+            material: Material {
+                name: "steel".into(),
+                youngs_modulus: STEEL.youngs_modulus,
+                poisson_ratio: STEEL.poisson_ratio,
+                yield_strength: None,
+                ultimate_strength: None,
+                density: STEEL.density,
+            },
+        }))
+    },
+    schema: no_sections,
+    template: "",
+};
+
+const STRIP_FILE: &str = r#"
+name = "clamped_strip"
+model = "clamped_strip"
+
+[[variables]]
+name = "l"
+unit = "mm"
+lower = 5
+upper = 15
+
+[[variables]]
+name = "t"
+unit = "mm"
+lower = 0.3
+upper = 0.8
+
+[objective]
+maximize = "k_mid"
+"#;
+
+#[test]
+fn a_model_from_outside_with_a_part_is_checked_from_its_problem_file() {
+    let problem = Problem::parse_with(&[STRIP_ENTRY], Path::new("strip.toml"), STRIP_FILE).unwrap();
+    let x = [L, T];
+    let settings = VerifySettings {
+        tolerance: 0.002,
+        modal: false,
+        ..VerifySettings::default()
+    };
+    let v = verify_design(problem.mechanism(), &x, &settings).unwrap();
+    // the report compares the FE stiffness with the model's own output, named by the part
+    let report = VerifyReport::new(&problem, &x, &v);
+    assert_eq!(report.design["l"], 10.0);
+    let k = &report.outputs["plane_stress"]["stiffness"];
+    assert_eq!(k.analytic, Some(timoshenko(L, T)));
+    let deviation = k.deviation_percent.unwrap();
+    eprintln!("k_mid against the FE stiffness: {deviation:+.3} %");
+    // the same comparison as the statement's own test above: within beam theory's 1 %
+    assert!(deviation.abs() < 1.0, "{deviation} %");
+    assert_eq!(
+        k.deviation_percent,
+        Some(100.0 * (timoshenko(L, T) - k.estimate.value) / k.estimate.value)
+    );
+    // a refinement reads the same counterpart, a physics replaced keeps the part
+    let corrected = problem.mechanism().with_physics(Arc::new(ClampedStrip {
+        material: problem.model().material().unwrap().clone(),
+    }));
+    assert!(corrected.part_spec(&x).is_some_and(|s| s.is_ok()));
+    assert_eq!(
+        corrected.fe_counterpart(0),
+        Some(FeCounterpart::Output(FeOutputId(2)))
+    );
 }

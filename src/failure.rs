@@ -1,0 +1,59 @@
+//! The command line's one error type, carrying the exit code, and its one way to print.
+
+use std::fmt::Display;
+
+/// Why the command stopped: the message to print and the exit code.
+pub struct Failure {
+    pub code: u8,
+    pub message: String,
+}
+
+impl Failure {
+    /// Exit code 2: a rejected problem file, design or option.
+    pub fn bad_input(e: impl Display) -> Self {
+        Failure {
+            code: 2,
+            message: e.to_string(),
+        }
+    }
+
+    /// Exit code 1: results that could not be written or printed.
+    pub fn write_failed(e: impl Display) -> Self {
+        Failure {
+            code: 1,
+            message: e.to_string(),
+        }
+    }
+
+    /// Exit code 130, the shell's for an interrupt: the run was stopped by Ctrl-C.
+    pub fn interrupted(e: impl Display) -> Self {
+        Failure {
+            code: 130,
+            message: e.to_string(),
+        }
+    }
+
+    /// Exit code 3: no feasible design; the results were written all the same. (Exit code
+    /// 4, a feasible design that did not converge, is built where it arises.)
+    pub fn no_feasible(e: impl Display) -> Self {
+        Failure {
+            code: 3,
+            message: e.to_string(),
+        }
+    }
+}
+
+/// Writes to stdout; a reader that has gone away (a closed pipe) is not an error worth a
+/// panic, and the command just stops printing.
+pub fn emit(text: &impl Display) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    let _ = write!(out, "{text}").and_then(|()| out.flush());
+}
+
+pub fn print_json(value: &impl serde::Serialize) -> Result<(), Failure> {
+    let s = serde_json::to_string_pretty(value)
+        .map_err(|e| Failure::write_failed(format!("cannot format the result: {e}")))?;
+    emit(&format!("{s}\n"));
+    Ok(())
+}

@@ -1,0 +1,15 @@
+//! The part and the finite elements: the bridge's outline and its checks, the elements
+//! against exact solutions and against CalculiX, the check of a design, and the refinement
+//! of an optimum against the finite elements.
+//!
+//! One test binary per subject (issue 21): each file is a module, the fixtures are shared.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod fe_calculix;
+mod fe_exact;
+mod fe_generic;
+mod fe_verify;
+mod part;
+mod refine;

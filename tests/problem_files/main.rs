@@ -1,0 +1,12 @@
+//! Problem files and the command line: every rejection rule, the parser under fuzzing, the
+//! commands end to end, and flexopt as a designer meets it.
+//!
+//! One test binary per subject (issue 21): each file is a module, the fixtures are shared.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod cli;
+mod designer;
+mod problem_errors;
+mod problem_fuzz;
