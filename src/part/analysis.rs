@@ -8,6 +8,8 @@
 //! Faces are named by [`super::Face::name`]; a name may cover several straight faces, a load
 //! or a measure on it then spans them all.
 
+use crate::vocab::Dimension;
+
 /// An output of an [`Analysis`]: its index in [`Analysis::outputs`], so that a model can
 /// point at what the check measures without a name to misspell.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -113,14 +115,16 @@ pub enum Comparison {
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeOutput {
     pub name: &'static str,
-    pub unit: &'static str,
+    /// What it measures; its SI unit is the one `verify.json` writes.
+    pub dimension: Dimension,
     pub meaning: &'static str,
     pub quantity: Quantity,
     /// Whether the mesh sequence must converge on it: a peak stress at a sharp root never
     /// does, and is reported without holding the check back.
     pub converges: bool,
-    /// The factor and unit a designer reads it in (a stroke of micrometres).
-    pub display: (f64, &'static str),
+    /// The unit a designer reads it in where the dimension's usual one does not suit it (a
+    /// stroke of micrometres beside parts of millimetres), as a model's output states it.
+    pub display: Option<&'static str>,
     pub analytic: Option<Comparison>,
 }
 

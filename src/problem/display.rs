@@ -67,9 +67,7 @@ pub fn output_unit(problem: &Problem, output: usize) -> Unit {
         return c.unit.clone();
     }
     let info = &problem.model().outputs()[output];
-    info.display
-        .and_then(|name| Unit::parse(name, info.dimension).ok())
-        .unwrap_or_else(|| Unit::display(info.dimension))
+    Unit::shown(info.dimension, info.display)
 }
 
 /// `value unit`, the unit left out for a dimensionless one.

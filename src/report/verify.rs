@@ -18,6 +18,7 @@ use crate::fe::verify::{Level, Verification};
 use crate::fe::Idealization;
 use crate::part::analysis::{FeCounterpart, Quantity};
 use crate::problem::Problem;
+use crate::vocab::units::Unit;
 use compare::{analytic, displacements_at};
 
 mod compare;
@@ -41,9 +42,9 @@ const DECK_3D_LAYERS: usize = 2;
 #[derive(Debug, Clone, Serialize)]
 pub struct OutputReport {
     pub unit: &'static str,
-    /// The factor and unit the table shows it in.
+    /// The unit the table shows it in.
     #[serde(skip)]
-    pub display: (f64, &'static str),
+    pub display: Unit,
     pub meaning: &'static str,
     #[serde(flatten)]
     pub estimate: Estimate,
@@ -115,7 +116,7 @@ impl VerifyReport {
                     o.name,
                     OutputReport {
                         unit: o.unit,
-                        display: stated.display,
+                        display: Unit::shown(stated.dimension, stated.display),
                         meaning: stated.meaning,
                         estimate: o.estimate,
                         values: o.values.clone(),
@@ -386,8 +387,12 @@ fn significant(v: f64, digits: i32) -> String {
 }
 
 /// A value in the unit a designer reads, with that unit.
-fn shown(o: &OutputReport, v: f64) -> (f64, &'static str) {
-    (v * o.display.0, o.display.1)
+fn shown(o: &OutputReport, v: f64) -> (f64, &str) {
+    let unit = match o.display.name.as_str() {
+        "1" => "",
+        name => name,
+    };
+    (o.display.from_si(v), unit)
 }
 
 impl Display for VerifyTable<'_> {

@@ -120,6 +120,14 @@ impl Unit {
             .collect()
     }
 
+    /// The unit a quantity of `dimension` is shown in: `display` where it names one of the
+    /// dimension's units (an output's own, a stroke in um), else [`Unit::display`].
+    pub fn shown(dimension: Dimension, display: Option<&str>) -> Unit {
+        display
+            .and_then(|name| Unit::parse(name, dimension).ok())
+            .unwrap_or_else(|| Unit::display(dimension))
+    }
+
     /// The unit a designer reads a quantity of `dimension` in when the problem file names
     /// none for it: mm, deg, N, MPa, N/um, um/N, g, N mm/rad, Hz, ms.
     pub fn display(dimension: Dimension) -> Unit {

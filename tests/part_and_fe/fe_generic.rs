@@ -56,14 +56,14 @@ fn face(name: &str, a: [f64; 2], b: [f64; 2]) -> Face {
     }
 }
 
-fn output(name: &'static str, unit: &'static str, quantity: Quantity) -> FeOutput {
+fn output(name: &'static str, dimension: Dimension, quantity: Quantity) -> FeOutput {
     FeOutput {
         name,
-        unit,
+        dimension,
         meaning: "",
         quantity,
         converges: quantity != Quantity::PeakStress,
-        display: (1.0, unit),
+        display: None,
         analytic: None,
     }
 }
@@ -99,19 +99,19 @@ fn analysis() -> Analysis {
             },
         ],
         outputs: vec![
-            output("pad", "m", Quantity::Displacement(0)),
-            output("upper_side", "m", Quantity::Displacement(1)),
-            output("stiffness", "N/m", Quantity::Stiffness(0)),
+            output("pad", Dimension::Length, Quantity::Displacement(0)),
+            output("upper_side", Dimension::Length, Quantity::Displacement(1)),
+            output("stiffness", Dimension::Stiffness, Quantity::Stiffness(0)),
             output(
                 "side_per_pad",
-                "1",
+                Dimension::Ratio,
                 Quantity::Ratio {
                     numerator: 1,
                     denominator: 0,
                 },
             ),
-            output("stress_section", "Pa", Quantity::SectionStress),
-            output("stress_peak", "Pa", Quantity::PeakStress),
+            output("stress_section", Dimension::Stress, Quantity::SectionStress),
+            output("stress_peak", Dimension::Stress, Quantity::PeakStress),
         ],
         actuation: Some(ActuationCase {
             name: "actuation_force",

@@ -279,7 +279,7 @@ pub fn verify(
                     Output {
                         id: FeOutputId(k),
                         name: o.name,
-                        unit: o.unit,
+                        unit: o.dimension.si_unit(),
                         estimate: estimate(&values),
                         values,
                         location_mm: match o.quantity {

@@ -19,6 +19,7 @@
 //! - the output frequency is the analytic `natural_frequency`.
 
 use super::super::BridgeOutput;
+use crate::model::Dimension;
 use crate::part::analysis::{
     ActuationCase, Analysis, Comparison, FeCounterpart, FeOutput, FeOutputId, Load, LoadCase,
     Measure, Modal, Quantity, Spring, Term,
@@ -56,14 +57,14 @@ fn term(face: &str, direction: [f64; 2]) -> Term {
 
 fn output(
     name: &'static str,
-    unit: &'static str,
+    dimension: Dimension,
     meaning: &'static str,
     quantity: Quantity,
-    display: (f64, &'static str),
+    display: Option<&'static str>,
 ) -> FeOutput {
     FeOutput {
         name,
-        unit,
+        dimension,
         meaning,
         quantity,
         converges: true,
@@ -74,7 +75,8 @@ fn output(
 
 /// The check, the same for every design.
 pub fn analysis() -> Analysis {
-    let (um, n_per_um, mpa, hz) = ((1e6, "um"), (1e-6, "N/um"), (1e-6, "MPa"), (1.0, "Hz"));
+    // displacements in um beside the part's mm; the rest in their dimension's usual unit
+    let um = Some("um");
     let (k_in, amplification) = (
         BridgeOutput::KIn as usize,
         BridgeOutput::Amplification as usize,
@@ -87,7 +89,7 @@ pub fn analysis() -> Analysis {
             }),
             ..output(
                 "fe_x_in",
-                "m",
+                Dimension::Length,
                 "increase of the distance between the input faces under the test force",
                 Quantity::Displacement(0),
                 um,
@@ -100,7 +102,7 @@ pub fn analysis() -> Analysis {
             }),
             ..output(
                 "fe_y_out",
-                "m",
+                Dimension::Length,
                 "output face's displacement towards the axis under the same load",
                 Quantity::Displacement(1),
                 um,
@@ -108,55 +110,55 @@ pub fn analysis() -> Analysis {
         },
         output(
             "fe_amplification",
-            "1",
+            Dimension::Ratio,
             "y_out / x_in",
             Quantity::Ratio {
                 numerator: 1,
                 denominator: 0,
             },
-            (1.0, ""),
+            None,
         ),
-        output("fe_k_in", "N/m", "test force / x_in", Quantity::Stiffness(0), n_per_um),
+        output("fe_k_in", Dimension::Stiffness, "test force / x_in", Quantity::Stiffness(0), None),
         output(
             "fe_k_out",
-            "N/m",
+            Dimension::Stiffness,
             "test force on the output face / its displacement, inputs free",
             Quantity::Stiffness(2),
-            (1e-3, "N/mm"),
+            Some("N/mm"),
         ),
         FeOutput {
             analytic: Some(Comparison::Output(BridgeOutput::StressMax as usize)),
             ..output(
                 "fe_stress_section",
-                "Pa",
+                Dimension::Stress,
                 "largest beam stress |N|/(w t) + 6|M|/(w t^2) at the hinges' root sections under the actuation",
                 Quantity::SectionStress,
-                mpa,
+                None,
             )
         },
         FeOutput {
             converges: false,
             ..output(
                 "fe_stress_max",
-                "Pa",
+                Dimension::Stress,
                 "largest nodal von Mises stress under the actuation",
                 Quantity::PeakStress,
-                mpa,
+                None,
             )
         },
         output(
             "fe_output_frequency",
-            "Hz",
+            Dimension::Frequency,
             "lowest symmetric (output) mode",
             Quantity::SymmetricFrequency,
-            hz,
+            None,
         ),
         output(
             "fe_natural_frequency",
-            "Hz",
+            Dimension::Frequency,
             "lowest mode of either symmetry",
             Quantity::LowestFrequency,
-            hz,
+            None,
         ),
     ];
     Analysis {
