@@ -112,29 +112,14 @@ pub enum Command {
         tolerance: Option<f64>,
     },
     /// One flexure hinge on its own: compliances, stiffnesses, rotation per moment and the
-    /// rotation a stress limit allows, as JSON. Dimensions in mm: a strip takes --l --t, a
-    /// circular notch --r --t, an elliptical one --a --b --t, a corner-filleted leaf --l --t
-    /// --r.
+    /// rotation a stress limit allows, as JSON. Dimensions in mm, each kind its own.
     #[command(after_help = EXIT_CODES)]
     Hinge {
         /// The hinge's kind.
         #[arg(long, value_parser = PossibleValuesParser::new(HingeKind::NAMES))]
         kind: String,
-        /// Length (strip, corner-filleted; fillets included), mm.
-        #[arg(long)]
-        l: Option<f64>,
-        /// Least thickness, mm.
-        #[arg(long)]
-        t: Option<f64>,
-        /// Notch radius (circular) or fillet radius (corner-filleted), mm.
-        #[arg(long)]
-        r: Option<f64>,
-        /// Semi-axis along the hinge (elliptical), mm.
-        #[arg(long)]
-        a: Option<f64>,
-        /// Semi-axis across the hinge (elliptical), mm.
-        #[arg(long)]
-        b: Option<f64>,
+        #[command(flatten)]
+        dimensions: HingeDimensionArgs,
         /// Width of the hinge (out of the plane), mm.
         #[arg(long)]
         width: f64,
@@ -250,4 +235,92 @@ pub struct StudyArgs {
     /// No progress bar or progress lines.
     #[arg(long)]
     pub quiet: bool,
+}
+
+/// The dimension flags of `flexopt hinge`, one per stem over every kind's dimension table,
+/// so that a new kind brings its flags with it: clap's derive cannot make fields from a
+/// table, hence [`clap::Args`] by hand.
+pub struct HingeDimensionArgs {
+    /// The flags given, `(stem, mm)`, in the order of [`hinge_stems`].
+    pub given: Vec<(&'static str, f64)>,
+}
+
+/// What a stem means and the kinds it means that in.
+type Meaning = (&'static str, Vec<&'static str>);
+
+/// Each distinct stem over every kind, in the order of first appearance, with its help:
+/// what it is for each kind that takes it.
+fn hinge_stems() -> Vec<(&'static str, String)> {
+    let mut stems: Vec<(&'static str, Vec<Meaning>)> = Vec::new();
+    for &kind in HingeKind::ALL {
+        for d in kind.dimensions() {
+            let at = match stems.iter().position(|(s, _)| *s == d.stem) {
+                Some(i) => i,
+                None => {
+                    stems.push((d.stem, Vec::new()));
+                    stems.len() - 1
+                }
+            };
+            // kinds whose dimension means the same share one description
+            let meanings = &mut stems[at].1;
+            match meanings.iter_mut().find(|(what, _)| *what == d.description) {
+                Some((_, kinds)) => kinds.push(kind.name()),
+                None => meanings.push((d.description, vec![kind.name()])),
+            }
+        }
+    }
+    stems
+        .into_iter()
+        .map(|(stem, meanings)| {
+            let text: Vec<String> = meanings
+                .iter()
+                .map(|(what, kinds)| format!("{what} ({})", kinds.join(", ")))
+                .collect();
+            // a capital first, as clap's other help texts
+            let text = text.join("; ");
+            let mut chars = text.chars();
+            let first = chars.next().map(|c| c.to_uppercase().to_string());
+            (
+                stem,
+                format!("{}{}, mm", first.unwrap_or_default(), chars.as_str()),
+            )
+        })
+        .collect()
+}
+
+impl clap::FromArgMatches for HingeDimensionArgs {
+    fn from_arg_matches(matches: &clap::ArgMatches) -> Result<Self, clap::Error> {
+        Self::from_arg_matches_mut(&mut matches.clone())
+    }
+
+    fn from_arg_matches_mut(matches: &mut clap::ArgMatches) -> Result<Self, clap::Error> {
+        let given = hinge_stems()
+            .into_iter()
+            .filter_map(|(stem, _)| matches.remove_one::<f64>(stem).map(|v| (stem, v)))
+            .collect();
+        Ok(HingeDimensionArgs { given })
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &clap::ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(matches)?;
+        Ok(())
+    }
+}
+
+impl clap::Args for HingeDimensionArgs {
+    fn augment_args(cmd: clap::Command) -> clap::Command {
+        hinge_stems().into_iter().fold(cmd, |cmd, (stem, help)| {
+            cmd.arg(
+                clap::Arg::new(stem)
+                    .long(stem)
+                    .value_name("MM")
+                    .value_parser(clap::value_parser!(f64))
+                    .help(help),
+            )
+        })
+    }
+
+    fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
+        Self::augment_args(cmd)
+    }
 }

@@ -56,21 +56,11 @@ fn run(command: Command) -> Result<(), Failure> {
         } => export(&problem, &design, out),
         Command::Hinge {
             kind,
-            l,
-            t,
-            r,
-            a,
-            b,
+            dimensions,
             width,
             material,
             stress_limit,
-        } => hinge(
-            &kind,
-            [("l", l), ("t", t), ("r", r), ("a", a), ("b", b)],
-            width,
-            &material,
-            stress_limit,
-        ),
+        } => hinge(&kind, &dimensions.given, width, &material, stress_limit),
         Command::Verify {
             problem,
             design,
@@ -239,12 +229,12 @@ fn export(path: &Path, design: &DesignArgs, out: Option<PathBuf>) -> Result<(), 
 /// `flexopt hinge`: one hinge's report as JSON; every bad value is bad input.
 fn hinge(
     kind: &str,
-    given: [(&str, Option<f64>); 5],
+    given: &[(&str, f64)],
     width: f64,
     material: &str,
     stress_limit: Option<f64>,
 ) -> Result<(), Failure> {
-    let report = calculator::from_options(kind, &given, width, material, stress_limit)
+    let report = calculator::from_options(kind, given, width, material, stress_limit)
         .map_err(Failure::bad_input)?;
     print_json(&report)
 }

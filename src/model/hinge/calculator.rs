@@ -99,12 +99,12 @@ pub fn report(
     }
 }
 
-/// The report of the hinge `flexopt hinge` describes: its kind by name, its dimensions by
-/// stem (`("r", Some(1.0))`; mm), width (mm), material preset and stress limit (MPa;
+/// The report of the hinge `flexopt hinge` describes: its kind by name, the dimension flags
+/// given by stem (`("r", 1.0)`; mm), width (mm), material preset and stress limit (MPa;
 /// default a third of the ultimate strength); or the message naming the option at fault.
 pub fn from_options(
     kind: &str,
-    given: &[(&str, Option<f64>)],
+    given: &[(&str, f64)],
     width: f64,
     material: &str,
     stress_limit: Option<f64>,
@@ -125,10 +125,7 @@ pub fn from_options(
         .map(|s| format!("--{s}"))
         .collect::<Vec<_>>()
         .join(", ");
-    if let Some((k, _)) = given
-        .iter()
-        .find(|(k, v)| v.is_some() && !stems.contains(k))
-    {
+    if let Some((k, _)) = given.iter().find(|(k, _)| !stems.contains(k)) {
         return Err(bad(
             k,
             format!(
@@ -140,7 +137,7 @@ pub fn from_options(
     let positive_mm = |v: f64| v.is_finite() && v > 0.0 && v < 1e6;
     let mut dims = Vec::new();
     for stem in &stems {
-        match given.iter().find(|(k, _)| k == stem).and_then(|(_, v)| *v) {
+        match given.iter().find(|(k, _)| k == stem).map(|(_, v)| *v) {
             Some(v) if positive_mm(v) => dims.push(v * 1e-3),
             Some(v) => {
                 return Err(bad(

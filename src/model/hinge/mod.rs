@@ -12,17 +12,33 @@
 //!
 //! A mechanism asks a hinge for these four coefficients, the largest stress under given end
 //! loads, its length along the centre line and its area, each from the hinge's own
-//! dimensions ([`HingeKind::dimensions`]). A hinge kind is a [`HingeKind`] variant here, with
-//! its dimension table and its arms of the functions below ([`integrals`] for the notches'
-//! compliances, [`profile`] for their shapes and stresses), and nothing else: the bridge
-//! names a kind's dimensions after the hinge (`l2`, `t2` for a strip at b, `r4`, `t4` for a
-//! circular notch at d) and lays them out by itself.
+//! dimensions ([`HingeKind::dimensions`]); its part asks for its outline and its part rules
+//! (sharp roots to fillet, how the drawing names its length). The bridge names a kind's
+//! dimensions after the hinge (`l2`, `t2` for a strip at b, `r4`, `t4` for a circular notch
+//! at d) and lays them out by itself; `flexopt hinge` makes a flag of each dimension stem.
 //!
 //! The kinds: `strip` (`l`, `t`), `circular` (`r`, `t`), `elliptical` (`a`, `b`, `t`) and
-//! `corner-filleted` (`l`, `t`, `r`).
+//! `corner-filleted` (`l`, `t`, `r`), each in its room under [`kinds`].
+//!
+//! Adding a kind takes three places, and the rest of flexopt (problem files, the
+//! `--kind` choices, the `hinge` command's flags, the bridge's layout, part, drawing and FE
+//! check) follows from them:
+//!
+//! 1. its room, `kinds/<name>.rs`: a unit struct implementing [`kinds::Kind`] (its name,
+//!    its dimension table, its formulas, its part rules), declared and re-exported in
+//!    `kinds/mod.rs` (`mod <name>; pub use <name>::<Struct>;`);
+//! 2. its variant of [`HingeKind`];
+//! 3. its line `Variant => kinds::Struct` in the table of `for_each_kind!` (in this file),
+//!    the one place that joins the two.
+//!
+//! A test holds each room's name to its variant's name in problem files (serde's
+//! kebab-case of the variant).
+//!
+//! A kind with more than [`MAX_HINGE_DIMENSIONS`] dimensions raises that constant too.
 
 pub mod calculator;
 pub mod integrals;
+pub mod kinds;
 pub mod profile;
 
 use serde::Serialize;
@@ -30,42 +46,20 @@ use serde::Serialize;
 use super::material::Material;
 use super::scalar::{max, Scalar};
 use super::Dimension;
-use integrals::Span;
+use kinds::Kind;
 
 /// The most dimensions a hinge kind has.
 pub const MAX_HINGE_DIMENSIONS: usize = 3;
 
 /// One dimension of a hinge kind; a mechanism names it `stem` followed by the hinge's
-/// number (`t` of hinge b is the bridge's `t2`).
+/// number (`t` of hinge b is the bridge's `t2`), `flexopt hinge` takes it as `--stem`.
+/// `description` serves both: the parameter's description and the flag's help.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct HingeDimension {
     pub stem: &'static str,
     pub dimension: Dimension,
     pub description: &'static str,
 }
-
-const fn dim(stem: &'static str, description: &'static str) -> HingeDimension {
-    HingeDimension {
-        stem,
-        dimension: Dimension::Length,
-        description,
-    }
-}
-
-/// The dimensions of each kind. The first of every kind is the one that sets its length
-/// along the centre line (a strip's length, a circular notch's radius).
-const STRIP: [HingeDimension; 2] = [dim("l", "length"), dim("t", "thickness")];
-const CIRCULAR: [HingeDimension; 2] = [dim("r", "notch radius"), dim("t", "least thickness")];
-const ELLIPTICAL: [HingeDimension; 3] = [
-    dim("a", "notch semi-axis along the hinge"),
-    dim("b", "notch semi-axis across the hinge"),
-    dim("t", "least thickness"),
-];
-const CORNER_FILLETED: [HingeDimension; 3] = [
-    dim("l", "length, fillets included"),
-    dim("t", "thickness"),
-    dim("r", "fillet radius"),
-];
 
 /// The compliance coefficients of one hinge (paper 004, Eq. 1), SI units.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -80,135 +74,109 @@ pub struct Compliance<D> {
     pub c33: D,
 }
 
-/// The kinds of flexure hinge flexopt models.
+/// The kinds of flexure hinge flexopt models; each variant's room is in [`kinds`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum HingeKind {
-    /// A leaf (strip) hinge: a straight beam of constant rectangular section.
+    /// A leaf (strip) hinge ([`kinds::Strip`]).
     Strip,
-    /// A right-circular notch of radius `r` from both sides, least thickness `t`: a bar
-    /// `t + 2 r` thick with two half circles cut out, `2 r` long.
+    /// A right-circular notch ([`kinds::Circular`]).
     Circular,
-    /// A right-elliptical notch of semi-axes `a` (along) and `b` (across), least thickness
-    /// `t`: `2 a` long, `t + 2 b` thick at its ends.
+    /// A right-elliptical notch ([`kinds::Elliptical`]).
     Elliptical,
-    /// A leaf of thickness `t` whose ends widen by quarter circles of radius `r` to
-    /// `t + 2 r`: `l` long fillets included.
+    /// A leaf with filleted corners ([`kinds::CornerFilleted`]).
     CornerFilleted,
 }
 
-impl HingeKind {
-    /// The names a problem file uses.
-    pub const NAMES: &'static [&'static str] =
-        &["strip", "circular", "elliptical", "corner-filleted"];
-
-    pub fn from_name(name: &str) -> Option<Self> {
-        match name {
-            "strip" => Some(HingeKind::Strip),
-            "circular" => Some(HingeKind::Circular),
-            "elliptical" => Some(HingeKind::Elliptical),
-            "corner-filleted" => Some(HingeKind::CornerFilleted),
-            _ => None,
+/// The one table of the kinds, each variant of [`HingeKind`] with its room: hands the table
+/// to the macro `$then` (with `$args` first), so that the dispatch of every method and the
+/// list of kinds come from these lines alone.
+macro_rules! for_each_kind {
+    ($then:ident $args:tt) => {
+        $then! { $args
+            Strip => kinds::Strip,
+            Circular => kinds::Circular,
+            Elliptical => kinds::Elliptical,
+            CornerFilleted => kinds::CornerFilleted,
         }
+    };
+}
+
+/// `$body` with `$k` bound to the room of the kind `$kind`.
+macro_rules! with_kind {
+    ($kind:expr, $k:ident => $body:expr) => {
+        for_each_kind!(dispatch($kind, $k, $body))
+    };
+}
+
+/// [`with_kind!`]'s match, one arm per line of the table.
+macro_rules! dispatch {
+    (($kind:expr, $k:ident, $body:expr) $($variant:ident => $room:path,)*) => {
+        match $kind {
+            $(HingeKind::$variant => {
+                let $k = &$room;
+                $body
+            })*
+        }
+    };
+}
+
+/// [`HingeKind::ALL`] and [`HingeKind::NAMES`] from the table: consts, because clap's
+/// `PossibleValuesParser` and the problem files' messages take the names as a static list.
+macro_rules! kind_list {
+    (() $($variant:ident => $room:path,)*) => {
+        impl HingeKind {
+            /// Every kind, in the table's order.
+            pub const ALL: &'static [HingeKind] = &[$(HingeKind::$variant),*];
+
+            /// The names a problem file uses, in the order of [`HingeKind::ALL`].
+            pub const NAMES: &'static [&'static str] = &[$(<$room as Kind>::NAME),*];
+        }
+    };
+}
+
+for_each_kind!(kind_list());
+
+impl HingeKind {
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().copied().find(|k| k.name() == name)
     }
 
     pub fn name(self) -> &'static str {
-        match self {
-            HingeKind::Strip => "strip",
-            HingeKind::Circular => "circular",
-            HingeKind::Elliptical => "elliptical",
-            HingeKind::CornerFilleted => "corner-filleted",
-        }
+        with_kind!(self, k => kind_name(k))
     }
 
     /// The kind's dimensions, in the order its functions take them; the first is the one
     /// that sets the length along the centre line.
     pub fn dimensions(self) -> &'static [HingeDimension] {
-        match self {
-            HingeKind::Strip => &STRIP,
-            HingeKind::Circular => &CIRCULAR,
-            HingeKind::Elliptical => &ELLIPTICAL,
-            HingeKind::CornerFilleted => &CORNER_FILLETED,
-        }
+        with_kind!(self, k => kind_dimensions(k))
     }
 
     /// The length of the hinge along its centre line (m).
     pub fn length<D: Scalar>(self, dims: &[D]) -> D {
-        match self {
-            HingeKind::Strip | HingeKind::CornerFilleted => dims[0],
-            HingeKind::Circular | HingeKind::Elliptical => dims[0] * 2.0,
-        }
+        with_kind!(self, k => k.length(dims))
     }
 
     /// The least thickness (m), where the hinge bends most.
     pub fn least_thickness<D: Scalar>(self, dims: &[D]) -> D {
-        match self {
-            HingeKind::Strip | HingeKind::Circular | HingeKind::CornerFilleted => dims[1],
-            HingeKind::Elliptical => dims[2],
-        }
+        with_kind!(self, k => k.least_thickness(dims))
     }
 
     /// The hinge's thickness where it meets the rigid bodies (m): the width of the faces
     /// its part's outline attaches to.
     pub fn root_thickness(self, dims: &[f64]) -> f64 {
-        match self {
-            HingeKind::Strip => dims[1],
-            HingeKind::Circular => dims[1] + 2.0 * dims[0],
-            HingeKind::Elliptical => dims[2] + 2.0 * dims[1],
-            HingeKind::CornerFilleted => dims[1] + 2.0 * dims[2],
-        }
+        with_kind!(self, k => k.root_thickness(dims))
     }
 
     /// The hinge's area in the plane of the mechanism (m^2), for its mass.
     pub fn area<D: Scalar>(self, dims: &[D]) -> D {
-        let pi = std::f64::consts::PI;
-        match self {
-            HingeKind::Strip => dims[0] * dims[1],
-            HingeKind::Circular => {
-                let (r, t) = (dims[0], dims[1]);
-                r * 2.0 * (t + r * 2.0) - r * r * pi
-            }
-            HingeKind::Elliptical => {
-                let (a, b, t) = (dims[0], dims[1], dims[2]);
-                a * 2.0 * (t + b * 2.0) - a * b * pi
-            }
-            HingeKind::CornerFilleted => {
-                let (l, t, r) = (dims[0], dims[1], dims[2]);
-                l * t + r * r * (4.0 - pi)
-            }
-        }
+        with_kind!(self, k => k.area(dims))
     }
 
     /// Why `dims` (SI) make no hinge of this kind, if they do not; `names` are the
-    /// dimensions' names in the mechanism (`l2`, `t2`). A strip's length of zero is
-    /// allowed: the mechanism then has no hinge there.
+    /// dimensions' names in the mechanism (`l2`, `t2`).
     pub fn domain_error(self, dims: &[f64], names: &[&str]) -> Option<String> {
-        let positive = |k: usize| {
-            (dims[k] <= 0.0).then(|| format!("{} = {} m is not positive", names[k], dims[k]))
-        };
-        match self {
-            HingeKind::Strip => {
-                if dims[0] < 0.0 {
-                    Some(format!("{} = {} m is negative", names[0], dims[0]))
-                } else {
-                    positive(1)
-                }
-            }
-            HingeKind::Circular => positive(0).or_else(|| positive(1)),
-            HingeKind::Elliptical => positive(0).or_else(|| positive(1)).or_else(|| positive(2)),
-            HingeKind::CornerFilleted => positive(0)
-                .or_else(|| positive(1))
-                .or_else(|| positive(2))
-                .or_else(|| {
-                    (2.0 * dims[2] > dims[0]).then(|| {
-                        format!(
-                            "{} = {} m is longer than half {} = {} m: a fillet longer than \
-                             half the leaf",
-                            names[2], dims[2], names[0], dims[0]
-                        )
-                    })
-                }),
-        }
+        with_kind!(self, k => k.domain_error(dims, names))
     }
 
     /// Why some dimensions between `lower` and `upper` make no hinge of this kind though
@@ -219,167 +187,35 @@ impl HingeKind {
         upper: &[f64],
         names: &[&str],
     ) -> Option<(usize, String)> {
-        match self {
-            HingeKind::CornerFilleted if 2.0 * upper[2] > lower[0] => Some((
-                2,
-                format!(
-                    "{} may reach {} mm, more than half of {}'s least {} mm: a fillet longer \
-                     than half the leaf; keep {}'s upper bound at most half {}'s lower bound",
-                    names[2],
-                    upper[2] * 1e3,
-                    names[0],
-                    lower[0] * 1e3,
-                    names[2],
-                    names[0]
-                ),
-            )),
-            _ => None,
-        }
+        with_kind!(self, k => k.box_error(lower, upper, names))
     }
 
     /// Compliance of a hinge of dimensions `dims` (SI, in the order of
-    /// [`HingeKind::dimensions`]) and section width `width` (m).
-    ///
-    /// Strip hinge of length `l` and thickness `t`, paper 004 Eq. 2 (Timoshenko cantilever,
-    /// shear factor taken as 1 as the paper does):
-    ///
-    /// ```text
-    /// c11 = l / (E w t)
-    /// c22 = 4 l^3 / (E w t^3) + l / (G w t)
-    /// c23 = c32 = 6 l^2 / (E w t^3)
-    /// c33 = 12 l / (E w t^3)
-    /// ```
-    ///
-    /// The notches: the same beam, its thickness varying, by the exact integrals of
-    /// [`integrals`] (a circular notch is an elliptical one with `a = b = r`; a
-    /// corner-filleted leaf a strip with a quarter-circle arc at each end).
+    /// [`HingeKind::dimensions`]) and section width `width` (m): each kind's
+    /// [`Kind::compliance`] (paper 004 Eq. 2 for the strip, the exact integrals of
+    /// [`integrals`] for the notches).
     pub fn compliance<D: Scalar>(
         self,
         dims: &[D],
         width: f64,
         material: &Material,
     ) -> Compliance<D> {
-        let moments = match self {
-            HingeKind::Strip => {
-                let (length, thickness) = (dims[0], dims[1]);
-                // one division: every coefficient is a multiple of 1 / (E w t^3)
-                let e = material.youngs_modulus;
-                let inv = (thickness * thickness * thickness * (e * width)).recip();
-                let l_inv = length * inv;
-                let t2 = thickness * thickness;
-                return Compliance {
-                    c11: l_inv * t2,
-                    // E / G = 2 (1 + nu)
-                    c22: l_inv
-                        * (length * length * 4.0 + t2 * (2.0 * (1.0 + material.poisson_ratio))),
-                    c23: l_inv * length * 6.0,
-                    c33: l_inv * 12.0,
-                };
-            }
-            HingeKind::Circular => {
-                let (r, t) = (dims[0], dims[1]);
-                integrals::arc(t, r, r, r, Span::Whole)
-            }
-            HingeKind::Elliptical => {
-                let (a, b, t) = (dims[0], dims[1], dims[2]);
-                integrals::arc(t, b, a, a, Span::Whole)
-            }
-            HingeKind::CornerFilleted => {
-                let (l, t, r) = (dims[0], dims[1], dims[2]);
-                integrals::arc(t, r, r, r, Span::First)
-                    .plus(integrals::strip(r, l - r, t))
-                    .plus(integrals::arc(t, r, r, l - r, Span::Second))
-            }
-        };
-        let e = material.youngs_modulus;
-        let ew = e * width;
-        // E / G = 2 (1 + nu)
-        let shear = 2.0 * (1.0 + material.poisson_ratio);
-        Compliance {
-            c11: moments.i0 / ew,
-            c22: (moments.i3[2] * 12.0 + moments.i0 * shear) / ew,
-            c23: moments.i3[1] * 12.0 / ew,
-            c33: moments.i3[0] * 12.0 / ew,
-        }
+        with_kind!(self, k => k.compliance(dims, width, material))
     }
 
     /// The factor by which the largest surface stress of a notch exceeds the beam stress
-    /// at its thinnest section in bending, `K_t`; 1 for the strip (paper 004 takes its
-    /// beam stress at the clamped ends, where a sharp corner has no finite factor).
-    ///
-    /// - circular, the fit to Peterson's charts that Smith gives for the right-circular
-    ///   notch hinge in bending (S. T. Smith, *Flexures: Elements of Elastic Mechanisms*,
-    ///   Gordon and Breach, 2000, its chapter on notch hinges):
-    ///   `K_t = (1 + t / (2 r))^(9/20)`;
-    /// - elliptical, the same fit with the radius of curvature at the notch's root,
-    ///   `rho = a^2 / b`, for `r`: `K_t = (1 + t b / (2 a^2))^(9/20)`; our extension,
-    ///   within 1 % of the FE of the single hinge over the table's grid;
-    /// - corner-filleted, the flat bar with shoulder fillets in in-plane bending
-    ///   (W. C. Young and R. G. Budynas, *Roark's Formulas for Stress and Strain*, 7th ed.,
-    ///   McGraw-Hill, 2002, Table 17.1, case 2b) with shoulder height `h = r` (a quarter
-    ///   circle from `t` to `D = t + 2 r`, so `h / r = 1`, inside the fit's 0.1..2):
-    ///   `K_t = C1 + C2 x + C3 x^2 + C4 x^3`, `x = 2 h / D = 2 r / (t + 2 r)`, with
-    ///   `C1 = 1.007 + 1.000 - 0.031`, `C2 = -0.270 - 2.404 + 0.749`,
-    ///   `C3 = 0.677 + 1.133 - 0.904`, `C4 = -0.414 + 0.271 + 0.186` (each `Ci` at
-    ///   `h / r = 1`).
+    /// at its thinnest section in bending, `K_t`; 1 for the strip. Each kind's
+    /// [`Kind::stress_concentration`] cites its source.
     pub fn stress_concentration<D: Scalar>(self, dims: &[D]) -> D {
-        match self {
-            HingeKind::Strip => D::from(1.0),
-            HingeKind::Circular => {
-                let (r, t) = (dims[0], dims[1]);
-                (t / (r * 2.0) + 1.0).powf(0.45)
-            }
-            HingeKind::Elliptical => {
-                let (a, b, t) = (dims[0], dims[1], dims[2]);
-                (t * b / (a * a * 2.0) + 1.0).powf(0.45)
-            }
-            HingeKind::CornerFilleted => {
-                let (t, r) = (dims[1], dims[2]);
-                let x = r * 2.0 / (t + r * 2.0);
-                const C: [f64; 4] = [
-                    1.007 + 1.000 - 0.031,
-                    -0.270 - 2.404 + 0.749,
-                    0.677 + 1.133 - 0.904,
-                    -0.414 + 0.271 + 0.186,
-                ];
-                ((x * C[3] + C[2]) * x + C[1]) * x + C[0]
-            }
-        }
+        with_kind!(self, k => k.stress_concentration(dims))
     }
 
     /// The largest normal stress (Pa) at the two ends of the hinge, `(loaded end, clamped
     /// end)`, under the end loads that hold its free end: axial force `axial`, transverse
-    /// force `shear` and moment `moment` there; for a notch, its one peak, twice.
-    ///
-    /// Strip hinge, paper 004 Eq. 15-16: the moment varies linearly along the hinge,
-    /// `M(x) = M + V x` for `x` in `[0, l]` measured from the loaded end, so the extreme
-    /// fibre stress `6 |M(x)| / (w t^2) + |N| / (w t)` is largest at one of the two ends.
-    /// A notch: the same beam stress, largest near its thinnest section, found along it
-    /// ([`HingeKind::beam_stress_max`]), times the notch's stress concentration
-    /// ([`HingeKind::stress_concentration`]), which the finite-element check of the single
-    /// hinge measures (the README's accuracy table).
+    /// force `shear` and moment `moment` there; for a notch, its one peak, twice
+    /// ([`Kind::end_stresses`]).
     pub fn end_stresses<D: Scalar>(self, dims: &[D], width: f64, loads: &HingeLoads<D>) -> (D, D) {
-        match self {
-            HingeKind::Strip => {
-                let (length, thickness) = (dims[0], dims[1]);
-                let moment_far = loads.moment + loads.shear * length;
-                let inv_wt = (thickness * width).recip();
-                let bending = inv_wt * (6.0 * width);
-                let axial = loads.axial.abs();
-                (
-                    (loads.moment.abs() * bending + axial) * inv_wt,
-                    (moment_far.abs() * bending + axial) * inv_wt,
-                )
-            }
-            _ => {
-                // one peak, near the thinnest section: the same value for both ends, so that
-                // an optimizer bounding both sees one constraint twice rather than two
-                // nearly equal ones where the peak crosses the middle
-                let peak = self.beam_stress_max(dims, width, loads, 0.0, 1.0)
-                    * self.stress_concentration(dims);
-                (peak, peak)
-            }
-        }
+        with_kind!(self, k => k.end_stresses(dims, width, loads))
     }
 
     /// The largest normal stress in the hinge (Pa): the larger of [`HingeKind::end_stresses`].
@@ -387,6 +223,48 @@ impl HingeKind {
         let (near, far) = self.end_stresses(dims, width, loads);
         max(near, far)
     }
+
+    /// [`HingeKind::thickness_at`] with the place a scalar too (for its derivative along the
+    /// hinge).
+    pub fn thickness_along<D: Scalar>(self, dims: &[D], xi: D) -> D {
+        with_kind!(self, k => k.thickness_along(dims, xi))
+    }
+
+    /// The hinge's outline above its centre line ([`Kind::outline`]), which the part, the
+    /// FE and the drawing draw from.
+    pub fn outline(self, dims: &[f64]) -> Vec<[f64; 3]> {
+        with_kind!(self, k => k.outline(dims))
+    }
+
+    /// [`profile::beam_stress_max`] of this kind.
+    pub fn beam_stress_max<D: Scalar>(
+        self,
+        dims: &[D],
+        width: f64,
+        loads: &HingeLoads<D>,
+        lo: f64,
+        hi: f64,
+    ) -> D {
+        with_kind!(self, k => profile::beam_stress_max(k, dims, width, loads, lo, hi))
+    }
+
+    /// Whether the hinge meets its bodies at sharp inner corners, which the part fillets.
+    pub fn has_sharp_roots(self) -> bool {
+        with_kind!(self, k => k.has_sharp_roots())
+    }
+
+    /// How the drawing names the hinge's length, `first` the name of its first dimension.
+    pub fn length_label(self, first: String) -> String {
+        with_kind!(self, k => k.length_label(first))
+    }
+}
+
+fn kind_name<K: Kind>(_: &K) -> &'static str {
+    K::NAME
+}
+
+fn kind_dimensions<K: Kind>(_: &K) -> &'static [HingeDimension] {
+    K::DIMENSIONS
 }
 
 /// One hinge of a mechanism: its kind and its dimensions (SI, in the order of
@@ -451,6 +329,17 @@ pub struct HingeLoads<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn each_rooms_name_is_its_variants_name_in_problem_files() {
+        assert_eq!(HingeKind::ALL.len(), HingeKind::NAMES.len());
+        for (&kind, &name) in HingeKind::ALL.iter().zip(HingeKind::NAMES) {
+            let serde_name = serde_json::to_value(kind).unwrap();
+            assert_eq!(serde_name.as_str(), Some(name));
+            assert_eq!(HingeKind::from_name(name), Some(kind));
+            assert!(kind.dimensions().len() <= MAX_HINGE_DIMENSIONS, "{name}");
+        }
+    }
 
     #[test]
     fn strip_compliances_obey_beam_identities_without_shear() {

@@ -1,8 +1,9 @@
-//! A hinge's shape: its thickness along its centre line, its outline as arcs for the part,
-//! the compliances by numerical integration of the profile (the check of the closed forms),
-//! and the largest beam stress along it.
+//! What follows from a hinge's shape, whatever its kind: the compliances by numerical
+//! integration of its thickness profile (the check of the closed forms), the largest beam
+//! stress along it, and the bulges of the arcs its outline is drawn with.
 
 use super::super::scalar::{Jet, Scalar};
+use super::kinds::Kind;
 use super::{Compliance, HingeKind, HingeLoads};
 use crate::model::material::Material;
 
@@ -10,91 +11,6 @@ impl HingeKind {
     /// The thickness at the fraction `xi` of the hinge's length (0 and 1 its ends).
     pub fn thickness_at<D: Scalar>(self, dims: &[D], xi: f64) -> D {
         self.thickness_along(dims, D::from(xi))
-    }
-
-    /// [`HingeKind::thickness_at`] with the place a scalar too (for its derivative along the
-    /// hinge).
-    pub fn thickness_along<D: Scalar>(self, dims: &[D], xi: D) -> D {
-        match self {
-            HingeKind::Strip => dims[1],
-            HingeKind::Circular | HingeKind::Elliptical => {
-                let (t, b) = match self {
-                    HingeKind::Circular => (dims[1], dims[0]),
-                    _ => (dims[2], dims[1]),
-                };
-                let u = xi * 2.0 - 1.0;
-                // at u from the middle: 1 - sqrt(1 - u^2)
-                let inside = (D::from(1.0) - u * u).re().max(0.0);
-                let root = if inside > 0.0 {
-                    (D::from(1.0) - u * u).sqrt()
-                } else {
-                    D::from(0.0)
-                };
-                t + b * (D::from(1.0) - root) * 2.0
-            }
-            HingeKind::CornerFilleted => {
-                let (l, t, r) = (dims[0], dims[1], dims[2]);
-                let x = l * xi;
-                let from_end = if xi.re() <= 0.5 { x } else { l - x };
-                if from_end.re() >= r.re() {
-                    t
-                } else {
-                    // a quarter circle: 1 at the root, 0 where the leaf begins
-                    let v = D::from(1.0) - from_end / r;
-                    let depth = D::from(1.0) - (D::from(1.0) - v * v).sqrt();
-                    t + r * depth * 2.0
-                }
-            }
-        }
-    }
-
-    /// The hinge's outline above its centre line, in its own frame (x along the hinge from
-    /// its start, y across, mm or m as `dims`): vertices `(x, y, bulge)` from `(0, root/2)`
-    /// to `(length, root/2)`, each arc to the next vertex as a bulge (the tangent of a
-    /// quarter of its angle, positive counterclockwise). A strip is one straight edge; an
-    /// elliptical notch, which no circular arc draws, is a chain of 12 arcs, each through
-    /// three of 25 points of the ellipse: within 3e-4 of the larger semi-axis of it for
-    /// aspect ratios from 1/4 to 4 (1.3 um on a notch 4 mm long), a tenth of a wire EDM's
-    /// tolerance.
-    pub fn outline(self, dims: &[f64]) -> Vec<[f64; 3]> {
-        let root = 0.5 * self.root_thickness(dims);
-        match self {
-            HingeKind::Strip => vec![[0.0, root, 0.0], [dims[0], root, 0.0]],
-            HingeKind::Circular => {
-                // a half circle below the chord, counterclockwise seen from its centre
-                vec![[0.0, root, 1.0], [2.0 * dims[0], root, 0.0]]
-            }
-            HingeKind::Elliptical => {
-                let (a, b, t) = (dims[0], dims[1], dims[2]);
-                let n = 24;
-                let point = |k: usize| {
-                    let phi = std::f64::consts::PI * (1.0 + k as f64 / n as f64);
-                    [a + a * phi.cos(), 0.5 * t + b + b * phi.sin()]
-                };
-                let mut out = Vec::with_capacity(n / 2 + 1);
-                for k in (0..n).step_by(2) {
-                    let (p, m, q) = (point(k), point(k + 1), point(k + 2));
-                    out.push([p[0], p[1], bulge_through(p, m, q)]);
-                }
-                out.push([2.0 * a, root, 0.0]);
-                out
-            }
-            HingeKind::CornerFilleted => {
-                let (l, t, r) = (dims[0], dims[1], dims[2]);
-                let quarter = std::f64::consts::FRAC_PI_8.tan();
-                let mut out = vec![
-                    [0.0, root, quarter],
-                    [r, 0.5 * t, 0.0],
-                    [l - r, 0.5 * t, quarter],
-                    [l, root, 0.0],
-                ];
-                // fillets meeting in the middle leave no leaf between them
-                if l - 2.0 * r <= 1e-12 * l {
-                    out.remove(1);
-                }
-                out
-            }
-        }
     }
 
     /// The compliances by adaptive numerical integration of the thickness profile, for the
@@ -119,94 +35,93 @@ impl HingeKind {
             c33: 12.0 * i3[0] / (e * width),
         }
     }
+}
 
-    /// The largest beam stress `6 |M(x)| / (w t^2) + |N| / (w t)` over the half of the hinge
-    /// from `lo` to `hi` (fractions of its length), `M(x) = M + V x` from the loaded end. The
-    /// largest of 17 stations is refined to the zero of its slope and the stress evaluated there:
-    /// at an interior maximum its derivative along the hinge is zero, so the value's
-    /// gradient with respect to the dimensions and loads is that at the fixed point (the
-    /// envelope theorem), which the scalar type carries exactly.
-    pub fn beam_stress_max<D: Scalar>(
-        self,
-        dims: &[D],
-        width: f64,
-        loads: &HingeLoads<D>,
-        lo: f64,
-        hi: f64,
-    ) -> D {
-        let l = self.length(dims);
-        let at = |xi: f64| -> D {
-            let t = self.thickness_at(dims, xi);
-            let m = (loads.moment + loads.shear * (l * xi)).abs();
-            (m * 6.0 / (t * t) + loads.axial.abs() / t) / width
-        };
-        let f = |xi: f64| at(xi).re();
-        const STATIONS: usize = 16;
-        let xs: Vec<f64> = (0..=STATIONS)
-            .map(|k| lo + (hi - lo) * k as f64 / STATIONS as f64)
-            .collect();
-        let fs: Vec<f64> = xs.iter().map(|&x| f(x)).collect();
-        let best = (0..=STATIONS)
-            .max_by(|&a, &b| fs[a].total_cmp(&fs[b]))
-            .unwrap_or(0);
-        if best == 0 || best == STATIONS {
-            return at(xs[best]);
-        }
-        // the stress's slope along the hinge, exact (a dual number in the place): a maximum
-        // so flat that comparing values could place it only to 1e-8 is placed to rounding
-        let (values, re) = (dims.iter().map(|d| d.re()).collect::<Vec<f64>>(), |d: D| {
-            d.re()
-        });
-        let plain = HingeLoads {
-            axial: re(loads.axial),
-            shear: re(loads.shear),
-            moment: re(loads.moment),
-        };
-        let length = self.length(&values);
-        let slope = |xi: f64| -> f64 {
-            let x = Jet::<1>::variable(xi, 0);
-            let t =
-                self.thickness_along(&values.iter().map(|&v| Jet::from(v)).collect::<Vec<_>>(), x);
-            let m = (x * (plain.shear * length) + plain.moment).abs();
-            ((m * 6.0 / (t * t) + t.recip() * plain.axial.abs()) / width).grad[0]
-        };
-        // the slope falls through zero between the best station's neighbours: the Illinois
-        // variant of false position, which keeps the root bracketed (the profile may be
-        // only once differentiable, where a fillet meets its leaf)
-        let (mut a, mut b) = (xs[best - 1], xs[best + 1]);
-        let (mut ga, mut gb) = (slope(a), slope(b));
-        if !(ga > 0.0 && gb < 0.0) {
-            return at(xs[best]);
-        }
-        let mut xi = xs[best];
-        let mut side = 0;
-        for _ in 0..100 {
-            xi = (a * gb - b * ga) / (gb - ga);
-            if !(xi > a && xi < b) {
-                xi = 0.5 * (a + b);
-            }
-            let g = slope(xi);
-            if g == 0.0 || (b - a) <= 1e-15 * (hi - lo) {
-                break;
-            }
-            if g > 0.0 {
-                a = xi;
-                ga = g;
-                if side == 1 {
-                    gb *= 0.5;
-                }
-                side = 1;
-            } else {
-                b = xi;
-                gb = g;
-                if side == -1 {
-                    ga *= 0.5;
-                }
-                side = -1;
-            }
-        }
-        at(xi)
+/// The largest beam stress `6 |M(x)| / (w t^2) + |N| / (w t)` over the half of the hinge
+/// from `lo` to `hi` (fractions of its length), `M(x) = M + V x` from the loaded end. The
+/// largest of 17 stations is refined to the zero of its slope and the stress evaluated there:
+/// at an interior maximum its derivative along the hinge is zero, so the value's
+/// gradient with respect to the dimensions and loads is that at the fixed point (the
+/// envelope theorem), which the scalar type carries exactly.
+pub fn beam_stress_max<K: Kind, D: Scalar>(
+    kind: &K,
+    dims: &[D],
+    width: f64,
+    loads: &HingeLoads<D>,
+    lo: f64,
+    hi: f64,
+) -> D {
+    let l = kind.length(dims);
+    let at = |xi: f64| -> D {
+        let t = kind.thickness_along(dims, D::from(xi));
+        let m = (loads.moment + loads.shear * (l * xi)).abs();
+        (m * 6.0 / (t * t) + loads.axial.abs() / t) / width
+    };
+    let f = |xi: f64| at(xi).re();
+    const STATIONS: usize = 16;
+    let xs: Vec<f64> = (0..=STATIONS)
+        .map(|k| lo + (hi - lo) * k as f64 / STATIONS as f64)
+        .collect();
+    let fs: Vec<f64> = xs.iter().map(|&x| f(x)).collect();
+    let best = (0..=STATIONS)
+        .max_by(|&a, &b| fs[a].total_cmp(&fs[b]))
+        .unwrap_or(0);
+    if best == 0 || best == STATIONS {
+        return at(xs[best]);
     }
+    // the stress's slope along the hinge, exact (a dual number in the place): a maximum
+    // so flat that comparing values could place it only to 1e-8 is placed to rounding
+    let (values, re) = (dims.iter().map(|d| d.re()).collect::<Vec<f64>>(), |d: D| {
+        d.re()
+    });
+    let plain = HingeLoads {
+        axial: re(loads.axial),
+        shear: re(loads.shear),
+        moment: re(loads.moment),
+    };
+    let length = kind.length(&values);
+    let slope = |xi: f64| -> f64 {
+        let x = Jet::<1>::variable(xi, 0);
+        let t = kind.thickness_along(&values.iter().map(|&v| Jet::from(v)).collect::<Vec<_>>(), x);
+        let m = (x * (plain.shear * length) + plain.moment).abs();
+        ((m * 6.0 / (t * t) + t.recip() * plain.axial.abs()) / width).grad[0]
+    };
+    // the slope falls through zero between the best station's neighbours: the Illinois
+    // variant of false position, which keeps the root bracketed (the profile may be
+    // only once differentiable, where a fillet meets its leaf)
+    let (mut a, mut b) = (xs[best - 1], xs[best + 1]);
+    let (mut ga, mut gb) = (slope(a), slope(b));
+    if !(ga > 0.0 && gb < 0.0) {
+        return at(xs[best]);
+    }
+    let mut xi = xs[best];
+    let mut side = 0;
+    for _ in 0..100 {
+        xi = (a * gb - b * ga) / (gb - ga);
+        if !(xi > a && xi < b) {
+            xi = 0.5 * (a + b);
+        }
+        let g = slope(xi);
+        if g == 0.0 || (b - a) <= 1e-15 * (hi - lo) {
+            break;
+        }
+        if g > 0.0 {
+            a = xi;
+            ga = g;
+            if side == 1 {
+                gb *= 0.5;
+            }
+            side = 1;
+        } else {
+            b = xi;
+            gb = g;
+            if side == -1 {
+                ga *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    at(xi)
 }
 
 /// The bulge of the arc from `p` through `m` to `q`.

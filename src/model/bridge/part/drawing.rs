@@ -3,7 +3,6 @@
 
 use super::{across, add, scale, Quarter, P};
 use crate::model::bridge::geometry::{Geometry, Layout};
-use crate::model::hinge::HingeKind;
 use crate::part::Annotation;
 
 /// A length for a drawing or message: mm, at most three decimals.
@@ -111,11 +110,7 @@ fn length_name(layout: &Layout, k: usize) -> String {
     } else {
         layout.hinge_d
     };
-    let first = dim_names(layout, k).remove(0);
-    match kind {
-        HingeKind::Circular | HingeKind::Elliptical => format!("2 {first}"),
-        _ => first,
-    }
+    kind.length_label(dim_names(layout, k).remove(0))
 }
 
 /// Hinge `k`'s dimensions but the first, each with its value, and a separator.

@@ -218,7 +218,7 @@ pub fn spec(
     let td = layout.hinge_d.root_thickness(g.d.dims());
     // the part's fillets round a strip's roots; a notch meets its bodies smoothly
     let fillet = |kind: HingeKind| {
-        if kind == HingeKind::Strip {
+        if kind.has_sharp_roots() {
             s.fillet_radius
         } else {
             0.0
@@ -400,7 +400,9 @@ pub fn spec(
         },
     ];
     let mut warnings = Vec::new();
-    if s.fillet_radius == 0.0 && [layout.hinge_b, layout.hinge_d].contains(&HingeKind::Strip) {
+    if s.fillet_radius == 0.0
+        && (layout.hinge_b.has_sharp_roots() || layout.hinge_d.has_sharp_roots())
+    {
         warnings.push(
             "part.fillet_radius is 0: the hinge roots are sharp inner corners, which wire \
              EDM cannot cut (its smallest inner radius is about 0.1-0.2 mm) and whose elastic \
