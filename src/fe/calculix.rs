@@ -176,8 +176,15 @@ impl<E: Element> Deck<'_, E> {
                     .iter()
                     .map(|&(plane, k)| id(2 * layer + plane, el[k]).to_string())
                     .collect();
-                // ccx reads at most 16 entries a line
-                let _ = writeln!(out, "{e3}, {},\n{}", s[..10].join(", "), s[10..].join(", "));
+                // ccx reads at most 16 entries a line: the number and ten nodes, then the
+                // rest by fifteen
+                let (first, rest) = s.split_at(s.len().min(10));
+                let mut line = format!("{e3}, {}", first.join(", "));
+                for chunk in rest.chunks(15) {
+                    line += ",\n";
+                    line += &chunk.join(", ");
+                }
+                let _ = writeln!(out, "{line}");
             }
         }
         let through = |nodes: &[usize]| -> Vec<usize> {

@@ -214,7 +214,7 @@ type Chart<'a, 'b> = ChartContext<
 
 /// Each element of the half mesh and its mirror image as the polygon of its corners, mm,
 /// with a value per element; `shift` moves each node (m).
-fn triangles(
+fn cells(
     v: &Verification,
     k: usize,
     shift: &dyn Fn(usize) -> [f64; 2],
@@ -223,7 +223,7 @@ fn triangles(
     polygons(&f.mesh, &f.von_mises, shift)
 }
 
-/// [`triangles`] of any element: its corners are where its sides start.
+/// [`cells`] of any element: its corners are where its sides start.
 fn polygons<E: Element>(
     m: &Mesh<E>,
     von_mises: &[f64],
@@ -277,7 +277,7 @@ fn stress_png(path: &Path, problem: &str, v: &Verification) -> Result<(), WriteE
         let root = root.titled(&title, (FAMILY, 20))?;
         let areas = root.split_evenly((1, v.results.len()));
         for (k, (area, r)) in areas.iter().zip(&v.results).enumerate() {
-            let tris = triangles(v, k, &|_| [0.0, 0.0]);
+            let tris = cells(v, k, &|_| [0.0, 0.0]);
             let top = r.fields.von_mises.iter().copied().fold(0.0, f64::max);
             let peak = v
                 .analysis

@@ -28,7 +28,8 @@ pub use tri6::Tri6;
 /// element is this line.
 pub type PartElement = Tri6;
 
-/// What an element's arrays hold: plain values.
+/// What an element's arrays hold: plain values, so that the arrays copy and compare as the
+/// fixed-size arrays they are.
 pub trait Item: Copy + Debug + PartialEq {}
 
 impl<T: Copy + Debug + PartialEq> Item for T {}
@@ -49,7 +50,8 @@ impl<T: Item, const N: usize> Array<T> for [T; N] {
 
 /// A 2D isoparametric element of plane elasticity: two degrees of freedom a node,
 /// `(u0, v0, u1, v1, ...)`. The element is a type without values; its methods take the
-/// coordinates of its nodes (`x`, in node order) so that a mesh stores only numbers.
+/// coordinates of its nodes (`x`, in node order) so that a mesh stores only numbers; its
+/// bounds let the mesh, its edges and the decks derive theirs.
 pub trait Element: Copy + Debug + PartialEq + 'static {
     /// Nodes of one element.
     const NODES: usize;
