@@ -12,7 +12,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Conj, Mat, Par, Side};
 
-use super::element::{self, Elastic, Idealization};
+use super::element::{Array, Elastic, Element, Idealization};
 use super::mesh::Mesh;
 use super::FeError;
 
@@ -75,15 +75,16 @@ pub struct Pattern {
 }
 
 /// The element degrees of freedom of element `e`.
-fn element_dofs(mesh: &Mesh, e: usize) -> [usize; 12] {
+fn element_dofs<E: Element>(mesh: &Mesh<E>, e: usize) -> E::PerDof<usize> {
     let n = mesh.elements[e];
-    std::array::from_fn(|k| 2 * n[k / 2] + k % 2)
+    E::PerDof::from_fn(|k| 2 * n[k / 2] + k % 2)
 }
 
 /// Each node's neighbours (itself included), sorted.
-fn adjacency(mesh: &Mesh) -> Vec<Vec<usize>> {
+fn adjacency<E: Element>(mesh: &Mesh<E>) -> Vec<Vec<usize>> {
     let mut adj: Vec<Vec<usize>> = vec![Vec::new(); mesh.nodes.len()];
     for el in &mesh.elements {
+        let el = el.as_ref();
         for &a in el {
             adj[a].extend_from_slice(el);
         }
@@ -101,7 +102,7 @@ fn solve_error(what: &str, e: impl std::fmt::Debug) -> FeError {
 
 impl Pattern {
     /// The pattern of `mesh` with the degrees of freedom `fixed` held.
-    pub fn new(mesh: &Mesh, fixed: &[bool]) -> Result<Self, FeError> {
+    pub fn new<E: Element>(mesh: &Mesh<E>, fixed: &[bool]) -> Result<Self, FeError> {
         let dofs = Dofs::new(fixed);
         let adj = adjacency(mesh);
         let n = dofs.count();
@@ -176,13 +177,14 @@ impl Pattern {
         })
     }
 
-    /// The global matrix from element matrices `element(e)` (12 x 12), plus `diagonal`:
+    /// The global matrix from element matrices `element(e)` (one row and column a degree of
+    /// freedom of the element), plus `diagonal`:
     /// `(degree of freedom, value)` added on the diagonal (springs, point masses); those on
     /// fixed degrees of freedom are dropped.
-    fn assemble(
+    fn assemble<E: Element>(
         &self,
-        mesh: &Mesh,
-        element: impl Fn(usize) -> Result<[[f64; 12]; 12], FeError>,
+        mesh: &Mesh<E>,
+        element: impl Fn(usize) -> Result<E::PerDof<E::PerDof<f64>>, FeError>,
         diagonal: &[(usize, f64)],
     ) -> Result<SparseColMat<usize, f64>, FeError> {
         let s = self.symbolic.as_ref();
@@ -195,12 +197,13 @@ impl Pattern {
         }
         for e in 0..mesh.elements.len() {
             let k = element(e)?;
-            let d = element_dofs(mesh, e).map(|d| self.dofs.free(d));
-            for b in 0..12 {
+            let ed = element_dofs(mesh, e);
+            let d = E::PerDof::from_fn(|k| self.dofs.free(ed[k]));
+            for b in 0..2 * E::NODES {
                 let Some(c) = d[b] else { continue };
                 let rows = s.row_idx_of_col_raw(c);
                 let start = s.col_ptr()[c];
-                for a in 0..12 {
+                for a in 0..2 * E::NODES {
                     if let Some(r) = d[a].filter(|&r| r >= c) {
                         let at = rows.binary_search(&r).map_err(|_| {
                             FeError::Solve("an entry is missing from the pattern".into())
@@ -214,9 +217,9 @@ impl Pattern {
     }
 
     /// The stiffness matrix for `material` and `width` in `idealization`.
-    pub fn stiffness(
+    pub fn stiffness<E: Element>(
         &self,
-        mesh: &Mesh,
+        mesh: &Mesh<E>,
         material: &Elastic,
         width: f64,
         idealization: Idealization,
@@ -225,9 +228,9 @@ impl Pattern {
     }
 
     /// The stiffness matrix with springs to ground, `(degree of freedom, stiffness)`.
-    pub fn stiffness_with(
+    pub fn stiffness_with<E: Element>(
         &self,
-        mesh: &Mesh,
+        mesh: &Mesh<E>,
         material: &Elastic,
         width: f64,
         idealization: Idealization,
@@ -238,9 +241,9 @@ impl Pattern {
 
     /// [`Pattern::stiffness_with`], each element's stiffness times `factor(element)` (to
     /// make parts of a mesh nearly rigid, for a measurement).
-    pub fn stiffness_scaled(
+    pub fn stiffness_scaled<E: Element>(
         &self,
-        mesh: &Mesh,
+        mesh: &Mesh<E>,
         material: &Elastic,
         width: f64,
         idealization: Idealization,
@@ -252,16 +255,17 @@ impl Pattern {
             mesh,
             |e| {
                 let f = factor(e);
-                element_stiffness(mesh, e, &d, width).map(|k| k.map(|row| row.map(|v| f * v)))
+                element_stiffness(mesh, e, &d, width)
+                    .map(|k| E::PerDof::from_fn(|a| E::PerDof::from_fn(|b| f * k[a][b])))
             },
             springs,
         )
     }
 
     /// The consistent mass matrix for density `material.density` and `width`.
-    pub fn mass(
+    pub fn mass<E: Element>(
         &self,
-        mesh: &Mesh,
+        mesh: &Mesh<E>,
         material: &Elastic,
         width: f64,
     ) -> Result<SparseColMat<usize, f64>, FeError> {
@@ -269,9 +273,9 @@ impl Pattern {
     }
 
     /// The mass matrix with point masses, `(degree of freedom, mass)`.
-    pub fn mass_with(
+    pub fn mass_with<E: Element>(
         &self,
-        mesh: &Mesh,
+        mesh: &Mesh<E>,
         material: &Elastic,
         width: f64,
         points: &[(usize, f64)],
@@ -279,11 +283,11 @@ impl Pattern {
         self.assemble(
             mesh,
             |e| {
-                let m = element::mass(&mesh.element_nodes(e), material.density, width)
+                let m = E::mass(&mesh.element_nodes(e), material.density, width)
                     .ok_or_else(|| inverted(mesh, e))?;
-                let mut full = [[0.0; 12]; 12];
-                for a in 0..6 {
-                    for b in 0..6 {
+                let mut full = E::PerDof::from_fn(|_| E::PerDof::from_fn(|_| 0.0));
+                for a in 0..E::NODES {
+                    for b in 0..E::NODES {
                         full[2 * a][2 * b] = m[a][b];
                         full[2 * a + 1][2 * b + 1] = m[a][b];
                     }
@@ -350,7 +354,7 @@ impl Pattern {
     }
 }
 
-fn inverted(mesh: &Mesh, e: usize) -> FeError {
+fn inverted<E: Element>(mesh: &Mesh<E>, e: usize) -> FeError {
     let p = mesh.nodes[mesh.elements[e][0]];
     FeError::Mesh(format!(
         "element {e} near ({:.4}, {:.4}) mm is inverted",
@@ -360,13 +364,13 @@ fn inverted(mesh: &Mesh, e: usize) -> FeError {
 }
 
 /// The stiffness matrix of element `e`.
-pub fn element_stiffness(
-    mesh: &Mesh,
+pub fn element_stiffness<E: Element>(
+    mesh: &Mesh<E>,
     e: usize,
     d: &[[f64; 3]; 3],
     width: f64,
-) -> Result<[[f64; 12]; 12], FeError> {
-    element::stiffness(&mesh.element_nodes(e), d, width).ok_or_else(|| inverted(mesh, e))
+) -> Result<E::PerDof<E::PerDof<f64>>, FeError> {
+    E::stiffness(&mesh.element_nodes(e), d, width).ok_or_else(|| inverted(mesh, e))
 }
 
 /// A Cholesky factorization, on the symbolic factorization of its [`Pattern`].
@@ -408,8 +412,8 @@ pub fn symmetric_product(a: &SparseColMat<usize, f64>, x: &[f64], y: &mut [f64])
 
 /// The right-hand side of the free degrees of freedom from a full force vector `forces`
 /// and the prescribed displacements `prescribed` of the fixed ones: `f_free - K_fc u_c`.
-pub fn reduced_rhs(
-    mesh: &Mesh,
+pub fn reduced_rhs<E: Element>(
+    mesh: &Mesh<E>,
     dofs: &Dofs,
     material: &Elastic,
     width: f64,
@@ -428,15 +432,16 @@ pub fn reduced_rhs(
         for e in 0..mesh.elements.len() {
             let ed = element_dofs(mesh, e);
             if !ed
+                .as_ref()
                 .iter()
                 .any(|&d| dofs.free(d).is_none() && prescribed[d] != 0.0)
             {
                 continue;
             }
             let k = element_stiffness(mesh, e, &dm, width)?;
-            for a in 0..12 {
+            for a in 0..2 * E::NODES {
                 let Some(r) = dofs.free(ed[a]) else { continue };
-                for b in 0..12 {
+                for b in 0..2 * E::NODES {
                     if dofs.free(ed[b]).is_none() {
                         rhs[r] -= k[a][b] * prescribed[ed[b]];
                     }

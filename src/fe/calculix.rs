@@ -1,7 +1,9 @@
 //! The analysis as CalculiX input decks, so that the open-source solver `ccx` can check it:
-//! the 2D mesh as CPS6 (plane stress) or CPE6 (plane strain) elements, and the same mesh
-//! extruded through the width into 15-node wedges (C3D15), the 3D model a designer would
-//! otherwise build in another program. Units: mm, N, MPa, tonne/mm^3 (ccx takes any
+//! the 2D mesh as the element's own plane stress or plane strain element (CPS6 or CPE6 for
+//! the six-node triangle), and the same mesh extruded through the width into the element's
+//! prism (C3D15, 15-node wedges, for the triangle), the 3D model a designer would
+//! otherwise build in another program; the names and node orders come from
+//! [`Element`]. Units: mm, N, MPa, tonne/mm^3 (ccx takes any
 //! consistent set).
 //!
 //! Each load case is a step of its own: the clamping face held, the forces of the case as
@@ -14,29 +16,29 @@
 
 use std::fmt::Write as _;
 
-use super::element::{Elastic, Idealization};
-use super::mesh::Mesh;
+use super::element::{Elastic, Element, Idealization, PartElement};
+use super::mesh::{EdgeNodes, Mesh};
 
 /// A load case: its name, its nodal forces (N, two a node) for the 2D deck, and the same
 /// loads as uniform tractions on boundary edges (Pa) for the 3D deck.
 #[derive(Debug, Clone)]
-pub struct LoadCase {
+pub struct LoadCase<E: Element = PartElement> {
     pub name: String,
     pub forces: Vec<f64>,
-    pub tractions: Vec<(Vec<[usize; 3]>, [f64; 2])>,
+    pub tractions: Vec<(Vec<EdgeNodes<E>>, [f64; 2])>,
 }
 
 /// What a deck describes, in metres and newtons (written in mm).
-pub struct Deck<'a> {
+pub struct Deck<'a, E: Element = PartElement> {
     pub title: String,
-    pub mesh: &'a Mesh,
+    pub mesh: &'a Mesh<E>,
     pub material: Elastic,
     pub width: f64,
     /// Node sets to write, by name (the faces).
     pub sets: Vec<(String, Vec<usize>)>,
     /// The nodes held in both directions.
     pub clamp: Vec<usize>,
-    pub cases: Vec<LoadCase>,
+    pub cases: Vec<LoadCase<E>>,
     /// The 2D section's thickness and the loads multiplied by this (1 for the part as it
     /// is): with a small factor ccx's one layer of 3D elements is plane stress and the
     /// displacements are unchanged.
@@ -84,8 +86,8 @@ fn material(out: &mut String, m: &Elastic) {
     let _ = writeln!(out, "{:.10e}", m.density * 1e-12);
 }
 
-impl Deck<'_> {
-    /// The 2D deck (CPS6 or CPE6).
+impl<E: Element> Deck<'_, E> {
+    /// The 2D deck (CPS6 or CPE6 for the six-node triangle).
     pub fn two_d(&self, idealization: Idealization) -> String {
         let mut out = String::new();
         let _ = writeln!(
@@ -98,13 +100,10 @@ impl Deck<'_> {
         for (i, p) in self.mesh.nodes.iter().enumerate() {
             node_line(&mut out, i + 1, p[0], p[1], None);
         }
-        let kind = match idealization {
-            Idealization::PlaneStress => "CPS6",
-            Idealization::PlaneStrain => "CPE6",
-        };
+        let kind = E::calculix_name(idealization);
         let _ = writeln!(out, "*ELEMENT, TYPE={kind}, ELSET=EALL");
         for (e, el) in self.mesh.elements.iter().enumerate() {
-            let ids: Vec<String> = el.iter().map(|n| (n + 1).to_string()).collect();
+            let ids: Vec<String> = el.as_ref().iter().map(|n| (n + 1).to_string()).collect();
             let _ = writeln!(out, "{}, {}", e + 1, ids.join(", "));
         }
         for (name, nodes) in &self.sets {
@@ -134,25 +133,29 @@ impl Deck<'_> {
         out
     }
 
-    /// The 3D deck: the mesh extruded through the width in `layers` layers of C3D15 wedges,
+    /// The 3D deck: the mesh extruded through the width in `layers` layers of prisms,
     /// the clamping face held on its whole surface, the loads as pressures on the faces
     /// (the faces of a load must be normal to its traction, as the bridge's are).
     pub fn three_d(&self, layers: usize) -> String {
         let mut out = String::new();
         let _ = writeln!(
             out,
-            "*HEADING\n{} (3D, {layers} layers of C3D15, flexopt)",
-            self.title
+            "*HEADING\n{} (3D, {layers} layers of {}, flexopt)",
+            self.title,
+            E::CALCULIX_EXTRUDED
         );
         let n2 = self.mesh.nodes.len();
         let planes = 2 * layers + 1;
         let h = self.width / (2 * layers) as f64;
         let id = |plane: usize, node: usize| plane * n2 + node + 1;
-        // corner nodes of the 2D mesh appear on every plane; midside ones on the even planes
+        // the nodes the prism has on its middle plane (corners) appear on every plane, the
+        // others on the even planes
         let mut corner = vec![false; n2];
         for el in &self.mesh.elements {
-            for &c in &el[..3] {
-                corner[c] = true;
+            for &(plane, k) in E::EXTRUSION {
+                if plane == 1 {
+                    corner[el[k]] = true;
+                }
             }
         }
         let used = |plane: usize, node: usize| plane.is_multiple_of(2) || corner[node];
@@ -164,32 +167,24 @@ impl Deck<'_> {
                 }
             }
         }
-        let _ = writeln!(out, "*ELEMENT, TYPE=C3D15, ELSET=EALL");
+        let _ = writeln!(out, "*ELEMENT, TYPE={}, ELSET=EALL", E::CALCULIX_EXTRUDED);
         let mut e3 = 0;
         for layer in 0..layers {
-            let (b, m, t) = (2 * layer, 2 * layer + 1, 2 * layer + 2);
             for el in &self.mesh.elements {
                 e3 += 1;
-                let n: Vec<usize> = vec![
-                    id(b, el[0]),
-                    id(b, el[1]),
-                    id(b, el[2]),
-                    id(t, el[0]),
-                    id(t, el[1]),
-                    id(t, el[2]),
-                    id(b, el[3]),
-                    id(b, el[4]),
-                    id(b, el[5]),
-                    id(t, el[3]),
-                    id(t, el[4]),
-                    id(t, el[5]),
-                    id(m, el[0]),
-                    id(m, el[1]),
-                    id(m, el[2]),
-                ];
-                let s: Vec<String> = n.iter().map(|v| v.to_string()).collect();
-                // ccx reads at most 16 entries a line
-                let _ = writeln!(out, "{e3}, {},\n{}", s[..10].join(", "), s[10..].join(", "));
+                let s: Vec<String> = E::EXTRUSION
+                    .iter()
+                    .map(|&(plane, k)| id(2 * layer + plane, el[k]).to_string())
+                    .collect();
+                // ccx reads at most 16 entries a line: the number and ten nodes, then the
+                // rest by fifteen
+                let (first, rest) = s.split_at(s.len().min(10));
+                let mut line = format!("{e3}, {}", first.join(", "));
+                for chunk in rest.chunks(15) {
+                    line += ",\n";
+                    line += &chunk.join(", ");
+                }
+                let _ = writeln!(out, "{line}");
             }
         }
         let through = |nodes: &[usize]| -> Vec<usize> {
@@ -210,12 +205,11 @@ impl Deck<'_> {
         material(&mut out, &self.material);
         let _ = writeln!(out, "*SOLID SECTION, ELSET=EALL, MATERIAL=PART");
         let _ = writeln!(out, "*BOUNDARY\nCLAMP, 1, 3");
-        // each boundary edge's element and its side: wedge faces 3, 4, 5 stand on the
-        // triangle's sides 1-2, 2-3, 3-1
+        // each boundary edge's element and its side
         let mut side = std::collections::HashMap::new();
         for (e, el) in self.mesh.elements.iter().enumerate() {
-            for k in 0..3 {
-                let (a, b) = (el[k], el[(k + 1) % 3]);
+            for (k, &(i, j)) in E::SIDES.iter().enumerate() {
+                let (a, b) = (el[i], el[j]);
                 side.insert((a.min(b), a.max(b)), (e, k));
             }
         }
@@ -225,13 +219,14 @@ impl Deck<'_> {
             let _ = writeln!(out, "*STEP\n*STATIC\n*DLOAD, OP=NEW");
             for (edges, traction) in &case.tractions {
                 for edge in edges {
-                    let (a, b) = (edge[0], edge[2]);
+                    let (a, b) = (edge[0], edge[E::EDGE_NODES - 1]);
                     let Some(&(e, k)) = side.get(&(a.min(b), a.max(b))) else {
                         continue;
                     };
                     // the outward normal: the element's interior lies left of its sides
                     let el = self.mesh.elements[e];
-                    let (p, q) = (self.mesh.nodes[el[k]], self.mesh.nodes[el[(k + 1) % 3]]);
+                    let (i, j) = E::SIDES[k];
+                    let (p, q) = (self.mesh.nodes[el[i]], self.mesh.nodes[el[j]]);
                     let len = (q[0] - p[0]).hypot(q[1] - p[1]);
                     let normal = [(q[1] - p[1]) / len, -(q[0] - p[0]) / len];
                     // a pressure pushes against the outward normal
@@ -241,7 +236,7 @@ impl Deck<'_> {
                             out,
                             "{}, P{}, {:.10e}",
                             layer * count + e + 1,
-                            k + 3,
+                            E::EXTRUDED_FACES[k],
                             pressure * 1e-6
                         );
                     }

@@ -16,7 +16,7 @@ use super::geometry::{Domain, Edge};
 use super::mesh::{mesh, Mesh};
 use super::richardson::{estimate, Estimate};
 use super::stress::nodal_stresses;
-use super::{element, loads, Elastic, FeError, Idealization};
+use super::{loads, Elastic, FeError, Idealization};
 use crate::model::hinge::{Compliance, HingeKind};
 use crate::part::outline::Arc as BulgeArc;
 use crate::part::Vertex;
@@ -214,7 +214,7 @@ fn one_mesh(
     let axial = loads::uniform_force(m, &end, width, [1.0, 0.0]);
     let pattern = Pattern::new(m, &fixed)?;
     let inside = |e: usize| {
-        let c = element::point(&m.element_nodes(e), [1.0 / 3.0; 3]);
+        let c = m.centre(e);
         (0.0..=l).contains(&c[0])
     };
     let k = pattern.stiffness_scaled(m, material, width, idealization, &[], &|e| {

@@ -1,11 +1,12 @@
 //! Finite elements: the analytic answer checked on the part itself.
 //!
-//! A part's outline ([`geometry`]) is meshed with six-node triangles ([`mesh`], [`element`]),
-//! assembled into sparse matrices and solved by sparse Cholesky ([`assembly`]); loads and
-//! face averages in [`loads`], natural modes in [`modal`], stresses and the hinges' section
-//! resultants in [`stress`], the discretization error from a sequence of uniformly refined
-//! meshes in [`richardson`], CalculiX decks of the same analysis in [`calculix`], and paper
-//! 004's load cases on a bridge in [`verify`]. Everything is SI inside.
+//! A part's outline ([`geometry`]) is meshed ([`mesh`]) with elements behind one interface
+//! ([`element`]; the six-node triangle today), assembled into sparse matrices and solved
+//! by sparse Cholesky ([`assembly`]); loads and face averages in [`loads`], natural modes
+//! in [`modal`], stresses and the hinges' section resultants in [`stress`], the
+//! discretization error from a sequence of uniformly refined meshes in [`richardson`],
+//! CalculiX decks of the same analysis in [`calculix`], and paper 004's load cases on a
+//! bridge in [`verify`]. Everything is SI inside.
 
 pub mod assembly;
 pub mod calculix;
@@ -46,8 +47,8 @@ impl std::error::Error for FeError {}
 
 /// The displacements (full vectors, two a node) of `mesh` under each of `loads` (full force
 /// vectors), with the degrees of freedom `fixed` held at `prescribed`.
-pub fn solve_static(
-    mesh: &mesh::Mesh,
+pub fn solve_static<E: element::Element>(
+    mesh: &mesh::Mesh<E>,
     material: &Elastic,
     width: f64,
     idealization: Idealization,

@@ -3,19 +3,18 @@
 //! of a hinge, from which the beam stress `|N| / (w t) + 6 |M| / (w t^2)` that paper 004's
 //! Eq. 12-17 predict.
 
-use super::element::{self, Elastic, Idealization};
+use super::element::{Array, Elastic, Element, Idealization};
 use super::mesh::Mesh;
 
 /// The element stresses `(xx, yy, xy)` at the nodes, averaged over the elements that share
 /// each node.
-pub fn nodal_stresses(mesh: &Mesh, d: &[[f64; 3]; 3], u: &[f64]) -> Vec<[f64; 3]> {
+pub fn nodal_stresses<E: Element>(mesh: &Mesh<E>, d: &[[f64; 3]; 3], u: &[f64]) -> Vec<[f64; 3]> {
     let mut sum = vec![[0.0; 3]; mesh.nodes.len()];
     let mut count = vec![0u32; mesh.nodes.len()];
     for (e, el) in mesh.elements.iter().enumerate() {
         let x = mesh.element_nodes(e);
-        let ue: [f64; 12] = std::array::from_fn(|k| u[2 * el[k / 2] + k % 2]);
-        for (k, &l) in element::NODE_COORDINATES.iter().enumerate() {
-            let s = element::stress(&x, d, &ue, l);
+        let ue = displacements::<E>(el, u);
+        for (k, s) in E::nodal_stresses(&x, d, &ue).as_ref().iter().enumerate() {
             for c in 0..3 {
                 sum[el[k]][c] += s[c];
             }
@@ -52,7 +51,7 @@ pub struct Locator {
 }
 
 impl Locator {
-    pub fn new(mesh: &Mesh) -> Self {
+    pub fn new<E: Element>(mesh: &Mesh<E>) -> Self {
         let mut bb = [
             f64::INFINITY,
             f64::INFINITY,
@@ -78,7 +77,7 @@ impl Locator {
         for e in 0..mesh.elements.len() {
             let x = mesh.element_nodes(e);
             let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-            for p in &x {
+            for p in x.as_ref() {
                 for k in 0..2 {
                     lo[k] = lo[k].min(p[k]);
                     hi[k] = hi[k].max(p[k]);
@@ -101,8 +100,8 @@ impl Locator {
         }
     }
 
-    /// The element holding `p` and `p`'s area coordinates in it.
-    pub fn find(&self, mesh: &Mesh, p: [f64; 2]) -> Option<(usize, [f64; 3])> {
+    /// The element holding `p` and `p`'s reference coordinates in it.
+    pub fn find<E: Element>(&self, mesh: &Mesh<E>, p: [f64; 2]) -> Option<(usize, E::Reference)> {
         let c = |v: f64, o: f64, n: usize| {
             let k = ((v - o) / self.cell).floor();
             (k >= -1.0 && k <= n as f64).then(|| (k.max(0.0) as usize).min(n - 1))
@@ -113,25 +112,29 @@ impl Locator {
         self.cells[row * self.columns + col]
             .iter()
             .filter_map(|&e| {
-                let l = element::locate(&mesh.element_nodes(e), p)?;
-                l.iter().all(|&v| v >= -tol).then_some((e, l))
+                let l = E::locate(&mesh.element_nodes(e), p)?;
+                E::contains(l, tol).then_some((e, l))
             })
             .next()
     }
 }
 
 /// The stress `(xx, yy, xy)` at `p`, if `p` lies in the mesh.
-pub fn stress_at(
-    mesh: &Mesh,
+pub fn stress_at<E: Element>(
+    mesh: &Mesh<E>,
     locator: &Locator,
     d: &[[f64; 3]; 3],
     u: &[f64],
     p: [f64; 2],
 ) -> Option<[f64; 3]> {
     let (e, l) = locator.find(mesh, p)?;
-    let el = mesh.elements[e];
-    let ue: [f64; 12] = std::array::from_fn(|k| u[2 * el[k / 2] + k % 2]);
-    Some(element::stress(&mesh.element_nodes(e), d, &ue, l))
+    let ue = displacements::<E>(&mesh.elements[e], u);
+    Some(E::stress(&mesh.element_nodes(e), d, &ue, l))
+}
+
+/// The displacements of an element's degrees of freedom, from the full vector `u`.
+fn displacements<E: Element>(el: &E::PerNode<usize>, u: &[f64]) -> E::PerDof<f64> {
+    E::PerDof::from_fn(|k| u[2 * el[k / 2] + k % 2])
 }
 
 /// The section resultants across a line: the axial force `N` and the bending moment `M`
@@ -150,8 +153,8 @@ pub struct Section {
 /// hinge's direction), `thickness` wide. The integral is composite Gauss (16 pieces of three
 /// points), accurate to the element field's own error.
 #[allow(clippy::too_many_arguments)]
-pub fn section(
-    mesh: &Mesh,
+pub fn section<E: Element>(
+    mesh: &Mesh<E>,
     locator: &Locator,
     d: &[[f64; 3]; 3],
     u: &[f64],

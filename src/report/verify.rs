@@ -13,6 +13,8 @@ use serde::Serialize;
 
 use super::plot::{render_png, FAMILY};
 use super::{write_atomic, write_json, WriteError};
+use crate::fe::element::Element;
+use crate::fe::mesh::Mesh;
 use crate::fe::richardson::Estimate;
 use crate::fe::verify::{Level, Verification};
 use crate::fe::Idealization;
@@ -211,25 +213,37 @@ type Chart<'a, 'b> = ChartContext<
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
 >;
 
-/// Each element of the half mesh and its mirror image as a triangle of its corners, mm,
+/// Each element of the half mesh and its mirror image as the polygon of its corners, mm,
 /// with a value per element; `shift` moves each node (m).
-fn triangles(
+fn cells(
     v: &Verification,
     k: usize,
     shift: &dyn Fn(usize) -> [f64; 2],
-) -> Vec<([(f64, f64); 3], f64)> {
+) -> Vec<(Vec<(f64, f64)>, f64)> {
     let f = &v.results[k].fields;
-    let m = &f.mesh;
+    polygons(&f.mesh, &f.von_mises, shift)
+}
+
+/// [`cells`] of any element: its corners are where its sides start.
+fn polygons<E: Element>(
+    m: &Mesh<E>,
+    von_mises: &[f64],
+    shift: &dyn Fn(usize) -> [f64; 2],
+) -> Vec<(Vec<(f64, f64)>, f64)> {
     let mut out = Vec::with_capacity(2 * m.elements.len());
     for el in &m.elements {
-        let value = el.iter().map(|&n| f.von_mises[n]).sum::<f64>() / 6.0;
-        let corners = [el[0], el[1], el[2]].map(|n| {
-            let d = shift(n);
-            (m.nodes[n][0] + d[0], m.nodes[n][1] + d[1])
-        });
+        let value = el.as_ref().iter().map(|&n| von_mises[n]).sum::<f64>() / E::NODES as f64;
+        let corners: Vec<(f64, f64)> = E::SIDES
+            .iter()
+            .map(|&(c, _)| {
+                let n = el[c];
+                let d = shift(n);
+                (m.nodes[n][0] + d[0], m.nodes[n][1] + d[1])
+            })
+            .collect();
         let mm = |p: (f64, f64)| (p.0 * 1e3, p.1 * 1e3);
-        out.push((corners.map(mm), value));
-        out.push((corners.map(|p| mm((-p.0, p.1))), value));
+        out.push((corners.iter().map(|&p| mm(p)).collect(), value));
+        out.push((corners.iter().map(|&p| mm((-p.0, p.1))).collect(), value));
     }
     out
 }
@@ -264,7 +278,7 @@ fn stress_png(path: &Path, problem: &str, v: &Verification) -> Result<(), WriteE
         let root = root.titled(&title, (FAMILY, 20))?;
         let areas = root.split_evenly((1, v.results.len()));
         for (k, (area, r)) in areas.iter().zip(&v.results).enumerate() {
-            let tris = triangles(v, k, &|_| [0.0, 0.0]);
+            let tris = cells(v, k, &|_| [0.0, 0.0]);
             let top = r.fields.von_mises.iter().copied().fold(0.0, f64::max);
             let peak = v
                 .analysis
@@ -282,7 +296,7 @@ fn stress_png(path: &Path, problem: &str, v: &Verification) -> Result<(), WriteE
             );
             let mut chart = panel(area, &caption, xr, yr)?;
             chart.draw_series(tris.iter().map(|(t, val)| {
-                Polygon::new(t.to_vec(), heat(val / top.max(f64::MIN_POSITIVE)).filled())
+                Polygon::new(t.clone(), heat(val / top.max(f64::MIN_POSITIVE)).filled())
             }))?;
             if let Some(at) = peak.and_then(|p| p.location_mm) {
                 for p in [at, [-at[0], at[1]]] {

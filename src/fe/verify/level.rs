@@ -3,7 +3,7 @@
 use crate::fe::assembly::Pattern;
 use crate::fe::element::{Elastic, Idealization};
 use crate::fe::geometry::Domain;
-use crate::fe::mesh::Mesh;
+use crate::fe::mesh::{EdgeNodes, Mesh};
 use crate::fe::stress::{nodal_stresses, peak_von_mises, section, Locator};
 use crate::fe::{loads, modal, FeError};
 use crate::part::analysis::{ActuationCase, Analysis, Quantity};
@@ -71,13 +71,9 @@ pub(super) fn face_nodes(m: &Mesh, domain: &Domain, name: &str) -> Vec<usize> {
     nodes
 }
 
-pub(super) fn face_edges(
-    m: &Mesh,
-    domain: &Domain,
-    name: &str,
-) -> Result<Vec<[usize; 3]>, FeError> {
+pub(super) fn face_edges(m: &Mesh, domain: &Domain, name: &str) -> Result<Vec<EdgeNodes>, FeError> {
     let tol = 1e-9 * domain.size();
-    let edges: Vec<[usize; 3]> = domain
+    let edges: Vec<EdgeNodes> = domain
         .faces
         .iter()
         .filter(|f| f.name == name)
@@ -168,7 +164,7 @@ pub(super) fn solve_level(
     let edges = Edges::of(m, d, &stated.faces())?;
     let p = &holds.pattern;
     let in_hinge = |e: usize| {
-        let c = crate::fe::element::point(&m.element_nodes(e), [1.0 / 3.0; 3]);
+        let c = m.centre(e);
         d.hinges.iter().any(|h| {
             let len = (h.end[0] - h.start[0]).hypot(h.end[1] - h.start[1]);
             let u = [(h.end[0] - h.start[0]) / len, (h.end[1] - h.start[1]) / len];

@@ -11,7 +11,7 @@
 
 use crate::fe::geometry::Domain;
 use crate::fe::loads;
-use crate::fe::mesh::Mesh;
+use crate::fe::mesh::{EdgeNodes, Mesh};
 use crate::fe::FeError;
 use crate::part::analysis::{Analysis, Measure, Quantity};
 use crate::part::Face;
@@ -262,7 +262,7 @@ pub(super) fn half(analysis: &Analysis, faces: &[Face], force: f64) -> Result<St
 }
 
 /// The edges of every face a statement names, found once a mesh.
-pub(super) struct Edges(Vec<(String, Vec<[usize; 3]>)>);
+pub(super) struct Edges(Vec<(String, Vec<EdgeNodes>)>);
 
 impl Edges {
     pub(super) fn of(m: &Mesh, domain: &Domain, names: &[&str]) -> Result<Self, FeError> {
@@ -273,7 +273,7 @@ impl Edges {
             .map(Edges)
     }
 
-    pub(super) fn get(&self, name: &str) -> &[[usize; 3]] {
+    pub(super) fn get(&self, name: &str) -> &[EdgeNodes] {
         self.0
             .iter()
             .find(|(n, _)| n == name)

@@ -5,7 +5,7 @@ use super::statement::{case_forces, measure, whole, Edges, Read};
 use super::Verification;
 use crate::fe::element::{Elastic, Idealization};
 use crate::fe::geometry::Domain;
-use crate::fe::mesh::Mesh;
+use crate::fe::mesh::{EdgeNodes, Mesh};
 use crate::fe::{loads, FeError};
 
 /// The whole part's mesh at one level of a verification, with its faces and the static load
@@ -35,7 +35,7 @@ impl Verification {
         let edges = Edges::of(&mesh, &domain, &named)?;
         let w = self.width;
         let f = self.test_force;
-        let area = |e: &[[usize; 3]]| loads::length(&mesh, e) * w;
+        let area = |e: &[EdgeNodes]| loads::length(&mesh, e) * w;
         let cases = self
             .analysis
             .cases

@@ -1,12 +1,11 @@
-//! Meshes of six-node triangles: the first from a constrained Delaunay triangulation of the
-//! outline with Ruppert refinement (the `spade` crate), each next one by splitting every
-//! triangle into four, so that a sequence of meshes refines uniformly (element size halved)
-//! for the error estimate's extrapolation.
+//! The six-node triangle's mesher, triangle-specific as every mesher is: the first mesh from
+//! a constrained Delaunay triangulation of the outline with Ruppert refinement (the `spade`
+//! crate), each next one by splitting every triangle into four, so that a sequence of
+//! meshes refines uniformly (element size halved) for the error estimate's extrapolation.
 //!
 //! Element sizes follow a size function: the outline is split into segments of the local
 //! size, and the refinement (minimum angle 25 degrees, largest area that of the coarsest
-//! element) grades the interior from them. Nodes on arcs are put on the arc, so the
-//! elements' edges there are curved (isoparametric) and stay on the outline at every level.
+//! element) grades the interior from them.
 
 use std::collections::{HashMap, HashSet};
 
@@ -15,61 +14,22 @@ use spade::{
     AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
 
-use super::element;
-use super::geometry::{Domain, Edge};
-use super::FeError;
+use super::{BoundaryEdge, Mesh, Mesher};
+use crate::fe::element::{Element, Tri6};
+use crate::fe::geometry::{Domain, Edge};
+use crate::fe::FeError;
 
-/// A mesh of six-node triangles (node order of [`element`]), in metres.
-#[derive(Debug, Clone)]
-pub struct Mesh {
-    pub nodes: Vec<[f64; 2]>,
-    pub elements: Vec<[usize; 6]>,
-    /// The edges on the outline: corner, midside, corner; with the index of the outline
-    /// edge (in the order of [`Domain::loops`], flattened) they lie on.
-    pub boundary: Vec<BoundaryEdge>,
-    /// How many times the first mesh was split into four to give this one.
-    pub level: usize,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BoundaryEdge {
-    pub nodes: [usize; 3],
-    pub edge: usize,
-}
-
-impl Mesh {
-    /// The coordinates of element `e`'s nodes.
-    pub fn element_nodes(&self, e: usize) -> [[f64; 2]; 6] {
-        self.elements[e].map(|n| self.nodes[n])
+impl Mesher for Tri6 {
+    fn first_mesh(
+        domain: &Domain,
+        size: &dyn Fn([f64; 2]) -> f64,
+        max_size: f64,
+    ) -> Result<Mesh<Tri6>, FeError> {
+        first_mesh(domain, size, max_size)
     }
 
-    /// The total area of the elements.
-    pub fn area(&self) -> f64 {
-        (0..self.elements.len())
-            .map(|e| element::area(&self.element_nodes(e)))
-            .sum()
-    }
-
-    /// The boundary edges whose three nodes lie on the segment `a`-`b` (within `tol`).
-    pub fn edges_on(&self, a: [f64; 2], b: [f64; 2], tol: f64) -> Vec<[usize; 3]> {
-        let line = Edge::Line { a, b };
-        self.boundary
-            .iter()
-            .filter(|e| {
-                e.nodes
-                    .iter()
-                    .all(|&n| line.nearest(self.nodes[n]).0 <= tol)
-            })
-            .map(|e| e.nodes)
-            .collect()
-    }
-
-    /// The nodes on the segment `a`-`b` of the boundary, sorted, without repeats.
-    pub fn nodes_on(&self, a: [f64; 2], b: [f64; 2], tol: f64) -> Vec<usize> {
-        let mut n: Vec<usize> = self.edges_on(a, b, tol).into_iter().flatten().collect();
-        n.sort_unstable();
-        n.dedup();
-        n
+    fn refine(mesh: &Mesh<Tri6>, domain: &Domain) -> Mesh<Tri6> {
+        refine(mesh, domain)
     }
 }
 
@@ -133,11 +93,11 @@ fn boundary_points(domain: &Domain, size: &dyn Fn([f64; 2]) -> f64) -> Vec<Vec<(
 
 /// The first mesh of `domain`, elements sized by `size` (m, a function of the place), never
 /// larger than `max_size`.
-pub fn mesh(
+fn first_mesh(
     domain: &Domain,
     size: &dyn Fn([f64; 2]) -> f64,
     max_size: f64,
-) -> Result<Mesh, FeError> {
+) -> Result<Mesh<Tri6>, FeError> {
     let loops = boundary_points(domain, size);
     let mut vertices = Vec::new();
     let mut constraints = Vec::new();
@@ -272,11 +232,11 @@ fn nearest_flat(flat: &[Edge], p: [f64; 2]) -> (usize, f64) {
 }
 
 /// Every element's map must be one to one at its integration points.
-fn check_elements(mesh: &Mesh) -> Result<(), FeError> {
+fn check_elements(mesh: &Mesh<Tri6>) -> Result<(), FeError> {
     for e in 0..mesh.elements.len() {
         let x = mesh.element_nodes(e);
-        for l in element::NODE_COORDINATES {
-            if element::gradients(&x, l).is_none() {
+        for l in Tri6::node_coordinates() {
+            if Tri6::gradients(&x, l).is_none() {
                 return Err(FeError::Mesh(format!(
                     "element {e} near ({:.4}, {:.4}) mm is inverted",
                     x[0][0] * 1e3,
@@ -304,133 +264,80 @@ const CHILD_POINTS: [[f64; 3]; 9] = [
     [0.5, 0.25, 0.25],
 ];
 
-impl Mesh {
-    /// The mesh with every triangle split into four (element size halved); new nodes on the
-    /// outline put on it exactly.
-    pub fn refined(&self, domain: &Domain) -> Mesh {
-        let flat: Vec<Edge> = domain.loops.iter().flatten().copied().collect();
-        let mut nodes = self.nodes.clone();
-        // the boundary edge (corner, corner) -> its outline edge
-        let outline: HashMap<(usize, usize), usize> = self
-            .boundary
-            .iter()
-            .flat_map(|b| {
-                let [a, m, c] = b.nodes;
-                [
-                    ((a.min(m), a.max(m)), b.edge),
-                    ((m.min(c), m.max(c)), b.edge),
-                ]
-            })
-            .collect();
-        let mut shared: HashMap<(usize, usize), usize> = HashMap::new();
-        let mut elements = Vec::with_capacity(4 * self.elements.len());
-        for (e, el) in self.elements.iter().enumerate() {
-            let x = self.element_nodes(e);
-            let [c0, c1, c2, m01, m12, m20] = *el;
-            // the parent's half edges, each with its new midpoint
-            let halves = [
-                (c0, m01),
-                (m01, c1),
-                (c1, m12),
-                (m12, c2),
-                (c2, m20),
-                (m20, c0),
-            ];
-            let mut q = [0usize; 9];
-            for (k, &(a, b)) in halves.iter().enumerate() {
-                let key = (a.min(b), a.max(b));
-                q[k] = *shared.entry(key).or_insert_with(|| {
-                    let mut p = element::point(&x, CHILD_POINTS[k]);
-                    if let Some(&edge) = outline.get(&key) {
-                        p = flat[edge].project(p);
-                    }
-                    nodes.push(p);
-                    nodes.len() - 1
-                });
-            }
-            for k in 6..9 {
-                nodes.push(element::point(&x, CHILD_POINTS[k]));
-                q[k] = nodes.len() - 1;
-            }
-            // children: (corner, corner, corner, mid 01, mid 12, mid 20)
-            elements.push([c0, m01, m20, q[0], q[8], q[5]]);
-            elements.push([m01, c1, m12, q[1], q[2], q[6]]);
-            elements.push([m20, m12, c2, q[7], q[3], q[4]]);
-            elements.push([m01, m12, m20, q[6], q[7], q[8]]);
-        }
-        let boundary = self
-            .boundary
-            .iter()
-            .flat_map(|b| {
-                let [a, m, c] = b.nodes;
-                [
-                    BoundaryEdge {
-                        nodes: [a, shared[&(a.min(m), a.max(m))], m],
-                        edge: b.edge,
-                    },
-                    BoundaryEdge {
-                        nodes: [m, shared[&(m.min(c), m.max(c))], c],
-                        edge: b.edge,
-                    },
-                ]
-            })
-            .collect();
-        Mesh {
-            nodes,
-            elements,
-            boundary,
-            level: self.level + 1,
-        }
-    }
-}
-
-impl Mesh {
-    /// The whole of a mesh of the half `x >= 0` of a part symmetric about the y axis: the
-    /// half and its mirror image, sharing the nodes on the axis (within `tol`).
-    pub fn mirrored_about_y(&self, tol: f64) -> Mesh {
-        let n = self.nodes.len();
-        let on_axis: Vec<bool> = self.nodes.iter().map(|p| p[0].abs() <= tol).collect();
-        let mut nodes = self.nodes.clone();
-        let mut image = vec![0usize; n];
-        for (i, p) in self.nodes.iter().enumerate() {
-            image[i] = if on_axis[i] {
-                i
-            } else {
-                nodes.push([-p[0], p[1]]);
-                nodes.len() - 1
-            };
-        }
-        let mut elements = self.elements.clone();
-        // mirrored, and reversed to stay counterclockwise
-        elements.extend(self.elements.iter().map(|e| {
+/// The mesh with every triangle split into four (element size halved); new nodes on the
+/// outline put on it exactly.
+fn refine(mesh: &Mesh<Tri6>, domain: &Domain) -> Mesh<Tri6> {
+    let flat: Vec<Edge> = domain.loops.iter().flatten().copied().collect();
+    let mut nodes = mesh.nodes.clone();
+    // the boundary edge (corner, corner) -> its outline edge
+    let outline: HashMap<(usize, usize), usize> = mesh
+        .boundary
+        .iter()
+        .flat_map(|b| {
+            let [a, m, c] = b.nodes;
             [
-                image[e[0]],
-                image[e[2]],
-                image[e[1]],
-                image[e[5]],
-                image[e[4]],
-                image[e[3]],
+                ((a.min(m), a.max(m)), b.edge),
+                ((m.min(c), m.max(c)), b.edge),
             ]
-        }));
-        let mut boundary: Vec<BoundaryEdge> = self
-            .boundary
-            .iter()
-            .filter(|b| !b.nodes.iter().all(|&k| on_axis[k]))
-            .copied()
-            .collect();
-        let mirrored: Vec<BoundaryEdge> = boundary
-            .iter()
-            .map(|b| BoundaryEdge {
-                nodes: [image[b.nodes[2]], image[b.nodes[1]], image[b.nodes[0]]],
-                edge: b.edge,
-            })
-            .collect();
-        boundary.extend(mirrored);
-        Mesh {
-            nodes,
-            elements,
-            boundary,
-            level: self.level,
+        })
+        .collect();
+    let mut shared: HashMap<(usize, usize), usize> = HashMap::new();
+    let mut elements = Vec::with_capacity(4 * mesh.elements.len());
+    for (e, el) in mesh.elements.iter().enumerate() {
+        let x = mesh.element_nodes(e);
+        let [c0, c1, c2, m01, m12, m20] = *el;
+        // the parent's half edges, each with its new midpoint
+        let halves = [
+            (c0, m01),
+            (m01, c1),
+            (c1, m12),
+            (m12, c2),
+            (c2, m20),
+            (m20, c0),
+        ];
+        let mut q = [0usize; 9];
+        for (k, &(a, b)) in halves.iter().enumerate() {
+            let key = (a.min(b), a.max(b));
+            q[k] = *shared.entry(key).or_insert_with(|| {
+                let mut p = Tri6::point(&x, CHILD_POINTS[k]);
+                if let Some(&edge) = outline.get(&key) {
+                    p = flat[edge].project(p);
+                }
+                nodes.push(p);
+                nodes.len() - 1
+            });
         }
+        for k in 6..9 {
+            nodes.push(Tri6::point(&x, CHILD_POINTS[k]));
+            q[k] = nodes.len() - 1;
+        }
+        // children: (corner, corner, corner, mid 01, mid 12, mid 20)
+        elements.push([c0, m01, m20, q[0], q[8], q[5]]);
+        elements.push([m01, c1, m12, q[1], q[2], q[6]]);
+        elements.push([m20, m12, c2, q[7], q[3], q[4]]);
+        elements.push([m01, m12, m20, q[6], q[7], q[8]]);
+    }
+    let boundary = mesh
+        .boundary
+        .iter()
+        .flat_map(|b| {
+            let [a, m, c] = b.nodes;
+            [
+                BoundaryEdge {
+                    nodes: [a, shared[&(a.min(m), a.max(m))], m],
+                    edge: b.edge,
+                },
+                BoundaryEdge {
+                    nodes: [m, shared[&(m.min(c), m.max(c))], c],
+                    edge: b.edge,
+                },
+            ]
+        })
+        .collect();
+    Mesh {
+        nodes,
+        elements,
+        boundary,
+        level: mesh.level + 1,
     }
 }

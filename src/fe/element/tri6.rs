@@ -8,74 +8,15 @@
 //! 7th ed., 2013, Sec. 6.4, Eq. 6.30). Integrals use the six-point rule of degree 4 (Dunavant,
 //! "High degree efficient symmetrical Gaussian quadrature rules for the triangle", Int. J.
 //! Numer. Meth. Eng. 21, 1985, Table I, p = 4), exact for the stiffness (degree 2) and the
-//! consistent mass (degree 4) of a straight-sided element.
+//! consistent mass (degree 4) of a straight-sided element. Its edges are quadratic, its
+//! CalculiX names CPS6 and CPE6, and its extrusion through the width the 15-node wedge
+//! C3D15, in the node order [`Element::EXTRUSION`] gives.
 
-/// The 2D idealizations of a plate of width `w` loaded in its plane.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Idealization {
-    /// No stress through the width: a thin plate.
-    PlaneStress,
-    /// No strain through the width: a wide one (a hinge 25 times wider than thick bends
-    /// with `E / (1 - nu^2)`, as this gives).
-    PlaneStrain,
-}
+use super::{quadratic_edge_shape, Element, Idealization, QUADRATIC_EDGE_GAUSS};
 
-impl Idealization {
-    pub const BOTH: [Idealization; 2] = [Idealization::PlaneStress, Idealization::PlaneStrain];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Idealization::PlaneStress => "plane stress",
-            Idealization::PlaneStrain => "plane strain",
-        }
-    }
-}
-
-/// An isotropic linear elastic material, SI.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Elastic {
-    pub youngs_modulus: f64,
-    pub poisson_ratio: f64,
-    pub density: f64,
-}
-
-impl Elastic {
-    /// The matrix `D` with `sigma = D epsilon`, for `(xx, yy, xy)` and engineering shear
-    /// strain.
-    pub fn d_matrix(&self, idealization: Idealization) -> [[f64; 3]; 3] {
-        let (e, nu) = (self.youngs_modulus, self.poisson_ratio);
-        match idealization {
-            Idealization::PlaneStress => {
-                let c = e / (1.0 - nu * nu);
-                [
-                    [c, c * nu, 0.0],
-                    [c * nu, c, 0.0],
-                    [0.0, 0.0, c * 0.5 * (1.0 - nu)],
-                ]
-            }
-            Idealization::PlaneStrain => {
-                let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
-                [
-                    [c * (1.0 - nu), c * nu, 0.0],
-                    [c * nu, c * (1.0 - nu), 0.0],
-                    [0.0, 0.0, c * 0.5 * (1.0 - 2.0 * nu)],
-                ]
-            }
-        }
-    }
-
-    /// The von Mises stress of the in-plane stresses `s = (xx, yy, xy)`: with `zz = 0` in
-    /// plane stress and `zz = nu (xx + yy)` in plane strain.
-    pub fn von_mises(&self, s: [f64; 3], idealization: Idealization) -> f64 {
-        let zz = match idealization {
-            Idealization::PlaneStress => 0.0,
-            Idealization::PlaneStrain => self.poisson_ratio * (s[0] + s[1]),
-        };
-        let (a, b, c) = (s[0] - s[1], s[1] - zz, zz - s[0]);
-        (0.5 * (a * a + b * b + c * c) + 3.0 * s[2] * s[2]).sqrt()
-    }
-}
+/// The six-node triangle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Tri6;
 
 /// The six-point rule: `(L1, L2, L3)` and weights summing to one.
 const GAUSS: [([f64; 3], f64); 6] = {
@@ -96,7 +37,7 @@ const GAUSS: [([f64; 3], f64); 6] = {
 };
 
 /// Area coordinates of the six nodes.
-pub const NODE_COORDINATES: [[f64; 3]; 6] = [
+const NODE_COORDINATES: [[f64; 3]; 6] = [
     [1.0, 0.0, 0.0],
     [0.0, 1.0, 0.0],
     [0.0, 0.0, 1.0],
@@ -106,7 +47,7 @@ pub const NODE_COORDINATES: [[f64; 3]; 6] = [
 ];
 
 /// The shape functions at area coordinates `l`.
-pub fn shape(l: [f64; 3]) -> [f64; 6] {
+fn shape(l: [f64; 3]) -> [f64; 6] {
     [
         l[0] * (2.0 * l[0] - 1.0),
         l[1] * (2.0 * l[1] - 1.0),
@@ -143,7 +84,7 @@ fn shape_derivatives(l: [f64; 3]) -> [[f64; 6]; 2] {
 
 /// The map of an element at `l`: the derivatives of the shape functions with respect to x
 /// and y, and the Jacobian's determinant; `None` where the element is inverted.
-pub fn gradients(x: &[[f64; 2]; 6], l: [f64; 3]) -> Option<([[f64; 6]; 2], f64)> {
+fn gradients(x: &[[f64; 2]; 6], l: [f64; 3]) -> Option<([[f64; 6]; 2], f64)> {
     let d = shape_derivatives(l);
     let mut j = [[0.0; 2]; 2];
     for (k, p) in x.iter().enumerate() {
@@ -169,21 +110,10 @@ pub fn gradients(x: &[[f64; 2]; 6], l: [f64; 3]) -> Option<([[f64; 6]; 2], f64)>
     Some((g, det))
 }
 
-/// The point of the element at area coordinates `l`.
-pub fn point(x: &[[f64; 2]; 6], l: [f64; 3]) -> [f64; 2] {
-    let n = shape(l);
-    let mut p = [0.0; 2];
-    for (ni, xi) in n.iter().zip(x) {
-        p[0] += ni * xi[0];
-        p[1] += ni * xi[1];
-    }
-    p
-}
-
 /// The element's stiffness matrix (12 x 12, degrees of freedom `(u0, v0, u1, v1, ...)`) for
 /// the constitutive matrix `d` and the out-of-plane width `width`; `None` for an inverted
 /// element.
-pub fn stiffness(x: &[[f64; 2]; 6], d: &[[f64; 3]; 3], width: f64) -> Option<[[f64; 12]; 12]> {
+fn stiffness(x: &[[f64; 2]; 6], d: &[[f64; 3]; 3], width: f64) -> Option<[[f64; 12]; 12]> {
     let mut k = [[0.0; 12]; 12];
     for (l, w) in GAUSS {
         let (g, det) = gradients(x, l)?;
@@ -210,7 +140,7 @@ pub fn stiffness(x: &[[f64; 2]; 6], d: &[[f64; 3]; 3], width: f64) -> Option<[[f
 
 /// The element's consistent mass matrix per direction (6 x 6; the same for u and v) for
 /// density `rho` and width `width`.
-pub fn mass(x: &[[f64; 2]; 6], rho: f64, width: f64) -> Option<[[f64; 6]; 6]> {
+fn mass(x: &[[f64; 2]; 6], rho: f64, width: f64) -> Option<[[f64; 6]; 6]> {
     let mut m = [[0.0; 6]; 6];
     for (l, w) in GAUSS {
         let (_, det) = gradients(x, l)?;
@@ -225,17 +155,9 @@ pub fn mass(x: &[[f64; 2]; 6], rho: f64, width: f64) -> Option<[[f64; 6]; 6]> {
     Some(m)
 }
 
-/// The element's area (its curved edges included).
-pub fn area(x: &[[f64; 2]; 6]) -> f64 {
-    GAUSS
-        .iter()
-        .map(|&(l, w)| gradients(x, l).map_or(0.0, |(_, det)| w * 0.5 * det))
-        .sum()
-}
-
 /// The stresses `(xx, yy, xy)` at area coordinates `l` of an element with nodal
 /// displacements `u` (12 values).
-pub fn stress(x: &[[f64; 2]; 6], d: &[[f64; 3]; 3], u: &[f64; 12], l: [f64; 3]) -> [f64; 3] {
+fn stress(x: &[[f64; 2]; 6], d: &[[f64; 3]; 3], u: &[f64; 12], l: [f64; 3]) -> [f64; 3] {
     let Some((g, _)) = gradients(x, l) else {
         return [f64::NAN; 3];
     };
@@ -254,7 +176,7 @@ pub fn stress(x: &[[f64; 2]; 6], d: &[[f64; 3]; 3], u: &[f64; 12], l: [f64; 3]) 
 
 /// The area coordinates of the point `p` in the element, by Newton's method on the
 /// isoparametric map from the straight triangle's guess; `None` if it does not converge.
-pub fn locate(x: &[[f64; 2]; 6], p: [f64; 2]) -> Option<[f64; 3]> {
+fn locate(x: &[[f64; 2]; 6], p: [f64; 2]) -> Option<[f64; 3]> {
     // the straight triangle's barycentric coordinates as the first guess
     let (a, b, c) = (x[0], x[1], x[2]);
     let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
@@ -262,7 +184,7 @@ pub fn locate(x: &[[f64; 2]; 6], p: [f64; 2]) -> Option<[f64; 3]> {
     let mut eta = ((b[0] - a[0]) * (p[1] - a[1]) - (p[0] - a[0]) * (b[1] - a[1])) / det;
     for _ in 0..20 {
         let l = [1.0 - xi - eta, xi, eta];
-        let q = point(x, l);
+        let q = Tri6::point(x, l);
         let r = [p[0] - q[0], p[1] - q[1]];
         let d = shape_derivatives(l);
         let mut j = [[0.0; 2]; 2];
@@ -284,4 +206,93 @@ pub fn locate(x: &[[f64; 2]; 6], p: [f64; 2]) -> Option<[f64; 3]> {
         }
     }
     None
+}
+
+impl Element for Tri6 {
+    const NODES: usize = 6;
+    const EDGE_NODES: usize = 3;
+    type PerNode<T: super::Item> = [T; 6];
+    type PerDof<T: super::Item> = [T; 12];
+    type PerEdge<T: super::Item> = [T; 3];
+    type Reference = [f64; 3];
+    const REFERENCE_AREA: f64 = 0.5;
+    const CENTRE: [f64; 3] = [1.0 / 3.0; 3];
+    const SIDES: &'static [(usize, usize)] = &[(0, 1), (1, 2), (2, 0)];
+    const CALCULIX_EXTRUDED: &'static str = "C3D15";
+    // corners of the bottom, of the top, midsides of the bottom, of the top, and the
+    // corners again on the middle plane
+    const EXTRUSION: &'static [(usize, usize)] = &[
+        (0, 0),
+        (0, 1),
+        (0, 2),
+        (2, 0),
+        (2, 1),
+        (2, 2),
+        (0, 3),
+        (0, 4),
+        (0, 5),
+        (2, 3),
+        (2, 4),
+        (2, 5),
+        (1, 0),
+        (1, 1),
+        (1, 2),
+    ];
+    // the wedge's faces 3, 4, 5 stand on the triangle's sides 1-2, 2-3, 3-1
+    const EXTRUDED_FACES: &'static [usize] = &[3, 4, 5];
+
+    fn node_coordinates() -> [[f64; 3]; 6] {
+        NODE_COORDINATES
+    }
+
+    fn quadrature() -> &'static [([f64; 3], f64)] {
+        &GAUSS
+    }
+
+    fn shape(l: [f64; 3]) -> [f64; 6] {
+        shape(l)
+    }
+
+    fn gradients(x: &[[f64; 2]; 6], l: [f64; 3]) -> Option<([[f64; 6]; 2], f64)> {
+        gradients(x, l)
+    }
+
+    fn stiffness(x: &[[f64; 2]; 6], d: &[[f64; 3]; 3], width: f64) -> Option<[[f64; 12]; 12]> {
+        stiffness(x, d, width)
+    }
+
+    fn mass(x: &[[f64; 2]; 6], rho: f64, width: f64) -> Option<[[f64; 6]; 6]> {
+        mass(x, rho, width)
+    }
+
+    fn stress(x: &[[f64; 2]; 6], d: &[[f64; 3]; 3], u: &[f64; 12], l: [f64; 3]) -> [f64; 3] {
+        stress(x, d, u, l)
+    }
+
+    fn locate(x: &[[f64; 2]; 6], p: [f64; 2]) -> Option<[f64; 3]> {
+        locate(x, p)
+    }
+
+    fn contains(l: [f64; 3], tol: f64) -> bool {
+        l.iter().all(|&v| v >= -tol)
+    }
+
+    fn mirror_order() -> [usize; 6] {
+        [0, 2, 1, 5, 4, 3]
+    }
+
+    fn edge_shape(s: f64) -> ([f64; 3], [f64; 3]) {
+        quadratic_edge_shape(s)
+    }
+
+    fn edge_quadrature() -> &'static [(f64, f64)] {
+        &QUADRATIC_EDGE_GAUSS
+    }
+
+    fn calculix_name(idealization: Idealization) -> &'static str {
+        match idealization {
+            Idealization::PlaneStress => "CPS6",
+            Idealization::PlaneStrain => "CPE6",
+        }
+    }
 }
