@@ -3,9 +3,10 @@
 //! Each model is written once, generic over [`scalar::Scalar`], and exposed through the
 //! object-safe [`Model`] trait, which speaks `f64` at its boundary and uses dual numbers
 //! inside for exact gradients. A model owns everything about itself: its problem-file
-//! sections (read by its [`registry::ModelEntry`]), its parameters and outputs, the names of
-//! its configurations and its drawing data. The rest of flexopt reaches a model only
-//! through [`Model`] and the [`registry`].
+//! sections (read by its [`registry::ModelEntry`]), its parameters and outputs, and, as
+//! capabilities beside its physics ([`mechanism`]), the names of its configurations, its
+//! drawing data, its part and the finite-element check the part states. The rest of flexopt
+//! reaches a model only through a [`Mechanism`] and the [`registry`].
 
 pub mod bridge;
 pub mod entry;
