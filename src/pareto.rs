@@ -167,12 +167,7 @@ pub fn pareto(
                 && (value_si - limit_si).abs() <= ACTIVE_TOLERANCE * limit_si.abs().max(1e-300),
             on_front: false,
             same_as: None,
-            design: problem
-                .variables
-                .iter()
-                .zip(&best.x_end)
-                .map(|(v, &x)| (v.name.clone(), v.unit.from_si(x)))
-                .collect(),
+            design: problem.design_in_file_units(&best.x_end),
             configuration: problem.depiction().configuration(&best.x_end).into(),
             feasible_starts: s.feasible_runs.len(),
         });

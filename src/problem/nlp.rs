@@ -239,7 +239,14 @@ impl<'p> DesignNlp<'p> {
     /// bounds; `None` otherwise.
     pub fn mirror(&self, u: &[f64]) -> Option<Vec<f64>> {
         let mut x = self.full_design(u);
-        if !self.problem.model().mirror(&mut x) || x != mirror_fixed(self, &x) {
+        let fixed_moved = |x: &[f64]| {
+            self.problem
+                .variables
+                .iter()
+                .zip(x)
+                .any(|(v, &xi)| v.fixed && xi != v.lower)
+        };
+        if !self.problem.model().mirror(&mut x) || fixed_moved(&x) {
             return None;
         }
         let free: Vec<f64> = self.free.iter().map(|&p| x[p]).collect();
@@ -383,14 +390,4 @@ pub fn merit(sense: Sense, absolute: bool, value: f64) -> f64 {
         Sense::Maximize => -v,
         Sense::Minimize => v,
     }
-}
-
-/// `x` with the fixed variables at their values: equal to `x` when the mirror image left
-/// them alone.
-fn mirror_fixed(nlp: &DesignNlp, x: &[f64]) -> Vec<f64> {
-    let mut kept = nlp.base.clone();
-    for &p in &nlp.free {
-        kept[p] = x[p];
-    }
-    kept
 }

@@ -75,12 +75,7 @@ impl MeasuredDesign {
             })
             .collect();
         MeasuredDesign {
-            design: problem
-                .variables
-                .iter()
-                .zip(&c.x)
-                .map(|(v, &x)| (v.name.clone(), v.unit.from_si(x)))
-                .collect(),
+            design: problem.design_in_file_units(&c.x),
             design_si: problem
                 .variables
                 .iter()

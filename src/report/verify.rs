@@ -21,7 +21,7 @@ use crate::fe::Idealization;
 use crate::part::analysis::{FeCounterpart, Quantity};
 use crate::problem::Problem;
 use crate::vocab::units::Unit;
-use compare::{analytic, displacements_at};
+use compare::{analytic, displacements_at, value};
 
 mod compare;
 
@@ -101,11 +101,7 @@ impl VerifyReport {
         let model = problem.model();
         let actuation_force = (0..model.outputs().len())
             .find(|&i| problem.mechanism().fe_counterpart(i) == Some(FeCounterpart::ActuationForce))
-            .map(|i| {
-                let mut f = [0.0];
-                model.evaluate(x, &[i], &mut f);
-                f[0]
-            });
+            .and_then(|i| value(model, x, i));
         let mut outputs = IndexMap::new();
         for (r, &own_force) in v.results.iter().zip(&v.actuation_force) {
             let mut map = IndexMap::new();
@@ -136,12 +132,7 @@ impl VerifyReport {
         }
         VerifyReport {
             problem: problem.name.clone(),
-            design: problem
-                .variables
-                .iter()
-                .zip(x)
-                .map(|(var, &xi)| (var.name.clone(), var.unit.from_si(xi)))
-                .collect(),
+            design: problem.design_in_file_units(x),
             tolerance: v.tolerance,
             converged: v.converged,
             test_force: v.test_force,

@@ -39,7 +39,7 @@ pub(super) fn analytic(problem: &Problem, x: &[f64], v: &Verification) -> Vec<Op
 }
 
 /// The model's output `i` at `x`, where the model can compute it.
-fn value(model: &dyn crate::model::Model, x: &[f64], i: usize) -> Option<f64> {
+pub(super) fn value(model: &dyn crate::model::Model, x: &[f64], i: usize) -> Option<f64> {
     model.unavailable(i).is_none().then(|| {
         let mut v = [0.0];
         model.evaluate(x, &[i], &mut v);
