@@ -217,7 +217,8 @@ fn estimate(v: &Verification, name: &str) -> (f64, f64) {
 #[test]
 fn a_strip_clamped_at_both_ends_verifies_against_timoshenko() {
     let v = checked();
-    assert_eq!(v.levels.len(), 4, "the most meshes");
+    // the estimate below reads the last three meshes' values
+    assert!(v.levels.len() >= 3, "{} meshes", v.levels.len());
     let (e, nu) = (STEEL.youngs_modulus, STEEL.poisson_ratio);
     let g = e / (2.0 * (1.0 + nu));
     // Cowper's shear coefficient of a rectangle

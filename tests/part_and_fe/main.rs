@@ -11,5 +11,6 @@ mod fe_calculix;
 mod fe_exact;
 mod fe_generic;
 mod fe_verify;
+mod meshing;
 mod part;
 mod refine;

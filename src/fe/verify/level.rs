@@ -27,11 +27,9 @@ pub(super) struct Setup {
 }
 
 /// The element size at `p`: `t / n` on and around each hinge's thin section, growing by 0.3
-/// of the distance from it, never above a tenth of the part.
-pub(super) fn size_function(
-    domain: &Domain,
-    per_thickness: f64,
-) -> (impl Fn([f64; 2]) -> f64, f64) {
+/// of the distance from it, never above a tenth of the part (returned beside it: the coarsest
+/// size, which the first mesh is never above).
+pub fn size_function(domain: &Domain, per_thickness: f64) -> (impl Fn([f64; 2]) -> f64, f64) {
     let hinges: Vec<(crate::fe::geometry::Edge, f64)> = domain
         .hinges
         .iter()

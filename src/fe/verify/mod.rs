@@ -42,7 +42,8 @@ use super::richardson::{estimate, Estimate};
 use super::FeError;
 use crate::part::analysis::{Analysis, FeOutputId, Quantity};
 use crate::part::{Part, PartSpec};
-use level::{face_edges, holds, size_function, solve_level, LevelResult, Setup};
+pub use level::size_function;
+use level::{face_edges, holds, solve_level, LevelResult, Setup};
 
 /// How a verification runs.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,0 +1,92 @@
+//! The mesher's answer depends on the outline, not on its last bits: an outline moved by a
+//! few units in the last place (what a change of units or an equivalent formula does to it)
+//! meshes into the same triangles, so that the finite-element values move by as little as
+//! the outline did.
+
+use crate::common;
+
+use flexopt::fe::geometry::{Domain, Edge};
+use flexopt::fe::mesh::mesh;
+use flexopt::fe::verify::size_function;
+use flexopt::model::Mechanism;
+use flexopt::part::Part;
+
+/// `v` moved by `k` units in its last place (k in -4..=4, from a hash of the place); zero
+/// stays zero, as it does through a change of units.
+fn nudge(v: f64, seed: &mut u64) -> f64 {
+    if v == 0.0 {
+        return v;
+    }
+    *seed = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    let k = ((*seed >> 33) % 9) as i64 - 4;
+    let mut w = v;
+    for _ in 0..k.unsigned_abs() {
+        w = if k > 0 { w.next_up() } else { w.next_down() };
+    }
+    w
+}
+
+fn nudged(domain: &Domain, seed: u64) -> Domain {
+    let mut s = seed;
+    let mut p = |q: [f64; 2]| [nudge(q[0], &mut s), nudge(q[1], &mut s)];
+    let mut d = domain.clone();
+    for l in &mut d.loops {
+        for e in l.iter_mut() {
+            *e = match *e {
+                Edge::Line { a, b } => Edge::Line { a: p(a), b: p(b) },
+                Edge::Arc {
+                    centre,
+                    radius,
+                    start,
+                    sweep,
+                } => Edge::Arc {
+                    centre: p(centre),
+                    radius: p([radius, 0.0])[0],
+                    start: p([start, 0.0])[0],
+                    sweep: p([sweep, 0.0])[0],
+                },
+            };
+        }
+    }
+    d
+}
+
+#[test]
+fn an_outline_nudged_in_its_last_bits_meshes_into_the_same_triangles() {
+    let mechanism = Mechanism::complete(flexopt::model::bridge::Bridge::new(
+        common::wei2017_settings(),
+    ));
+    let spec = mechanism
+        .part_spec(&common::table1_optimum())
+        .unwrap()
+        .unwrap();
+    let half = Part::build(&spec.right_half().unwrap()).unwrap();
+    let domain = Domain::of_part(&half);
+    // the check's own sizes: four elements through each hinge's thickness, growing away
+    let (size, coarse) = size_function(&domain, 4.0);
+    let reference = mesh(&domain, &size, coarse).unwrap();
+    let scale = domain.size();
+    for seed in 1..=6u64 {
+        let other = nudged(&domain, seed);
+        let (size, coarse) = size_function(&other, 4.0);
+        let m = mesh(&other, &size, coarse).unwrap();
+        assert_eq!(
+            (m.elements.len(), m.nodes.len()),
+            (reference.elements.len(), reference.nodes.len()),
+            "seed {seed}: another mesh"
+        );
+        assert_eq!(m.elements, reference.elements, "seed {seed}");
+        let moved = m
+            .nodes
+            .iter()
+            .zip(&reference.nodes)
+            .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
+            .fold(0.0, f64::max);
+        assert!(
+            moved < 1e-12 * scale,
+            "seed {seed}: a node moved {moved:e} m"
+        );
+    }
+}
