@@ -1,8 +1,8 @@
 //! The region a finite-element model meshes: a part's outline as lines and arcs, its named
-//! faces and its hinges, in metres (the part's files are in millimetres).
+//! faces and its hinges, in metres as the part itself (only its files are in millimetres).
 
 use crate::part::outline::Arc as BulgeArc;
-use crate::part::{Part, MM};
+use crate::part::Part;
 
 /// One edge of an outline loop.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -213,7 +213,6 @@ pub struct Domain {
 impl Domain {
     /// The region of a part.
     pub fn of_part(part: &Part) -> Self {
-        let m = |p: [f64; 2]| [p[0] / MM, p[1] / MM];
         let loops = part
             .loops
             .iter()
@@ -224,14 +223,14 @@ impl Domain {
                         let (a, b) = (l.vertices[i], l.vertices[(i + 1) % n]);
                         match BulgeArc::from_bulge(a, b) {
                             Some(arc) => Edge::Arc {
-                                centre: m(arc.centre),
-                                radius: arc.radius / MM,
+                                centre: arc.centre,
+                                radius: arc.radius,
                                 start: arc.start,
                                 sweep: arc.sweep,
                             },
                             None => Edge::Line {
-                                a: m([a.x, a.y]),
-                                b: m([b.x, b.y]),
+                                a: [a.x, a.y],
+                                b: [b.x, b.y],
                             },
                         }
                     })
@@ -245,8 +244,8 @@ impl Domain {
                 .iter()
                 .map(|f| Face {
                     name: f.name.clone(),
-                    a: m(f.a),
-                    b: m(f.b),
+                    a: f.a,
+                    b: f.b,
                 })
                 .collect(),
             hinges: part
@@ -254,14 +253,10 @@ impl Domain {
                 .iter()
                 .map(|h| Hinge {
                     name: h.name.clone(),
-                    start: m(h.start),
-                    end: m(h.end),
-                    thickness: h.thickness / MM,
-                    profile: h
-                        .profile
-                        .iter()
-                        .map(|v| [v[0] / MM, v[1] / MM, v[2]])
-                        .collect(),
+                    start: h.start,
+                    end: h.end,
+                    thickness: h.thickness,
+                    profile: h.profile.clone(),
                 })
                 .collect(),
         }

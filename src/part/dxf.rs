@@ -1,4 +1,5 @@
-//! `part.dxf`: DXF 2000, millimetres, written with the `dxf` crate.
+//! `part.dxf`: DXF 2000, millimetres (the part, in metres, converted here), written with
+//! the `dxf` crate.
 //!
 //! Every loop is one closed LWPOLYLINE on layer `OUTLINE` (the outer boundary and each
 //! pocket, the actuator's among them), its arcs as bulges, so a CAM program sees closed
@@ -24,6 +25,7 @@ pub fn face_layer(name: &str) -> String {
 
 /// The DXF drawing of `part`.
 pub fn drawing(part: &Part) -> Drawing {
+    let part = &part.in_mm();
     let mut d = Drawing::new();
     d.header.version = AcadVersion::R2000;
     d.header.default_drawing_units = Units::Millimeters;

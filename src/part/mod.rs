@@ -8,22 +8,26 @@
 //! joins the solids (georust `geo`'s Boolean union), restores the exact coordinates the
 //! union snapped to its integer grid, rounds every hinge root with its fillet (an arc, kept
 //! as an arc in every export), orders the loops and runs the checks.
-//! Coordinates in a [`Part`] are millimetres, the unit of the exported files.
+//! A [`Part`] is in SI (metres), as its spec and the finite elements that read it: only the
+//! writers turn it into millimetres, the unit of the exported files ([`Part::in_mm`]), so no
+//! coordinate makes a round trip through another unit.
 //!
 //! Files: `analysis.rs` (the check a model asks of its part), `outline.rs` (union, exact
-//! coordinates, fillets, loops), `checks.rs` (what cannot be made), `dxf.rs`, `svg.rs` (the
-//! writers).
+//! coordinates, fillets, loops), `checks.rs` (what cannot be made), `mm.rs` (the part as
+//! its files hold it), `dxf.rs`, `svg.rs` (the writers).
 
 pub mod analysis;
 pub mod checks;
 pub mod dxf;
 pub mod half;
+mod mm;
 pub mod outline;
 mod roots;
 pub mod svg;
 
 use serde::Serialize;
 
+pub use mm::PartMm;
 pub use outline::{Loop, Vertex};
 
 /// A convex solid of the part, counterclockwise, in metres.
@@ -128,9 +132,9 @@ pub struct PartSpec {
     pub warnings: Vec<String>,
 }
 
-/// A hinge of a [`Part`] (mm), as [`HingeSite`].
+/// A hinge of a [`Part`] (metres), as [`HingeSite`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct HingeMm {
+pub struct Hinge {
     pub name: String,
     pub kind: &'static str,
     pub start: [f64; 2],
@@ -144,26 +148,23 @@ pub struct HingeMm {
     pub profile: Vec<[f64; 3]>,
 }
 
-/// A part: its outline loops and faces in millimetres.
-#[derive(Debug, Clone, Serialize)]
+/// A part: its outline loops and faces in metres.
+#[derive(Debug, Clone)]
 pub struct Part {
-    /// The plate's width (mm).
+    /// The plate's width (m).
     pub width: f64,
     /// The outer loop first (counterclockwise), then the inner ones (clockwise), each
     /// starting at its lowest, then leftmost vertex.
     pub loops: Vec<Loop>,
     pub faces: Vec<Face>,
     /// The hinges' thin sections: their centre lines, thicknesses and fillets.
-    pub hinges: Vec<HingeMm>,
-    /// Area of the outline (mm^2), arcs included.
+    pub hinges: Vec<Hinge>,
+    /// Area of the outline (m^2), arcs included.
     pub area: f64,
-    /// Bounding box `[x_min, y_min, x_max, y_max]` (mm), arcs included.
+    /// Bounding box `[x_min, y_min, x_max, y_max]` (m), arcs included.
     pub bounding_box: [f64; 4],
-    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
-    #[serde(skip)]
     pub annotations: Vec<Annotation>,
-    #[serde(skip)]
     pub caption: String,
 }
 
@@ -190,7 +191,7 @@ impl std::fmt::Display for PartError {
 
 impl std::error::Error for PartError {}
 
-/// Millimetres per metre: the part's files are in mm.
+/// Millimetres per metre: the part's files are in mm, its spec and the part in metres.
 pub const MM: f64 = 1e3;
 
 impl Part {
@@ -218,35 +219,22 @@ impl Part {
                 ]
             },
         );
-        let mm = |p: [f64; 2]| [p[0] * MM, p[1] * MM];
         Ok(Part {
-            width: spec.width * MM,
+            width: spec.width,
             loops,
-            faces: spec
-                .faces
-                .iter()
-                .map(|f| Face {
-                    name: f.name.clone(),
-                    a: mm(f.a),
-                    b: mm(f.b),
-                })
-                .collect(),
+            faces: spec.faces.clone(),
             hinges: spec
                 .hinges
                 .iter()
-                .map(|h| HingeMm {
+                .map(|h| Hinge {
                     name: h.name.clone(),
                     kind: h.kind,
-                    start: mm(h.start),
-                    end: mm(h.end),
-                    thickness: h.thickness * MM,
-                    root: h.root * MM,
-                    fillet: h.fillet * MM,
-                    profile: h
-                        .profile
-                        .iter()
-                        .map(|v| [v[0] * MM, v[1] * MM, v[2]])
-                        .collect(),
+                    start: h.start,
+                    end: h.end,
+                    thickness: h.thickness,
+                    root: h.root,
+                    fillet: h.fillet,
+                    profile: h.profile.clone(),
                 })
                 .collect(),
             area,

@@ -6,6 +6,12 @@
 //! two solid edges it lies on: the outline keeps the design's dimensions to rounding error,
 //! which the tests measure (hinge thickness and length to 1e-9 mm).
 //!
+//! Units: the outline is in metres, as the solids. Only the union is fed millimetres
+//! ([`polygon_mm`]), as it always was: its integer grid is the one step here whose result
+//! depends on the scale, and kept at the scale it has been tested at it cannot change which
+//! pieces join. Its vertices never reach the outline: each, brought back to metres, only
+//! picks the exact point (in metres) of the solids it stands for.
+//!
 //! Fillets: a hinge's solid runs `r` beyond each end of its thin section, to the faces of
 //! the rigid bodies, so each of its four roots is a right-angled inner corner `r` from the
 //! end of the thin section. The corner is replaced by a quarter circle of radius `r`, tangent
@@ -22,7 +28,7 @@ use serde::Serialize;
 use super::roots::{add_fillets, add_profile};
 use super::{PartSpec, MM};
 
-/// A vertex of a loop (mm) and the bulge of the edge to the next one.
+/// A vertex of a loop (m) and the bulge of the edge to the next one.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Vertex {
     pub x: f64,
@@ -38,12 +44,12 @@ pub struct Loop {
     pub vertices: Vec<Vertex>,
 }
 
-/// Vertices closer than this (mm) are one; the union's grid is far finer than this, the
-/// design's features far coarser.
-const SNAP: f64 = 1e-5;
+/// Vertices closer than this (m, 1e-5 mm) are one; the union's grid is far finer than
+/// this, the design's features far coarser.
+const SNAP: f64 = 1e-8;
 
 impl Loop {
-    /// The signed area (mm^2): the polygon's by the shoelace formula, plus each arc's
+    /// The signed area (m^2): the polygon's by the shoelace formula, plus each arc's
     /// circular segment.
     pub fn signed_area(&self) -> f64 {
         let n = self.vertices.len();
@@ -63,7 +69,8 @@ impl Loop {
             .sum()
     }
 
-    /// The points of the loop with each arc split into `per_arc` chords (mm).
+    /// The points of the loop with each arc split into `per_arc` chords, in the loop's
+    /// unit.
     pub fn points(&self, per_arc: usize) -> Vec<[f64; 2]> {
         let n = self.vertices.len();
         let mut out = Vec::new();
@@ -175,7 +182,8 @@ impl Arc {
     }
 }
 
-/// A polygon of points in metres, as `geo` takes it, in millimetres.
+/// A polygon of points in metres, in millimetres for `geo`: the union's grid and the
+/// slot checks' distances work at the scale they were measured at (see the notes above).
 pub(crate) fn polygon_mm(points: &[[f64; 2]]) -> Polygon<f64> {
     let ring: Vec<Coord<f64>> = points
         .iter()
@@ -204,7 +212,11 @@ pub fn outline(spec: &PartSpec) -> Result<Vec<Loop>, Vec<String>> {
         .chain(polygon.interiors())
         .enumerate()
     {
-        let mut points: Vec<[f64; 2]> = ring.0.iter().map(|c| exact.snap([c.x, c.y])).collect();
+        let mut points: Vec<[f64; 2]> = ring
+            .0
+            .iter()
+            .map(|c| exact.snap([c.x / MM, c.y / MM]))
+            .collect();
         points.pop(); // closed ring: the first point again
         let points = simplify(points);
         let outer = k == 0;
@@ -289,7 +301,7 @@ fn drop_zero_edges(l: &mut Loop) {
     while i < l.vertices.len() && l.vertices.len() > 3 {
         let n = l.vertices.len();
         let (a, b) = (l.vertices[i], l.vertices[(i + 1) % n]);
-        if a.bulge == 0.0 && (a.x - b.x).hypot(a.y - b.y) < 1e-9 {
+        if a.bulge == 0.0 && (a.x - b.x).hypot(a.y - b.y) < super::roots::CLOSE {
             l.vertices.remove(i);
         } else {
             i += 1;
@@ -307,7 +319,7 @@ fn start_at_lowest(l: &mut Loop) {
     l.vertices.rotate_left(first);
 }
 
-/// The solids' exact vertices and edges (mm), to put the union's vertices back on.
+/// The solids' exact vertices and edges (m), to put the union's vertices back on.
 struct Exact {
     vertices: Vec<[f64; 2]>,
     /// Each edge with the index of its solid.
@@ -321,8 +333,7 @@ impl Exact {
         for (k, s) in spec.solids.iter().enumerate() {
             let n = s.points.len();
             for i in 0..n {
-                let a = [s.points[i][0] * MM, s.points[i][1] * MM];
-                let b = [s.points[(i + 1) % n][0] * MM, s.points[(i + 1) % n][1] * MM];
+                let (a, b) = (s.points[i], s.points[(i + 1) % n]);
                 vertices.push(a);
                 edges.push((a, b, k));
             }
@@ -330,7 +341,7 @@ impl Exact {
         Exact { vertices, edges }
     }
 
-    /// The exact point the union's vertex `p` stands for: a solid's vertex, else the crossing
+    /// The exact point the union's vertex `p` (converted to metres) stands for: a solid's vertex, else the crossing
     /// of two solids' edges through it; `p` itself if neither is near.
     fn snap(&self, p: [f64; 2]) -> [f64; 2] {
         let d = |a: [f64; 2]| (a[0] - p[0]).hypot(a[1] - p[1]);

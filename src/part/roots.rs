@@ -3,13 +3,16 @@
 //! (the geometry of both in [`super::outline`]'s notes).
 
 use super::outline::{segment_distance, Loop, Vertex};
-use super::{HingeSite, MM};
+use super::HingeSite;
+
+/// Points closer than this (m, 1e-9 mm) are one: rounding error on the part's coordinates,
+/// far below the union's snapping and the design's features.
+pub(super) const CLOSE: f64 = 1e-12;
 
 /// Cuts a notch hinge's outline into the straight sides its solid left: the kind's
 /// profile above the centre line and its mirror image below, between the bodies' faces.
 pub(super) fn add_profile(loops: &mut [Loop], hinge: &HingeSite, problems: &mut Vec<String>) {
-    let s = [hinge.start[0] * MM, hinge.start[1] * MM];
-    let e = [hinge.end[0] * MM, hinge.end[1] * MM];
+    let (s, e) = (hinge.start, hinge.end);
     let len = (e[0] - s[0]).hypot(e[1] - s[1]);
     let u = [(e[0] - s[0]) / len, (e[1] - s[1]) / len];
     let n = [-u[1], u[0]];
@@ -19,7 +22,7 @@ pub(super) fn add_profile(loops: &mut [Loop], hinge: &HingeSite, problems: &mut 
             .profile
             .iter()
             .map(|v| {
-                let (x, y) = (v[0] * MM, side * v[1] * MM);
+                let (x, y) = (v[0], side * v[1]);
                 (
                     [s[0] + x * u[0] + y * n[0], s[1] + x * u[1] + y * n[1]],
                     side * v[2],
@@ -42,7 +45,7 @@ pub(super) fn add_profile(loops: &mut [Loop], hinge: &HingeSite, problems: &mut 
 /// edge holds both ends.
 fn replace_edge(loops: &mut [Loop], path: &[([f64; 2], f64)]) -> bool {
     let (p0, p1) = (path[0].0, path[path.len() - 1].0);
-    let tol = 1e-9;
+    let tol = CLOSE;
     for l in loops.iter_mut() {
         let n = l.vertices.len();
         for i in 0..n {
@@ -98,9 +101,8 @@ fn replace_edge(loops: &mut [Loop], path: &[([f64; 2], f64)]) -> bool {
 
 /// Rounds the four roots of `hinge` in `loops`.
 pub(super) fn add_fillets(loops: &mut [Loop], hinge: &HingeSite, problems: &mut Vec<String>) {
-    let s = [hinge.start[0] * MM, hinge.start[1] * MM];
-    let e = [hinge.end[0] * MM, hinge.end[1] * MM];
-    let (r, half) = (hinge.fillet * MM, 0.5 * hinge.thickness * MM);
+    let (s, e) = (hinge.start, hinge.end);
+    let (r, half) = (hinge.fillet, 0.5 * hinge.thickness);
     let len = (e[0] - s[0]).hypot(e[1] - s[1]);
     let u = [(e[0] - s[0]) / len, (e[1] - s[1]) / len];
     let n = [-u[1], u[0]];
@@ -124,7 +126,7 @@ pub(super) fn add_fillets(loops: &mut [Loop], hinge: &HingeSite, problems: &mut 
 /// Replaces the vertex at `corner` by a quarter circle tangent at `p` and `q`; false if
 /// the corner is not there with room for the arc on both of its edges.
 fn replace_corner(loops: &mut [Loop], corner: [f64; 2], p: [f64; 2], q: [f64; 2]) -> bool {
-    let close = |v: Vertex, w: [f64; 2]| (v.x - w[0]).hypot(v.y - w[1]) < 1e-9;
+    let close = |v: Vertex, w: [f64; 2]| (v.x - w[0]).hypot(v.y - w[1]) < CLOSE;
     for l in loops.iter_mut() {
         let n = l.vertices.len();
         let Some(i) = (0..n).find(|&i| close(l.vertices[i], corner)) else {
@@ -133,7 +135,7 @@ fn replace_corner(loops: &mut [Loop], corner: [f64; 2], p: [f64; 2], q: [f64; 2]
         let (prev, next) = (l.vertices[(i + n - 1) % n], l.vertices[(i + 1) % n]);
         // the tangent points must lie on the corner's two edges
         let on = |a: Vertex, t: [f64; 2]| {
-            segment_distance(t, [a.x, a.y], corner) < 1e-9
+            segment_distance(t, [a.x, a.y], corner) < CLOSE
                 && prev.bulge == 0.0
                 && l.vertices[i].bulge == 0.0
         };

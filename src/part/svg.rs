@@ -1,5 +1,5 @@
-//! `part.svg`: the outline at true scale (width and height in mm, the viewBox in mm), written
-//! with the `svg` crate.
+//! `part.svg`: the outline at true scale (width and height in mm, the viewBox in mm; the
+//! part, in metres, converted here), written with the `svg` crate.
 //!
 //! SVG's y axis points down: the part is drawn with y negated, so it looks as in the DXF.
 //! The path data is formatted here with f64 coordinates: the crate's `path::Data` holds f32
@@ -19,6 +19,7 @@ const MARGIN: f64 = 1.0;
 
 /// The SVG document of `part`.
 pub fn document(part: &Part) -> Document {
+    let part = &part.in_mm();
     let mut d = String::new();
     for l in &part.loops {
         let n = l.vertices.len();

@@ -9,7 +9,7 @@ use serde::Serialize;
 
 use super::plot::{render_png, FAMILY};
 use super::{write_atomic, write_json, WriteError};
-use crate::part::{dxf, svg, Annotation, Part, MM};
+use crate::part::{dxf, svg, Annotation, Part, PartMm, MM};
 
 /// The names of the part's files, in the order they are written.
 pub const PART_FILES: [&str; 4] = ["part.dxf", "part.svg", "part.json", "part.png"];
@@ -22,7 +22,7 @@ struct PartJson<'a> {
     /// The design in the problem file's units.
     design: &'a indexmap::IndexMap<String, f64>,
     #[serde(flatten)]
-    part: &'a Part,
+    part: PartMm,
 }
 
 /// Writes the four part files through `path` (which maps a file name to where it goes).
@@ -45,7 +45,7 @@ pub fn write_part(
             problem,
             units: "mm",
             design,
-            part,
+            part: part.in_mm(),
         },
     )?;
     drawing_png(&files[3], problem, part)?;
@@ -59,7 +59,8 @@ fn face_colour(k: usize) -> RGBColor {
 
 /// `part.png`: the outline at true proportions, the faces, and the annotations.
 fn drawing_png(path: &Path, problem: &str, part: &Part) -> Result<(), WriteError> {
-    let [x0, y0, x1, y1] = part.bounding_box;
+    let mm = part.in_mm();
+    let [x0, y0, x1, y1] = mm.bounding_box;
     // room around the part for the dimension lines and labels
     let pad = 0.18 * (x1 - x0).max(y1 - y0);
     let (xr, yr) = ((x0 - pad, x1 + pad), (y0 - pad, y1 + pad));
@@ -87,7 +88,7 @@ fn drawing_png(path: &Path, problem: &str, part: &Part) -> Result<(), WriteError
             .y_desc("y (mm)")
             .label_style((FAMILY, 13))
             .draw()?;
-        for l in &part.loops {
+        for l in &mm.loops {
             let pts: Vec<(f64, f64)> = l.points(24).iter().map(|p| (p[0], p[1])).collect();
             let fill = if l.outer {
                 RGBColor(200, 208, 216).filled()
@@ -102,7 +103,7 @@ fn drawing_png(path: &Path, problem: &str, part: &Part) -> Result<(), WriteError
                 BLACK.stroke_width(2),
             )))?;
         }
-        for (k, f) in part.faces.iter().enumerate() {
+        for (k, f) in mm.faces.iter().enumerate() {
             let c = face_colour(k);
             chart
                 .draw_series(std::iter::once(PathElement::new(

@@ -19,6 +19,7 @@ use crate::fe::richardson::Estimate;
 use crate::fe::verify::{Level, Verification};
 use crate::fe::Idealization;
 use crate::part::analysis::{FeCounterpart, Quantity};
+use crate::part::MM;
 use crate::problem::Problem;
 use crate::vocab::units::Unit;
 use compare::{analytic, displacements_at, value};
@@ -189,7 +190,7 @@ fn heat(t: f64) -> RGBColor {
 /// The panels' common frame (mm): the whole part with a margin, and the image's size at
 /// equal scale on both axes.
 fn frame(v: &Verification, panels: u32) -> ((f64, f64), (f64, f64), (u32, u32)) {
-    let [x0, y0, x1, y1] = v.part.bounding_box;
+    let [x0, y0, x1, y1] = v.part.bounding_box.map(|c| c * MM);
     let pad = 0.08 * (x1 - x0).max(y1 - y0);
     let (xr, yr) = ((x0 - pad, x1 + pad), (y0 - pad, y1 + pad));
     let panel_w = 900u32;
@@ -340,7 +341,7 @@ fn deformed_png(path: &Path, problem: &str, v: &Verification) -> Result<(), Writ
                 .fold(0.0, f64::max);
             // the largest displacement drawn as a twentieth of the part's width
             let scale = if largest > 0.0 {
-                0.05 * (x1 - x0) * 1e-3 / largest
+                0.05 * (x1 - x0) / largest
             } else {
                 1.0
             };

@@ -294,6 +294,8 @@ fn the_parts_notches_are_true_arcs_of_the_designs_sizes() {
         let Ok(part) = build_part(&model, &x) else {
             continue;
         };
+        // in mm, as the tolerances below
+        let part = part.in_mm();
         built += 1;
         for h in &part.hinges {
             // the least distance between the outline's arcs across the hinge's middle: its

@@ -10,7 +10,7 @@ use common::{flexopt, flexopt_ok, random_design, rng, table1_optimum, wei2017_se
 use flexopt::model::bridge::part::PartSettings;
 use flexopt::model::bridge::Bridge;
 use flexopt::model::{build_part, PartMaker};
-use flexopt::part::{Loop, Part};
+use flexopt::part::{Loop, PartMm};
 
 /// Table 1's printed design in the part's own units.
 const PRINTED: &str = "l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07,t4=0.4";
@@ -51,7 +51,7 @@ fn intersect(s: (P, P), t: (P, P)) -> bool {
 }
 
 /// No two non-adjacent segments of the outline (all loops together) meet.
-fn assert_simple(part: &Part) {
+fn assert_simple(part: &PartMm) {
     let all: Vec<(usize, usize, (P, P))> = part
         .loops
         .iter()
@@ -139,7 +139,7 @@ fn expected_box(x: &[f64; 8], s: &PartSettings) -> [f64; 2] {
 /// The thickness and the length of the thin section of each hinge, measured on the
 /// outline: the straight edges parallel to the hinge beside its centre line, the distance
 /// between them and their length.
-fn measured_hinges(part: &Part) -> Vec<(f64, f64)> {
+fn measured_hinges(part: &PartMm) -> Vec<(f64, f64)> {
     part.hinges
         .iter()
         .map(|h| {
@@ -184,7 +184,7 @@ fn measured_hinges(part: &Part) -> Vec<(f64, f64)> {
 }
 
 /// The loop's points (arcs sampled) mirrored by `m` are the loop's points again.
-fn assert_symmetric(part: &Part, m: fn(P) -> P) {
+fn assert_symmetric(part: &PartMm, m: fn(P) -> P) {
     for l in &part.loops {
         let pts = l.points(4);
         for p in &pts {
@@ -217,6 +217,8 @@ fn a_thousand_random_designs_give_valid_outlines_with_the_designs_dimensions() {
         let Ok(part) = build_part(&model, &x) else {
             continue;
         };
+        // the part is in metres; its dimensions are checked in mm, as its files give them
+        let part = part.in_mm();
         built += 1;
         // closed loops: one outer, counterclockwise, the pockets clockwise
         assert!(part.loops[0].outer && part.loops[0].signed_area() > 0.0);
@@ -276,7 +278,7 @@ fn without_fillets_the_hinge_runs_from_face_to_face_and_a_warning_says_why_that_
     };
     let model = bridge(settings.clone());
     let x = table1_optimum();
-    let part = build_part(&model, &x).unwrap();
+    let part = build_part(&model, &x).unwrap().in_mm();
     assert!(part
         .loops
         .iter()
@@ -294,8 +296,9 @@ fn without_fillets_the_hinge_runs_from_face_to_face_and_a_warning_says_why_that_
 #[test]
 fn the_dxf_reads_back_as_the_same_loops_and_the_svg_is_xml_at_true_scale() {
     let model = bridge(PartSettings::default());
-    let part = build_part(&model, &table1_optimum()).unwrap();
-    let bytes = flexopt::part::dxf::to_bytes(&part).unwrap();
+    let si = build_part(&model, &table1_optimum()).unwrap();
+    let part = si.in_mm();
+    let bytes = flexopt::part::dxf::to_bytes(&si).unwrap();
     let drawing = dxf::Drawing::load(&mut bytes.as_slice()).unwrap();
     assert_eq!(
         drawing.header.default_drawing_units,
@@ -331,7 +334,7 @@ fn the_dxf_reads_back_as_the_same_loops_and_the_svg_is_xml_at_true_scale() {
         assert!(face_layers.iter().any(|l| l == f), "{f} in {face_layers:?}");
     }
 
-    let svg = flexopt::part::svg::document(&part).to_string();
+    let svg = flexopt::part::svg::document(&si).to_string();
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let root = doc.root_element();
     assert_eq!(root.tag_name().name(), "svg");
