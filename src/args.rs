@@ -110,6 +110,10 @@ pub enum Command {
         /// The relative error every output must be estimated below (default 0.005).
         #[arg(long)]
         tolerance: Option<f64>,
+        /// The most degrees of freedom a mesh of the half part may have (default 400000,
+        /// about 1.6 GB): the meshes stop before one that would need more.
+        #[arg(long)]
+        max_dofs: Option<usize>,
     },
     /// One flexure hinge on its own: compliances, stiffnesses, rotation per moment and the
     /// rotation a stress limit allows, as JSON. Dimensions in mm, each kind its own.

@@ -66,9 +66,10 @@ fn run(command: Command) -> Result<(), Failure> {
             design,
             out,
             tolerance,
+            max_dofs,
         } => {
             let (problem_loaded, x) = chosen_design(&problem, &design)?;
-            let settings = verify_settings(&problem, tolerance)?;
+            let settings = verify_settings(&problem, tolerance, max_dofs)?;
             let dir = out.unwrap_or_else(|| problem_loaded.default_output_dir().join("verify"));
             check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
             run_verify(&problem_loaded, &x, &settings, &dir)

@@ -9,8 +9,13 @@ use flexopt::report::verify::{write_verify, VerifyReport, VerifyTable};
 
 use crate::failure::{emit, Failure};
 
-/// The settings of a verification: the defaults, the tolerance from `--tolerance`.
-pub fn verify_settings(path: &Path, tolerance: Option<f64>) -> Result<VerifySettings, Failure> {
+/// The settings of a verification: the defaults, the tolerance from `--tolerance` (and the
+/// first mesh's elements through a hinge from it), the budget from `--max-dofs`.
+pub fn verify_settings(
+    path: &Path,
+    tolerance: Option<f64>,
+    max_dofs: Option<usize>,
+) -> Result<VerifySettings, Failure> {
     let mut settings = VerifySettings::default();
     if let Some(t) = tolerance {
         if !(1e-6..=0.1).contains(&t) {
@@ -20,6 +25,16 @@ pub fn verify_settings(path: &Path, tolerance: Option<f64>) -> Result<VerifySett
             )));
         }
         settings.tolerance = t;
+        settings.per_thickness = VerifySettings::per_thickness_for(t);
+    }
+    if let Some(n) = max_dofs {
+        if !(1_000..=50_000_000).contains(&n) {
+            return Err(Failure::bad_input(format!(
+                "{}: key `--max-dofs`: must lie between 1000 and 50000000, got {n}",
+                path.display()
+            )));
+        }
+        settings.max_dofs = n;
     }
     Ok(settings)
 }

@@ -31,6 +31,8 @@ pub enum FeError {
     Solve(String),
     /// The part lacks what the analysis needs (a named face, say).
     Setup(String),
+    /// The part needs more degrees of freedom than the check may spend.
+    Budget(String),
 }
 
 impl std::fmt::Display for FeError {
@@ -39,6 +41,7 @@ impl std::fmt::Display for FeError {
             FeError::Mesh(m) => write!(f, "meshing failed: {m}"),
             FeError::Solve(m) => write!(f, "the finite-element solve failed: {m}"),
             FeError::Setup(m) => write!(f, "{m}"),
+            FeError::Budget(m) => write!(f, "over the budget: {m}"),
         }
     }
 }

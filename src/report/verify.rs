@@ -87,6 +87,9 @@ pub struct VerifyReport {
     pub outputs: IndexMap<&'static str, IndexMap<&'static str, OutputReport>>,
     /// The whole check's time (s).
     pub seconds: f64,
+    /// Why the sequence stopped before converging: the budget of degrees of freedom.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub budget_stop: Option<String>,
 }
 
 fn key(i: Idealization) -> &'static str {
@@ -148,6 +151,7 @@ impl VerifyReport {
             levels: v.levels.clone(),
             outputs,
             seconds: v.seconds,
+            budget_stop: v.budget_stop.map(|b| b.to_string()),
         }
     }
 }
@@ -413,10 +417,13 @@ impl Display for VerifyTable<'_> {
             r.levels.len(),
             finest.map_or(0, |l| l.elements),
             r.seconds,
-            if r.converged {
-                String::new()
-            } else {
-                format!(" (NOT all within {} %)", 100.0 * r.tolerance)
+            match (&r.budget_stop, r.converged) {
+                (_, true) => String::new(),
+                (Some(stop), false) => format!(
+                    " (NOT all within {} %: stopped, {stop})",
+                    100.0 * r.tolerance
+                ),
+                (None, false) => format!(" (NOT all within {} %)", 100.0 * r.tolerance),
             }
         )?;
         writeln!(

@@ -7,6 +7,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod fe_budget;
 mod fe_calculix;
 mod fe_exact;
 mod fe_generic;

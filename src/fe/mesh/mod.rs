@@ -39,11 +39,13 @@ pub struct BoundaryEdge<E: Element = PartElement> {
 /// An element's mesher: what makes the first mesh of an outline and refines it.
 pub trait Mesher: Element {
     /// The first mesh of `domain`, elements sized by `size` (m, a function of the place),
-    /// never larger than `max_size`.
+    /// never larger than `max_size`, with at most `max_nodes` nodes ([`FeError::Budget`]
+    /// when it would need more: the mesher stops before it holds much more than that).
     fn first_mesh(
         domain: &Domain,
         size: &dyn Fn([f64; 2]) -> f64,
         max_size: f64,
+        max_nodes: usize,
     ) -> Result<Mesh<Self>, FeError>;
 
     /// `mesh` refined uniformly (element size halved); new nodes on the outline put on it
@@ -58,7 +60,21 @@ pub fn mesh(
     size: &dyn Fn([f64; 2]) -> f64,
     max_size: f64,
 ) -> Result<Mesh, FeError> {
-    Mesher::first_mesh(domain, size, max_size)
+    mesh_within(domain, size, max_size, MAX_NODES)
+}
+
+/// The most nodes a first mesh may have where no budget is given: 2 million (4 million
+/// degrees of freedom, far above what a solve on a workstation holds; a bound, not a goal).
+pub const MAX_NODES: usize = 2_000_000;
+
+/// [`mesh`] with at most `max_nodes` nodes ([`FeError::Budget`] when it would need more).
+pub fn mesh_within(
+    domain: &Domain,
+    size: &dyn Fn([f64; 2]) -> f64,
+    max_size: f64,
+    max_nodes: usize,
+) -> Result<Mesh, FeError> {
+    Mesher::first_mesh(domain, size, max_size, max_nodes)
 }
 
 impl<E: Mesher> Mesh<E> {

@@ -24,8 +24,9 @@ impl Mesher for Tri6 {
         domain: &Domain,
         size: &dyn Fn([f64; 2]) -> f64,
         max_size: f64,
+        max_nodes: usize,
     ) -> Result<Mesh<Tri6>, FeError> {
-        first_mesh(domain, size, max_size)
+        first_mesh(domain, size, max_size, max_nodes)
     }
 
     fn refine(mesh: &Mesh<Tri6>, domain: &Domain) -> Mesh<Tri6> {
@@ -110,13 +111,28 @@ fn boundary_points(domain: &Domain, size: &dyn Fn([f64; 2]) -> f64) -> Vec<Vec<(
 }
 
 /// The first mesh of `domain`, elements sized by `size` (m, a function of the place), never
-/// larger than `max_size`.
+/// larger than `max_size`, with at most `max_nodes` nodes.
 fn first_mesh(
     domain: &Domain,
     size: &dyn Fn([f64; 2]) -> f64,
     max_size: f64,
+    max_nodes: usize,
 ) -> Result<Mesh<Tri6>, FeError> {
+    let over = |nodes: usize| {
+        FeError::Budget(format!(
+            "the first mesh needs more than {nodes} nodes ({} degrees of freedom), more than the \
+             {max_nodes} allowed",
+            2 * nodes
+        ))
+    };
     let loops = boundary_points(domain, size);
+    // a six-node mesh has about four nodes per corner (corners and midsides), so the corners
+    // the refinement may add are bounded first, before spade holds them
+    let max_corners = max_nodes / 4;
+    let input: usize = loops.iter().map(Vec::len).sum();
+    if input > max_corners {
+        return Err(over(4 * input));
+    }
     let mut vertices = Vec::new();
     let mut constraints = Vec::new();
     for l in &loops {
@@ -131,7 +147,6 @@ fn first_mesh(
             constraints.push([first + i, next]);
         }
     }
-    let input = vertices.len();
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
         ConstrainedDelaunayTriangulation::bulk_load_cdt(vertices, constraints)
             .map_err(|e| FeError::Mesh(format!("the outline cannot be triangulated: {e:?}")))?;
@@ -152,10 +167,10 @@ fn first_mesh(
             .with_angle_limit(AngleLimit::from_deg(25.0))
             .with_max_allowed_area(area(max_size))
             .with_min_required_area(0.05 * area(smallest))
-            .with_max_additional_vertices(2_000_000),
+            .with_max_additional_vertices(max_corners - input),
     );
     if !result.refinement_complete {
-        return Err(FeError::Mesh("the refinement did not complete".into()));
+        return Err(over(4 * max_corners));
     }
     let excluded: HashSet<FixedFaceHandle<InnerTag>> = result.excluded_faces.into_iter().collect();
 
@@ -229,6 +244,9 @@ fn first_mesh(
             el[3 + k] = m;
         }
         elements.push(el);
+    }
+    if nodes.len() > max_nodes {
+        return Err(over(nodes.len()));
     }
     let mesh = Mesh {
         nodes,

@@ -37,7 +37,7 @@ use serde::Serialize;
 use super::element::{Elastic, Idealization};
 use super::geometry::Domain;
 use super::loads;
-use super::mesh::{mesh, Mesh};
+use super::mesh::{mesh_within, Mesh};
 use super::richardson::{estimate, Estimate};
 use super::FeError;
 use crate::part::analysis::{Analysis, FeOutputId, Quantity};
@@ -63,6 +63,44 @@ pub struct VerifySettings {
     pub body_stiffening: f64,
     /// Compute the natural modes too (where the material has a density).
     pub modal: bool,
+    /// The most degrees of freedom a mesh of the half part may have: the sequence stops
+    /// before a mesh that would have more, and a part whose first mesh would is refused
+    /// ([`FeError::Budget`]). Memory grows with it, about 4 kB a degree of freedom for both
+    /// idealizations and the modes (docs/guide/src/fe-check.md, measured).
+    pub max_dofs: usize,
+}
+
+/// The default [`VerifySettings::max_dofs`]: 400,000, about 1.6 GB.
+pub const MAX_DOFS: usize = 400_000;
+
+impl VerifySettings {
+    /// Elements through a hinge's thickness for a `tolerance`: 4 at the default 0.5 % and
+    /// below, fewer for a looser one, as the stiffness error of the six-node triangles falls
+    /// as the third power of the element size or faster (the observed orders of
+    /// `verify.json`): `4 (0.005 / tolerance)^(1/3)`, never below 2.
+    pub fn per_thickness_for(tolerance: f64) -> f64 {
+        (4.0 * (0.005 / tolerance).cbrt()).clamp(2.0, 4.0)
+    }
+}
+
+/// Why a sequence of meshes ended before its outputs converged: the next mesh would have
+/// had more degrees of freedom than the budget.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BudgetStop {
+    /// The degrees of freedom the next mesh would have had (about four times the last's).
+    pub next_dofs: usize,
+    pub max_dofs: usize,
+}
+
+impl std::fmt::Display for BudgetStop {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "the next mesh would have about {} degrees of freedom, more than the budget of {} \
+             (--max-dofs)",
+            self.next_dofs, self.max_dofs
+        )
+    }
 }
 
 impl Default for VerifySettings {
@@ -74,6 +112,7 @@ impl Default for VerifySettings {
             per_thickness: 4.0,
             body_stiffening: 1.0,
             modal: true,
+            max_dofs: MAX_DOFS,
         }
     }
 }
@@ -149,6 +188,8 @@ pub struct Verification {
     pub seconds: f64,
     /// The modal outputs were computed (the material has a density).
     pub modal: bool,
+    /// The sequence stopped at the budget before converging.
+    pub budget_stop: Option<BudgetStop>,
 }
 
 /// Verifies the part of `spec` (a whole part, symmetric about the y axis) with `material`.
@@ -189,7 +230,8 @@ pub fn verify(
     };
     let modal = settings.modal && material.density > 0.0 && setup.analysis.modal.is_some();
     let (size, coarse) = size_function(&setup.domain, settings.per_thickness);
-    let mut m = mesh(&setup.domain, &size, coarse)?;
+    let mut m = mesh_within(&setup.domain, &size, coarse, settings.max_dofs / 2)?;
+    let mut budget_stop = None;
     let mut levels = Vec::new();
     let mut meshes = Vec::new();
     let mut per: Vec<Vec<LevelResult>> = vec![Vec::new(), Vec::new()];
@@ -261,13 +303,22 @@ pub fn verify(
                 break done;
             }
         }
+        // a uniform refinement has about four times the nodes
+        let next_dofs = 4 * levels.last().map_or(0, |l: &Level| l.dofs);
+        if next_dofs > settings.max_dofs {
+            budget_stop = Some(BudgetStop {
+                next_dofs,
+                max_dofs: settings.max_dofs,
+            });
+            break false;
+        }
         m = m.refined(&setup.domain);
     };
     let results = Idealization::BOTH
         .iter()
         .zip(per)
         .map(|(&idealization, mut results)| {
-            let last = results.last().expect("three levels at least");
+            let last = results.last().expect("one level at least");
             let mm = |p: [f64; 2]| [p[0] * 1e3, p[1] * 1e3];
             let outputs = setup
                 .analysis
@@ -293,7 +344,7 @@ pub fn verify(
                     }
                 })
                 .collect();
-            let finest = results.pop().expect("three levels at least");
+            let finest = results.pop().expect("one level at least");
             Result2d {
                 idealization,
                 outputs,
@@ -331,6 +382,7 @@ pub fn verify(
         actuation_force,
         seconds: begin.elapsed().as_secs_f64(),
         modal,
+        budget_stop,
     })
 }
 
