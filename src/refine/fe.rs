@@ -81,19 +81,13 @@ fn read(v: &Verification, result: usize, what: FeCounterpart) -> Option<(f64, Op
         FeCounterpart::Output(id) => id,
     };
     let o = v.results[result].outputs.iter().find(|o| o.id == id)?;
-    let e = &o.estimate;
-    if e.converging {
-        return Some((e.value, e.relative_error));
-    }
-    // a peak stress whose last two refinements did not shrink its change by the order
-    // expected: its last change is the error to quote (a sharp root's peak grows by a
-    // third a refinement, which the caller refuses)
-    let n = o.values.len();
-    let change = (n >= 2).then(|| ((o.values[n - 1] - o.values[n - 2]) / e.value).abs());
-    Some((e.value, change))
+    // the verification's own estimate: the extrapolation's error where the output converges,
+    // else the spread of its last values (a sharp root's peak grows by a third a refinement,
+    // which the caller refuses)
+    Some((o.estimate.value, o.estimate.relative_error))
 }
 
-/// The largest last change of a non-converging peak stress the refinement accepts as its
+/// The largest spread of a non-converging peak stress the refinement accepts as its
 /// error: beyond it the peak is a sharp root's, which grows without bound.
 const PEAK_CHANGE_LIMIT: f64 = 0.02;
 

@@ -437,9 +437,18 @@ impl Display for VerifyTable<'_> {
             let (_, unit) = shown(a, 1.0);
             let cell = |o: &OutputReport| {
                 let (v, _) = shown(o, o.estimate.value);
-                match o.estimate.relative_error {
-                    Some(e) if o.estimate.converging => {
-                        format!("{} (+-{} %)", significant(v, 5), significant(100.0 * e, 2))
+                let e = &o.estimate;
+                match e.relative_error {
+                    Some(r) if e.converging => {
+                        format!("{} (+-{} %)", significant(v, 5), significant(100.0 * r, 2))
+                    }
+                    // the spread of a sequence that turns bounds its error
+                    Some(r) if e.oscillating => {
+                        format!(
+                            "{} (+-{} % spread)",
+                            significant(v, 5),
+                            significant(100.0 * r, 2)
+                        )
                     }
                     _ => format!("{} (not conv.)", significant(v, 5)),
                 }

@@ -50,16 +50,23 @@ fn the_printed_design_converges_and_deviates_as_table_2_does() {
     for r in &v.results {
         for o in &r.outputs {
             let e = &o.estimate;
+            if o.name == "fe_stress_max" {
+                // the peak at a 0.2 mm fillet, on meshes refined uniformly, turns (plane
+                // stress 153.6 -> 156.7 -> 155.9 MPa): its spread is quoted, about 2 %
+                assert!(
+                    e.converging || e.relative_error.is_some_and(|r| r < 0.025),
+                    "{:?}: {e:?} {:?}",
+                    r.idealization,
+                    o.values
+                );
+                continue;
+            }
             assert!(
-                e.converging,
-                "{:?} {}: {:?}",
-                r.idealization, o.name, o.values
-            );
-            assert!(
-                e.relative_error.unwrap() < 0.005,
-                "{:?} {}: {e:?}",
+                e.within(0.005),
+                "{:?} {}: {e:?} {:?}",
                 r.idealization,
-                o.name
+                o.name,
+                o.values
             );
         }
     }
@@ -145,8 +152,12 @@ fn a_sharp_roots_peak_stress_is_reported_as_not_converging() {
     assert!(v.converged);
     for k in 0..2 {
         let peak = &output(&v, k, "fe_stress_max").estimate;
+        // its spread is quoted, never an extrapolation, and it is far beyond any tolerance
         assert!(
-            !peak.converging && peak.relative_error.is_none(),
+            !peak.converging
+                && !peak.oscillating
+                && peak.extrapolated.is_none()
+                && peak.relative_error.is_some_and(|r| r > 0.1),
             "{peak:?}"
         );
         let values = &output(&v, k, "fe_stress_max").values;
@@ -304,4 +315,50 @@ fn the_committed_check_of_the_optimum_is_reproduced_to_the_last_digit() {
         now == committed,
         "verify.json of the wei2017 optimum differs from the committed one"
     );
+}
+
+/// No estimate in a committed check claims more than its sequence shows: an output called
+/// converging has its last differences of one sign and an observed order between 1/2 and 6;
+/// any other quotes at least the spread of its last three values (the optimum's plane-stress
+/// peak stress, 153.1 -> 156.2 -> 155.7 MPa, was once quoted +-0.07 %).
+#[test]
+fn every_committed_estimate_covers_what_its_sequence_shows() {
+    let mut checked = 0;
+    for file in [
+        "results/wei2017/verify/verify.json",
+        "results/wei2017/verify_printed/verify.json",
+        "results/bridge_circular/verify/verify.json",
+    ] {
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap();
+        for (idealization, outputs) in v["outputs"].as_object().unwrap() {
+            for (name, o) in outputs.as_object().unwrap() {
+                let values: Vec<f64> = o["values"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|v| v.as_f64().unwrap())
+                    .collect();
+                let n = values.len();
+                let last = &values[n - 3..];
+                let (d1, d2) = (last[1] - last[0], last[2] - last[1]);
+                let value = values[n - 1];
+                let spread = last.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b))
+                    - last.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+                let at = format!("{file} {idealization} {name}: {values:?}");
+                if o["converging"] == true {
+                    assert!(d1 * d2 >= 0.0, "{at}: called converging, turns");
+                    let order = o["order"].as_f64().unwrap();
+                    assert!((0.5..=8.0).contains(&order), "{at}: order {order}");
+                } else if let Some(e) = o["relative_error"].as_f64() {
+                    assert!(
+                        e * value.abs() >= spread * (1.0 - 1e-12),
+                        "{at}: error {e} below the spread"
+                    );
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 3 * 2 * 9);
 }

@@ -295,8 +295,7 @@ pub fn verify(
                     .filter(|&k| outputs[k].converges && (modal || !outputs[k].quantity.is_modal()))
                     .all(|k| {
                         let values: Vec<f64> = results.iter().map(|r| r.values[k]).collect();
-                        let e = estimate(&values);
-                        e.converging && e.relative_error.is_some_and(|r| r <= settings.tolerance)
+                        estimate(&values).within(settings.tolerance)
                     })
             });
             if done || levels.len() >= max_levels {
