@@ -182,8 +182,7 @@ fn eval(path: &Path, design: &str, format: Option<&str>) -> Result<(), Failure> 
         emit(&DesignTable {
             problem: &problem,
             report: &report,
-        });
-        Ok(())
+        })
     } else {
         print_json(&report)
     }
@@ -222,8 +221,7 @@ fn export(path: &Path, design: &DesignArgs, out: Option<PathBuf>) -> Result<(), 
     let report = DesignReport::new(&problem, &x);
     let files = write_part(|name| dir.join(name), &problem.name, &report.design, &part)
         .map_err(Failure::write_failed)?;
-    emit(&Wrote(&files));
-    Ok(())
+    emit(&Wrote(&files))
 }
 
 /// `flexopt hinge`: one hinge's report as JSON; every bad value is bad input.
@@ -250,6 +248,5 @@ fn run_sweep(
     let dir = out.unwrap_or_else(|| problem.default_output_dir().join("sweep"));
     check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
     let files = write_sweep(&dir, &result).map_err(Failure::write_failed)?;
-    emit(&Wrote(&files));
-    Ok(())
+    emit(&Wrote(&files))
 }

@@ -94,7 +94,7 @@ pub(crate) fn run_pareto(
         problem,
         front: &front,
         files: &files,
-    });
+    })?;
     if front.points.iter().any(|p| p.feasible) {
         Ok(())
     } else {
@@ -166,9 +166,9 @@ pub(crate) fn run_study(
         study: &study,
         part: part.as_ref(),
         files: &files,
-    });
+    })?;
     if let Some((report, _)) = &refined {
-        emit(&RefineSummary(report));
+        emit(&RefineSummary(report))?;
     }
     if verify && study.any_feasible && !study.interrupted {
         if let Some(Ok(_)) = &part {
