@@ -245,6 +245,7 @@ fn run_sweep(
 ) -> Result<(), Failure> {
     let (problem, base) = load_around(path, around)?;
     let result = sweep(&problem, spec, &base).map_err(Failure::bad_input)?;
+    warn(path, result.gaps().as_slice());
     let dir = out.unwrap_or_else(|| problem.default_output_dir().join("sweep"));
     check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
     let files = write_sweep(&dir, &result).map_err(Failure::write_failed)?;

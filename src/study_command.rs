@@ -8,13 +8,14 @@ use crate::failure::{emit, Failure};
 use crate::verify_command::run_verify;
 use flexopt::fe::verify::VerifySettings;
 use flexopt::pareto::{pareto, ParetoSpec};
+use flexopt::part::{Part, PartError};
 use flexopt::problem::{Problem, Solver};
 use flexopt::refine::study::refine_study;
 use flexopt::report::pareto::write_pareto;
 use flexopt::report::refine::{RefineSummary, RefinedReport};
 use flexopt::report::study::{write_all_refined, RefinedFiles};
 use flexopt::report::summary::{infeasible_message, ParetoSummary, StudySummary};
-use flexopt::study::{self, StudyOptions};
+use flexopt::study::{self, Study, StudyOptions};
 
 /// Loads the problem and applies the command line's overrides of its `[search]`.
 pub(crate) fn study_setup(
@@ -126,13 +127,21 @@ pub(crate) fn run_study(
         .any_feasible
         .then(|| problem.mechanism().part(study.reported_design()))
         .flatten();
-    if problem.refine.enabled && part.is_none() && study.any_feasible {
-        eprintln!(
-            "warning: {}: the {} model has no part, so its optimum is not refined against \
-             finite elements",
-            problem.file.display(),
-            problem.model().name()
-        );
+    // the FE steps asked for and skipped are said, whatever the exit code says already
+    if let Some(why) = no_fe_step(problem, &study, part.as_ref()) {
+        if problem.refine.enabled {
+            eprintln!(
+                "warning: {}: the optimum is not refined against finite elements: {why}",
+                problem.file.display()
+            );
+        }
+        if verify {
+            eprintln!(
+                "warning: {}: --verify: the optimum's part is not checked by finite elements: \
+                 {why}",
+                problem.file.display()
+            );
+        }
     }
     // the refinement by the finite elements, of a feasible optimum with a part
     let refined = (problem.refine.enabled && matches!(part, Some(Ok(_))) && !study.interrupted)
@@ -234,5 +243,24 @@ pub(crate) fn run_study(
         Ok(())
     } else {
         Err(Failure::no_feasible(infeasible_message(problem, &study)))
+    }
+}
+
+/// Why the optimum gets no finite-element step (`--verify`, `--refine fe`), if it gets none.
+fn no_fe_step(
+    problem: &Problem,
+    study: &Study,
+    part: Option<&Result<Part, PartError>>,
+) -> Option<String> {
+    if study.interrupted {
+        Some("the run was interrupted".into())
+    } else if !study.any_feasible {
+        Some("no start ended feasible, so there is no optimum to check (exit code 3)".into())
+    } else {
+        match part {
+            None => Some(format!("the {} model has no part", problem.model().name())),
+            Some(Err(_)) => Some("the optimum gives no part that can be made (exit code 5)".into()),
+            Some(Ok(_)) => None,
+        }
     }
 }

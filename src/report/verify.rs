@@ -19,6 +19,7 @@ use crate::fe::richardson::Estimate;
 use crate::fe::verify::{Level, Verification};
 use crate::fe::Idealization;
 use crate::part::analysis::{FeCounterpart, Quantity};
+use crate::problem::display::percent;
 use crate::problem::Problem;
 use crate::vocab::units::Unit;
 use compare::{analytic, displacements_at, value};
@@ -415,7 +416,7 @@ impl Display for VerifyTable<'_> {
             if r.converged {
                 String::new()
             } else {
-                format!(" (NOT all within {} %)", 100.0 * r.tolerance)
+                format!(" (NOT all within {} %)", percent(r.tolerance))
             }
         )?;
         writeln!(

@@ -8,6 +8,7 @@ mod common;
 
 mod cli;
 mod designer;
+mod messages;
 mod problem_errors;
 mod problem_fuzz;
 mod stdout;
