@@ -123,6 +123,7 @@ impl Validator<'_, '_> {
             search: self.search(&raw.search)?,
             zones: self.zones(&raw.zones)?,
             refine: super::refine::settings(self, raw.refine.as_ref())?,
+            fingerprint: super::fingerprint(self.text),
         })
     }
 

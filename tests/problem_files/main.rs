@@ -9,6 +9,7 @@ mod common;
 mod cli;
 mod designer;
 mod messages;
+mod optimum_report;
 mod problem_errors;
 mod problem_fuzz;
 mod stdout;
