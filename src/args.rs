@@ -7,6 +7,8 @@ use clap::{Parser, Subcommand};
 use flexopt::model::hinge::HingeKind;
 use flexopt::model::material::Material;
 use flexopt::model::registry::MODELS;
+use flexopt::problem::refine::FIDELITIES;
+use flexopt::problem::SOLVERS;
 
 #[derive(Parser)]
 #[command(
@@ -174,7 +176,7 @@ pub enum Command {
         /// Refine the optimum against the finite elements of its part (refined.json and the
         /// refined part's files; settings in the file's [refine]), or not (`none`),
         /// whatever the file's [refine] fidelity says.
-        #[arg(long, value_parser = ["fe", "none"])]
+        #[arg(long, value_parser = PossibleValuesParser::new(FIDELITIES.names()))]
         refine: Option<String>,
     },
     /// Trade-off front by the epsilon-constraint method: the limit of the problem's
@@ -230,7 +232,7 @@ pub struct StudyArgs {
     #[arg(long)]
     pub threads: Option<usize>,
     /// Local solver (default: the problem file's search.solver).
-    #[arg(long, value_parser = ["sqp", "nelder-mead"])]
+    #[arg(long, value_parser = PossibleValuesParser::new(SOLVERS.names()))]
     pub solver: Option<String>,
     /// No progress bar or progress lines.
     #[arg(long)]

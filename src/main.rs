@@ -20,6 +20,7 @@ use verify_command::{run_verify, verify_settings};
 use flexopt::model::hinge::calculator;
 use flexopt::pareto::ParetoSpec;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
+use flexopt::problem::refine::FIDELITIES;
 use flexopt::problem::Problem;
 use flexopt::report::part::write_part;
 use flexopt::report::summary::Wrote;
@@ -100,7 +101,7 @@ fn run(command: Command) -> Result<(), Failure> {
         } => {
             let (mut problem, options) = study_setup(&problem, &study)?;
             if let Some(r) = refine {
-                problem.refine.enabled = r == "fe";
+                problem.refine.enabled = FIDELITIES.get(&r).unwrap_or(false);
             }
             let dir = output_dir(&problem, study.out)?;
             run_study(&problem, &options, &dir, verify)

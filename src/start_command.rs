@@ -9,7 +9,8 @@ use clap::CommandFactory;
 use crate::args::Cli;
 use crate::failure::{emit, Failure};
 use flexopt::model::registry::{find, MODELS};
-use flexopt::problem::init::{json_schema, name_from, template};
+use flexopt::problem::init::{name_from, template};
+use flexopt::problem::json_schema::json_schema;
 use flexopt::problem::units::Unit;
 use flexopt::problem::Problem;
 

@@ -9,7 +9,8 @@ use crate::verify_command::run_verify;
 use flexopt::fe::verify::VerifySettings;
 use flexopt::pareto::{pareto, ParetoSpec};
 use flexopt::part::{Part, PartError};
-use flexopt::problem::{Problem, Solver};
+use flexopt::problem::schema::{STARTS, THREADS};
+use flexopt::problem::{Problem, SOLVERS};
 use flexopt::refine::study::refine_study;
 use flexopt::report::pareto::write_pareto;
 use flexopt::report::refine::{RefineSummary, RefinedReport};
@@ -39,18 +40,21 @@ pub(crate) fn study_setup(
     }
     let mut options = StudyOptions::from_problem(&problem);
     if let Some(s) = starts {
-        if !(1..=1_000_000).contains(&s) {
+        let (lo, hi) = STARTS;
+        if !i64::try_from(s).is_ok_and(|s| (lo..=hi).contains(&s)) {
             return Err(Failure::bad_input(format!(
-                "{}: key `--starts`: must lie between 1 and 1000000, got {s}",
+                "{}: key `--starts`: must lie between {lo} and {hi}, got {s}",
                 problem.file.display()
             )));
         }
         options.starts = s;
     }
-    if let Some(t) = threads.filter(|&t| t > 1024) {
+    if let Some(t) = threads.filter(|&t| i64::try_from(t).map_or(true, |t| t > THREADS.1)) {
         return Err(Failure::bad_input(format!(
-            "{}: key `--threads`: must lie between 0 and 1024, got {t}",
-            problem.file.display()
+            "{}: key `--threads`: must lie between {} and {}, got {t}",
+            problem.file.display(),
+            THREADS.0,
+            THREADS.1
         )));
     }
     // the file's seed is a TOML integer: one range for both
@@ -61,12 +65,8 @@ pub(crate) fn study_setup(
             i64::MAX
         )));
     }
-    if let Some(s) = &args.solver {
-        options.solver = if s == "sqp" {
-            Solver::Sqp
-        } else {
-            Solver::NelderMead
-        };
+    if let Some(solver) = args.solver.as_deref().and_then(|s| SOLVERS.get(s)) {
+        options.solver = solver;
     }
     options.progress = !args.quiet;
     options.seed = seed.unwrap_or(options.seed);

@@ -9,6 +9,7 @@ pub mod display;
 pub mod elastic;
 pub mod epigraph;
 pub mod init;
+pub mod json_schema;
 pub mod nlp;
 mod optimum_file;
 pub mod refine;
@@ -26,6 +27,7 @@ use serde::Serialize;
 
 use crate::model::registry::{ModelEntry, MODELS};
 use crate::model::{Depiction, Mechanism, Model};
+use crate::vocab::values::Choices;
 pub use error::ProblemError;
 use error::{Locator, Segment};
 use units::Unit;
@@ -92,6 +94,16 @@ pub enum Sampling {
     Uniform,
     LatinHypercube,
 }
+
+/// `search.solver` and `--solver`; the first is the default.
+pub const SOLVERS: Choices<Solver> =
+    Choices(&[("sqp", Solver::Sqp), ("nelder-mead", Solver::NelderMead)]);
+
+/// `search.sampling`; the first is the default.
+pub const SAMPLINGS: Choices<Sampling> = Choices(&[
+    ("uniform", Sampling::Uniform),
+    ("latin-hypercube", Sampling::LatinHypercube),
+]);
 
 /// How the multistart search runs.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -12,4 +12,5 @@ mod messages;
 mod optimum_report;
 mod problem_errors;
 mod problem_fuzz;
+mod rejected;
 mod stdout;
