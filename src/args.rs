@@ -7,6 +7,8 @@ use clap::{Parser, Subcommand};
 use flexopt::model::hinge::HingeKind;
 use flexopt::model::material::Material;
 use flexopt::model::registry::MODELS;
+use flexopt::problem::refine::FIDELITIES;
+use flexopt::problem::SOLVERS;
 
 #[derive(Parser)]
 #[command(
@@ -24,11 +26,11 @@ const PROBLEM: &str = "The problem file (TOML; `flexopt init` writes one to star
                        to read it from standard input";
 
 /// The exit codes, for every command's help.
-const EXIT_CODES: &str = "Exit codes: 0 success; 1 files that could not be written; 2 a \
-rejected problem file, design or option (the message names the file, the key and what is \
-wrong); 3 no feasible design (run, pareto; refined by FE: none meets the constraints on the \
-part); 4 feasible designs but none converged; 5 an optimum whose part cannot be made; 130 \
-interrupted (Ctrl-C).";
+const EXIT_CODES: &str = "Exit codes: 0 success; 1 files or output that could not be \
+written; 2 a rejected problem file, design or option (the message names the file, the key \
+and what is wrong); 3 no feasible design (run, pareto; refined by FE: none meets the \
+constraints on the part); 4 feasible designs but none converged; 5 an optimum whose part \
+cannot be made; 130 interrupted (Ctrl-C).";
 
 /// The models a problem file can name, from the registry: the first is the default.
 fn models() -> PossibleValuesParser {
@@ -178,7 +180,7 @@ pub enum Command {
         /// Refine the optimum against the finite elements of its part (refined.json and the
         /// refined part's files; settings in the file's [refine]), or not (`none`),
         /// whatever the file's [refine] fidelity says.
-        #[arg(long, value_parser = ["fe", "none"])]
+        #[arg(long, value_parser = PossibleValuesParser::new(FIDELITIES.names()))]
         refine: Option<String>,
     },
     /// Trade-off front by the epsilon-constraint method: the limit of the problem's
@@ -234,7 +236,7 @@ pub struct StudyArgs {
     #[arg(long)]
     pub threads: Option<usize>,
     /// Local solver (default: the problem file's search.solver).
-    #[arg(long, value_parser = ["sqp", "nelder-mead"])]
+    #[arg(long, value_parser = PossibleValuesParser::new(SOLVERS.names()))]
     pub solver: Option<String>,
     /// No progress bar or progress lines.
     #[arg(long)]

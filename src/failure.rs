@@ -43,17 +43,24 @@ impl Failure {
     }
 }
 
-/// Writes to stdout; a reader that has gone away (a closed pipe) is not an error worth a
-/// panic, and the command just stops printing.
-pub fn emit(text: &impl Display) {
+/// Writes `text` to standard output, whole, or says why it could not: a full disk, a closed
+/// pipe or `/dev/full` end the command with exit code 1, never with 0 and never with a panic,
+/// so that a script never takes a cut-off result for a whole one.
+pub fn emit(text: &impl Display) -> Result<(), Failure> {
+    write_stdout(text.to_string().as_bytes())
+}
+
+/// Writes `bytes` to standard output and flushes them, as [`emit`].
+pub fn write_stdout(bytes: &[u8]) -> Result<(), Failure> {
     use std::io::Write;
     let mut out = std::io::stdout().lock();
-    let _ = write!(out, "{text}").and_then(|()| out.flush());
+    out.write_all(bytes)
+        .and_then(|()| out.flush())
+        .map_err(|e| Failure::write_failed(format!("cannot write to standard output: {e}")))
 }
 
 pub fn print_json(value: &impl serde::Serialize) -> Result<(), Failure> {
     let s = serde_json::to_string_pretty(value)
         .map_err(|e| Failure::write_failed(format!("cannot format the result: {e}")))?;
-    emit(&format!("{s}\n"));
-    Ok(())
+    emit(&format!("{s}\n"))
 }

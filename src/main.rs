@@ -20,6 +20,7 @@ use verify_command::{run_verify, verify_settings};
 use flexopt::model::hinge::calculator;
 use flexopt::pareto::ParetoSpec;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
+use flexopt::problem::refine::FIDELITIES;
 use flexopt::problem::Problem;
 use flexopt::report::part::write_part;
 use flexopt::report::summary::Wrote;
@@ -101,7 +102,7 @@ fn run(command: Command) -> Result<(), Failure> {
         } => {
             let (mut problem, options) = study_setup(&problem, &study)?;
             if let Some(r) = refine {
-                problem.refine.enabled = r == "fe";
+                problem.refine.enabled = FIDELITIES.get(&r).unwrap_or(false);
             }
             let dir = output_dir(&problem, study.out)?;
             run_study(&problem, &options, &dir, verify)
@@ -183,8 +184,7 @@ fn eval(path: &Path, design: &str, format: Option<&str>) -> Result<(), Failure> 
         emit(&DesignTable {
             problem: &problem,
             report: &report,
-        });
-        Ok(())
+        })
     } else {
         print_json(&report)
     }
@@ -223,8 +223,7 @@ fn export(path: &Path, design: &DesignArgs, out: Option<PathBuf>) -> Result<(), 
     let report = DesignReport::new(&problem, &x);
     let files = write_part(|name| dir.join(name), &problem.name, &report.design, &part)
         .map_err(Failure::write_failed)?;
-    emit(&Wrote(&files));
-    Ok(())
+    emit(&Wrote(&files))
 }
 
 /// `flexopt hinge`: one hinge's report as JSON; every bad value is bad input.
@@ -248,9 +247,9 @@ fn run_sweep(
 ) -> Result<(), Failure> {
     let (problem, base) = load_around(path, around)?;
     let result = sweep(&problem, spec, &base).map_err(Failure::bad_input)?;
+    warn(path, result.gaps().as_slice());
     let dir = out.unwrap_or_else(|| problem.default_output_dir().join("sweep"));
     check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
     let files = write_sweep(&dir, &result).map_err(Failure::write_failed)?;
-    emit(&Wrote(&files));
-    Ok(())
+    emit(&Wrote(&files))
 }

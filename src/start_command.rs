@@ -9,7 +9,8 @@ use clap::CommandFactory;
 use crate::args::Cli;
 use crate::failure::{emit, Failure};
 use flexopt::model::registry::{find, MODELS};
-use flexopt::problem::init::{json_schema, name_from, template};
+use flexopt::problem::init::{name_from, template};
+use flexopt::problem::json_schema::json_schema;
 use flexopt::problem::units::Unit;
 use flexopt::problem::Problem;
 
@@ -42,7 +43,7 @@ pub(crate) fn init(model: &str, file: Option<&Path>, force: bool) -> Result<(), 
         .unwrap_or_else(|| format!("my_{model}"));
     let text = template(entry, &name);
     let Some(file) = file else {
-        emit(&text);
+        emit(&text)?;
         return Ok(());
     };
     if file.exists() && !force {
@@ -71,15 +72,12 @@ pub(crate) fn schema() -> Result<(), Failure> {
     crate::failure::print_json(&json_schema())
 }
 
-/// `flexopt completions SHELL`.
+/// `flexopt completions SHELL`. clap_complete panics when its writer fails, so the script
+/// is made in memory and written as every other output is.
 pub(crate) fn completions(shell: clap_complete::Shell) -> Result<(), Failure> {
-    clap_complete::generate(
-        shell,
-        &mut Cli::command(),
-        "flexopt",
-        &mut std::io::stdout(),
-    );
-    Ok(())
+    let mut script = Vec::new();
+    clap_complete::generate(shell, &mut Cli::command(), "flexopt", &mut script);
+    crate::failure::write_stdout(&script)
 }
 
 /// `flexopt outputs --model M`: the model's parameters and outputs, as its template
@@ -116,6 +114,5 @@ pub(crate) fn outputs(model: &str) -> Result<(), Failure> {
             o.description
         );
     }
-    emit(&text);
-    Ok(())
+    emit(&text)
 }

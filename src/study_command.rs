@@ -8,13 +8,15 @@ use crate::failure::{emit, Failure};
 use crate::verify_command::run_verify;
 use flexopt::fe::verify::VerifySettings;
 use flexopt::pareto::{pareto, ParetoSpec};
-use flexopt::problem::{Problem, Solver};
+use flexopt::part::{Part, PartError};
+use flexopt::problem::schema::{STARTS, THREADS};
+use flexopt::problem::{Problem, SOLVERS};
 use flexopt::refine::study::refine_study;
 use flexopt::report::pareto::write_pareto;
 use flexopt::report::refine::{RefineSummary, RefinedReport};
 use flexopt::report::study::{write_all_refined, RefinedFiles};
 use flexopt::report::summary::{infeasible_message, ParetoSummary, StudySummary};
-use flexopt::study::{self, StudyOptions};
+use flexopt::study::{self, Study, StudyOptions};
 
 /// Loads the problem and applies the command line's overrides of its `[search]`.
 pub(crate) fn study_setup(
@@ -38,18 +40,21 @@ pub(crate) fn study_setup(
     }
     let mut options = StudyOptions::from_problem(&problem);
     if let Some(s) = starts {
-        if !(1..=1_000_000).contains(&s) {
+        let (lo, hi) = STARTS;
+        if !i64::try_from(s).is_ok_and(|s| (lo..=hi).contains(&s)) {
             return Err(Failure::bad_input(format!(
-                "{}: key `--starts`: must lie between 1 and 1000000, got {s}",
+                "{}: key `--starts`: must lie between {lo} and {hi}, got {s}",
                 problem.file.display()
             )));
         }
         options.starts = s;
     }
-    if let Some(t) = threads.filter(|&t| t > 1024) {
+    if let Some(t) = threads.filter(|&t| i64::try_from(t).map_or(true, |t| t > THREADS.1)) {
         return Err(Failure::bad_input(format!(
-            "{}: key `--threads`: must lie between 0 and 1024, got {t}",
-            problem.file.display()
+            "{}: key `--threads`: must lie between {} and {}, got {t}",
+            problem.file.display(),
+            THREADS.0,
+            THREADS.1
         )));
     }
     // the file's seed is a TOML integer: one range for both
@@ -60,12 +65,8 @@ pub(crate) fn study_setup(
             i64::MAX
         )));
     }
-    if let Some(s) = &args.solver {
-        options.solver = if s == "sqp" {
-            Solver::Sqp
-        } else {
-            Solver::NelderMead
-        };
+    if let Some(solver) = args.solver.as_deref().and_then(|s| SOLVERS.get(s)) {
+        options.solver = solver;
     }
     options.progress = !args.quiet;
     options.seed = seed.unwrap_or(options.seed);
@@ -94,7 +95,7 @@ pub(crate) fn run_pareto(
         problem,
         front: &front,
         files: &files,
-    });
+    })?;
     if front.points.iter().any(|p| p.feasible) {
         Ok(())
     } else {
@@ -126,13 +127,21 @@ pub(crate) fn run_study(
         .any_feasible
         .then(|| problem.mechanism().part(study.reported_design()))
         .flatten();
-    if problem.refine.enabled && part.is_none() && study.any_feasible {
-        eprintln!(
-            "warning: {}: the {} model has no part, so its optimum is not refined against \
-             finite elements",
-            problem.file.display(),
-            problem.model().name()
-        );
+    // the FE steps asked for and skipped are said, whatever the exit code says already
+    if let Some(why) = no_fe_step(problem, &study, part.as_ref()) {
+        if problem.refine.enabled {
+            eprintln!(
+                "warning: {}: the optimum is not refined against finite elements: {why}",
+                problem.file.display()
+            );
+        }
+        if verify {
+            eprintln!(
+                "warning: {}: --verify: the optimum's part is not checked by finite elements: \
+                 {why}",
+                problem.file.display()
+            );
+        }
     }
     // the refinement by the finite elements, of a feasible optimum with a part
     let refined = (problem.refine.enabled && matches!(part, Some(Ok(_))) && !study.interrupted)
@@ -166,9 +175,9 @@ pub(crate) fn run_study(
         study: &study,
         part: part.as_ref(),
         files: &files,
-    });
+    })?;
     if let Some((report, _)) = &refined {
-        emit(&RefineSummary(report));
+        emit(&RefineSummary(report))?;
     }
     if verify && study.any_feasible && !study.interrupted {
         if let Some(Ok(_)) = &part {
@@ -234,5 +243,24 @@ pub(crate) fn run_study(
         Ok(())
     } else {
         Err(Failure::no_feasible(infeasible_message(problem, &study)))
+    }
+}
+
+/// Why the optimum gets no finite-element step (`--verify`, `--refine fe`), if it gets none.
+fn no_fe_step(
+    problem: &Problem,
+    study: &Study,
+    part: Option<&Result<Part, PartError>>,
+) -> Option<String> {
+    if study.interrupted {
+        Some("the run was interrupted".into())
+    } else if !study.any_feasible {
+        Some("no start ended feasible, so there is no optimum to check (exit code 3)".into())
+    } else {
+        match part {
+            None => Some(format!("the {} model has no part", problem.model().name())),
+            Some(Err(_)) => Some("the optimum gives no part that can be made (exit code 5)".into()),
+            Some(Ok(_)) => None,
+        }
     }
 }

@@ -4,6 +4,7 @@ use indexmap::IndexMap;
 
 use serde::Serialize;
 
+use crate::problem::display::human;
 use crate::problem::{Problem, ProblemError};
 
 /// The most points a sweep computes.
@@ -47,6 +48,48 @@ pub struct Sweep {
     #[serde(skip)]
     pub order: Vec<String>,
 }
+
+impl Sweep {
+    /// Which points gave no value of some output (the model gives no finite number there,
+    /// or the point lies in a hole of its domain), as a sentence, if any did: those values
+    /// are `null` in the JSON and gaps in the plot.
+    pub fn gaps(&self) -> Option<String> {
+        let missing = |i: usize| self.outputs.values().any(|c| c[i].is_none());
+        let points: Vec<usize> = (0..self.values.len()).filter(|&i| missing(i)).collect();
+        if points.is_empty() {
+            return None;
+        }
+        let outputs: Vec<&str> = self
+            .outputs
+            .iter()
+            .filter(|(_, c)| c.iter().any(Option::is_none))
+            .map(|(name, _)| name.as_str())
+            .collect();
+        let list = |items: Vec<String>| {
+            let more = items.len().saturating_sub(GAPS_LISTED);
+            let mut text = items[..items.len() - more].join(", ");
+            if more > 0 {
+                text += &format!(" and {more} more");
+            }
+            text
+        };
+        let at = list(points.iter().map(|&i| human(self.values[i])).collect());
+        Some(format!(
+            "the model gives no value of {} of {} outputs ({}) at {} of {} points, {} = {at} \
+             {}: they are null in the JSON and gaps in the plot",
+            outputs.len(),
+            self.outputs.len(),
+            list(outputs.iter().map(|o| o.to_string()).collect()),
+            points.len(),
+            self.values.len(),
+            self.variable,
+            self.unit
+        ))
+    }
+}
+
+/// How many points or outputs [`Sweep::gaps`] names before it counts the rest.
+const GAPS_LISTED: usize = 5;
 
 /// Sweeps `spec.variable` with every other variable at `base` (full design, SI).
 /// Values outside the variable's bounds are allowed: a sweep explores the model.

@@ -54,7 +54,6 @@ pub fn run_verify(
     })?;
     let report = VerifyReport::new(problem, x, &v);
     let files = write_verify(|name| dir.join(name), &report, &v).map_err(Failure::write_failed)?;
-    emit(&VerifyTable(&report));
-    emit(&Wrote(&files));
-    Ok(())
+    emit(&VerifyTable(&report))?;
+    emit(&Wrote(&files))
 }

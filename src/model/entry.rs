@@ -27,6 +27,10 @@ pub struct SectionSchema {
     pub name: &'static str,
     pub schema: schemars::Schema,
     pub required: bool,
+    /// Rules between this section and the rest of the file (a table another section may
+    /// give instead, a value a constraint needs from it), each a JSON Schema of the whole
+    /// file that applies when the model is chosen.
+    pub rules: Vec<serde_json::Value>,
 }
 
 /// No sections: a model whose parameters are all variables.

@@ -2,22 +2,53 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::model::Dimension;
 use crate::vocab::reader::{k, quoted, Res};
+use crate::vocab::schema::{quantity_pattern, Measured, PositiveStress, Sign};
 use crate::vocab::sections::Sections;
 use crate::vocab::values::{Number, Quantity};
 
 /// The `[material]` section as written.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
+#[schemars(extend("anyOf" = [
+    {"required": ["preset"]},
+    {"required": ["youngs_modulus", "poisson_ratio"]},
+]))]
 pub struct RawMaterial {
+    #[schemars(extend("enum" = Material::PRESETS))]
     pub preset: Option<String>,
     pub name: Option<String>,
-    pub youngs_modulus: Option<Quantity>,
+    pub youngs_modulus: Option<Measured<PositiveStress>>,
+    #[schemars(extend(
+        "exclusiveMinimum" = POISSON_RATIO.0,
+        "exclusiveMaximum" = POISSON_RATIO.1
+    ))]
     pub poisson_ratio: Option<Number>,
-    pub yield_strength: Option<Quantity>,
-    pub ultimate_strength: Option<Quantity>,
+    pub yield_strength: Option<Measured<PositiveStress>>,
+    pub ultimate_strength: Option<Measured<PositiveStress>>,
+    #[schemars(schema_with = "density_schema")]
+    #[serde(default)]
     pub density: Option<Quantity>,
+}
+
+/// Poisson's ratio lies strictly between these.
+const POISSON_RATIO: (f64, f64) = (-1.0, 0.5);
+
+/// The units of a density, with their factors to kg/m^3.
+const DENSITY_UNITS: [(&str, f64); 4] = [
+    ("kg/m3", 1.0),
+    ("kg/m^3", 1.0),
+    ("g/cm3", 1000.0),
+    ("g/cm^3", 1000.0),
+];
+
+fn density_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    let names: Vec<&str> = DENSITY_UNITS.iter().map(|u| u.0).collect();
+    schemars::json_schema!({
+        "type": "string",
+        "pattern": quantity_pattern(Sign::Positive, &names),
+        "description": "A density with its unit, e.g. \"2810 kg/m3\" or \"2.81 g/cm3\"",
+    })
 }
 
 /// An isotropic linear-elastic material, SI units.
@@ -98,6 +129,34 @@ impl Material {
     ];
 }
 
+/// The strengths a stress limit may be written as a fraction of (`unit = "ultimate"`): a
+/// constraint's unit names one, and the material must give it.
+pub const STRENGTH_FRACTIONS: [&str; 2] = ["yield", "ultimate"];
+
+/// The rules of the JSON Schema that come with a material read from the section `section`:
+/// a constraint whose unit is a strength fraction needs that strength, from a preset (every
+/// preset gives both) or the section's own `<fraction>_strength`.
+pub fn strength_rules(section: &str) -> Vec<serde_json::Value> {
+    STRENGTH_FRACTIONS
+        .iter()
+        .map(|fraction| {
+            serde_json::json!({
+                "if": {
+                    "properties": {"constraints": {"contains": {
+                        "properties": {"unit": {"const": fraction}},
+                        "required": ["unit"],
+                    }}},
+                    "required": ["constraints"],
+                },
+                "then": {"properties": {section: {"anyOf": [
+                    {"required": ["preset"]},
+                    {"required": [format!("{fraction}_strength")]},
+                ]}}},
+            })
+        })
+        .collect()
+}
+
 impl Material {
     /// Reads the `[material]` section: a preset, or the values, or a preset with some
     /// values overridden.
@@ -142,24 +201,24 @@ impl Material {
             mat.name = n.clone();
         }
         if let Some(q) = &m.youngs_modulus {
-            mat.youngs_modulus = s.positive(&path("youngs_modulus"), q, Dimension::Stress)?;
+            mat.youngs_modulus = s.measured(&path("youngs_modulus"), q)?;
         }
         if let Some(n) = m.poisson_ratio {
             let nu = s.finite(&path("poisson_ratio"), n)?;
-            if !(nu > -1.0 && nu < 0.5) {
+            let (lo, hi) = POISSON_RATIO;
+            if !(nu > lo && nu < hi) {
                 return Err(s.err(
                     &path("poisson_ratio"),
-                    format!("must lie in (-1, 0.5), got {nu}"),
+                    format!("must lie in ({lo}, {hi}), got {nu}"),
                 ));
             }
             mat.poisson_ratio = nu;
         }
         if let Some(q) = &m.yield_strength {
-            mat.yield_strength = Some(s.positive(&path("yield_strength"), q, Dimension::Stress)?);
+            mat.yield_strength = Some(s.measured(&path("yield_strength"), q)?);
         }
         if let Some(q) = &m.ultimate_strength {
-            mat.ultimate_strength =
-                Some(s.positive(&path("ultimate_strength"), q, Dimension::Stress)?);
+            mat.ultimate_strength = Some(s.measured(&path("ultimate_strength"), q)?);
         }
         if let Some(q) = &m.density {
             mat.density = density(q).map_err(|msg| s.err(&path("density"), msg))?;
@@ -175,14 +234,11 @@ fn density(q: &Quantity) -> Result<f64, String> {
     };
     let t = t.trim();
     let (num, unit) = t.split_at(t.find(char::is_whitespace).unwrap_or(t.len()));
-    let factor = match unit.trim() {
-        "kg/m3" | "kg/m^3" => 1.0,
-        "g/cm3" | "g/cm^3" => 1000.0,
-        u => {
-            return Err(format!(
-                "unknown unit \"{u}\" for a density; expected \"kg/m3\" or \"g/cm3\""
-            ))
-        }
+    let unit = unit.trim();
+    let Some(&(_, factor)) = DENSITY_UNITS.iter().find(|(name, _)| *name == unit) else {
+        return Err(format!(
+            "unknown unit \"{unit}\" for a density; expected \"kg/m3\" or \"g/cm3\""
+        ));
     };
     match num.parse::<f64>() {
         // from aerogels to osmium, with room

@@ -1,5 +1,6 @@
 //! Designs written on the command line: `l2=1.96,delta2=4.07,...` in the file's units.
 
+pub use super::optimum_file::design_from_optimum;
 use super::{Problem, ProblemError};
 
 /// A full design (every model parameter, SI) read from `name=value` pairs, with a
@@ -43,7 +44,7 @@ pub fn default_design(problem: &Problem) -> Vec<f64> {
         .collect()
 }
 
-fn parse_design_with(
+pub(super) fn parse_design_with(
     problem: &Problem,
     text: &str,
     option: &str,
@@ -125,50 +126,4 @@ fn parse_design_with(
         x.push(value);
     }
     Ok(ParsedDesign { x, warnings })
-}
-
-/// The design of a report written by `flexopt run` (`optimum.json`), read from its
-/// `design_si`: the exact values, not their rounding in the file's units. Every variable of
-/// `problem` must be there; a fixed one must hold its fixed value.
-pub fn design_from_optimum(
-    problem: &Problem,
-    path: &std::path::Path,
-) -> Result<ParsedDesign, ProblemError> {
-    let err = |key: &str, message: String| ProblemError {
-        file: path.to_path_buf(),
-        key: key.to_string(),
-        position: None,
-        message,
-    };
-    let text =
-        std::fs::read_to_string(path).map_err(|e| err("", format!("cannot read it: {e}")))?;
-    let json: serde_json::Value = serde_json::from_str(&text)
-        .map_err(|e| err("", format!("not a JSON report of flexopt: {e}")))?;
-    let Some(design) = json.get("design_si").and_then(|d| d.as_object()) else {
-        return Err(err(
-            "design_si",
-            "missing: not a design report of flexopt (optimum.json)".to_string(),
-        ));
-    };
-    let mut pairs = Vec::new();
-    for v in &problem.variables {
-        let Some(value) = design.get(&v.name).and_then(serde_json::Value::as_f64) else {
-            return Err(err(
-                &format!("design_si.{}", v.name),
-                format!(
-                    "missing or not a number: the report does not hold a design of {}",
-                    problem.file.display()
-                ),
-            ));
-        };
-        pairs.push(format!("{}={}", v.name, v.unit.from_si(value)));
-    }
-    let mut parsed = parse_design_with(problem, &pairs.join(","), "--optimum", None)?;
-    // the exact SI values, not their round trip through the file's units
-    for (x, v) in parsed.x.iter_mut().zip(&problem.variables) {
-        if let Some(value) = design.get(&v.name).and_then(serde_json::Value::as_f64) {
-            *x = value;
-        }
-    }
-    Ok(parsed)
 }

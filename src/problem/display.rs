@@ -37,6 +37,12 @@ pub fn significant(v: f64, digits: usize) -> String {
     plain_or_scientific(rounded)
 }
 
+/// A fraction as a percentage, to six significant digits: a tolerance of `1e-6` reads
+/// `0.0001` (%), not the `0.00009999999999999999` of its product by 100.
+pub fn percent(fraction: f64) -> String {
+    significant(100.0 * fraction, 6)
+}
+
 fn plain_or_scientific(v: f64) -> String {
     let a = v.abs();
     if a == 0.0 || (1e-4..1e9).contains(&a) {
@@ -104,6 +110,14 @@ pub fn design_arg(problem: &Problem, x: &[f64]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn percentages_carry_no_rounding_noise() {
+        assert_eq!(percent(1e-6), "0.0001");
+        assert_eq!(percent(0.005), "0.5");
+        assert_eq!(percent(0.1), "10");
+        assert_eq!(percent(1e-9), "1e-7");
+    }
 
     #[test]
     fn numbers_read_as_a_designer_writes_them() {

@@ -9,7 +9,9 @@ pub mod display;
 pub mod elastic;
 pub mod epigraph;
 pub mod init;
+pub mod json_schema;
 pub mod nlp;
+mod optimum_file;
 pub mod refine;
 pub mod schema;
 mod strength;
@@ -25,6 +27,7 @@ use serde::Serialize;
 
 use crate::model::registry::{ModelEntry, MODELS};
 use crate::model::{Depiction, Mechanism, Model};
+use crate::vocab::values::Choices;
 pub use error::ProblemError;
 use error::{Locator, Segment};
 use units::Unit;
@@ -92,6 +95,16 @@ pub enum Sampling {
     LatinHypercube,
 }
 
+/// `search.solver` and `--solver`; the first is the default.
+pub const SOLVERS: Choices<Solver> =
+    Choices(&[("sqp", Solver::Sqp), ("nelder-mead", Solver::NelderMead)]);
+
+/// `search.sampling`; the first is the default.
+pub const SAMPLINGS: Choices<Sampling> = Choices(&[
+    ("uniform", Sampling::Uniform),
+    ("latin-hypercube", Sampling::LatinHypercube),
+]);
+
 /// How the multistart search runs.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SearchSettings {
@@ -135,6 +148,22 @@ pub struct Problem {
     pub zones: ZoneSettings,
     /// `[refine]`: the FE refinement of `run`'s optimum.
     pub refine: refine::RefineSettings,
+    /// The file's content as data, hashed ([`fingerprint`]): reports record it, so that a
+    /// design read back from one can tell whether the file changed since.
+    pub fingerprint: u64,
+}
+
+/// FNV-1a (64 bits) of the problem file's content as data: its keys sorted, its comments and
+/// layout aside, so two files that say the same hash alike and a changed value shows.
+pub fn fingerprint(text: &str) -> u64 {
+    use std::hash::Hasher;
+    let data = toml::from_str::<toml::Table>(text)
+        .ok()
+        .and_then(|t| serde_json::to_string(&t).ok())
+        .unwrap_or_else(|| text.to_string());
+    let mut h = fnv::FnvHasher::default();
+    h.write(data.as_bytes());
+    h.finish()
 }
 
 impl Problem {

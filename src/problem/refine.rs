@@ -16,20 +16,48 @@ use serde::{Deserialize, Serialize};
 
 use super::reader::{k, Reader, Res};
 use crate::fe::Idealization;
-use crate::vocab::values::Number;
+use crate::vocab::values::{Choices, Number};
 
 /// The `[refine]` section as written.
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RawRefine {
+    /// Required: a `[refine]` says what the optimum is refined against.
+    #[schemars(required, extend("enum" = FIDELITIES.names()))]
     pub fidelity: Option<String>,
+    #[schemars(extend("enum" = IDEALIZATIONS.names()))]
     pub idealization: Option<String>,
+    #[schemars(extend("enum" = STRESSES.names()))]
     pub stress: Option<String>,
+    #[schemars(extend(
+        "minimum" = REFINE_TOLERANCE_RANGE.0,
+        "maximum" = REFINE_TOLERANCE_RANGE.1
+    ))]
     pub tolerance: Option<Number>,
+    #[schemars(extend("minimum" = MAX_FE.0, "maximum" = MAX_FE.1))]
     pub max_fe: Option<i64>,
+    #[schemars(extend("enum" = FROMS.names()))]
     pub from: Option<String>,
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 1))]
     pub trust_radius: Option<Number>,
 }
+
+/// `fidelity`, and `run --refine`: refined against the FE (`true`) or not.
+pub const FIDELITIES: Choices<bool> = Choices(&[("fe", true), ("none", false)]);
+pub const IDEALIZATIONS: Choices<Idealization> = Choices(&[
+    ("plane-strain", Idealization::PlaneStrain),
+    ("plane-stress", Idealization::PlaneStress),
+]);
+pub const STRESSES: Choices<StressMeasure> = Choices(&[
+    ("peak", StressMeasure::Peak),
+    ("section", StressMeasure::Section),
+]);
+pub const FROMS: Choices<RefineFrom> = Choices(&[
+    ("optimum", RefineFrom::Optimum),
+    ("zones", RefineFrom::Zones),
+]);
+/// The range of `max_fe`.
+pub const MAX_FE: (i64, i64) = (2, 200);
 
 /// Which FE stress stands for the analytic `stress_max`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -91,23 +119,8 @@ pub(crate) fn settings(r: &Reader, raw: Option<&RawRefine>) -> Res<RefineSetting
         return Ok(s);
     };
     let path = |key: &str| [k("refine"), k(key)];
-    let choice = |key: &str, v: &str, expected: &[&str]| {
-        r.err(
-            &path(key),
-            format!(
-                "unknown {key} \"{v}\"; expected {}",
-                expected
-                    .iter()
-                    .map(|e| format!("\"{e}\""))
-                    .collect::<Vec<_>>()
-                    .join(" or ")
-            ),
-        )
-    };
-    s.enabled = match raw.fidelity.as_deref() {
-        Some("fe") => true,
-        Some("none") => false,
-        Some(o) => return Err(choice("fidelity", o, &["fe", "none"])),
+    s.enabled = match &raw.fidelity {
+        Some(name) => r.choice(&path("fidelity"), name, &FIDELITIES)?,
         None => {
             return Err(r.err(
                 &path("fidelity"),
@@ -115,26 +128,14 @@ pub(crate) fn settings(r: &Reader, raw: Option<&RawRefine>) -> Res<RefineSetting
             ))
         }
     };
-    if let Some(v) = raw.idealization.as_deref() {
-        s.idealization = match v {
-            "plane-strain" => Idealization::PlaneStrain,
-            "plane-stress" => Idealization::PlaneStress,
-            o => return Err(choice("idealization", o, &["plane-strain", "plane-stress"])),
-        };
+    if let Some(v) = &raw.idealization {
+        s.idealization = r.choice(&path("idealization"), v, &IDEALIZATIONS)?;
     }
-    if let Some(v) = raw.stress.as_deref() {
-        s.stress = match v {
-            "peak" => StressMeasure::Peak,
-            "section" => StressMeasure::Section,
-            o => return Err(choice("stress", o, &["peak", "section"])),
-        };
+    if let Some(v) = &raw.stress {
+        s.stress = r.choice(&path("stress"), v, &STRESSES)?;
     }
-    if let Some(v) = raw.from.as_deref() {
-        s.from = match v {
-            "optimum" => RefineFrom::Optimum,
-            "zones" => RefineFrom::Zones,
-            o => return Err(choice("from", o, &["optimum", "zones"])),
-        };
+    if let Some(v) = &raw.from {
+        s.from = r.choice(&path("from"), v, &FROMS)?;
     }
     if let Some(n) = raw.tolerance {
         let t = r.finite(&path("tolerance"), n)?;
@@ -148,10 +149,11 @@ pub(crate) fn settings(r: &Reader, raw: Option<&RawRefine>) -> Res<RefineSetting
         s.tolerance = t;
     }
     if let Some(n) = raw.max_fe {
-        if !(2..=200).contains(&n) {
+        let (lo, hi) = MAX_FE;
+        if !(lo..=hi).contains(&n) {
             return Err(r.err(
                 &path("max_fe"),
-                format!("must lie between 2 and 200 FE checks, got {n}"),
+                format!("must lie between {lo} and {hi} FE checks, got {n}"),
             ));
         }
         s.max_fe = n as usize;

@@ -5,6 +5,7 @@ use indexmap::IndexMap;
 use serde::de::IgnoredAny;
 use serde::Deserialize;
 
+use super::{SAMPLINGS, SOLVERS};
 pub use crate::vocab::values::{Number, Quantity};
 
 /// The keys every problem file may have; any other top-level key is a section of the
@@ -43,8 +44,13 @@ pub struct RawProblem {
     pub sections: IndexMap<String, IgnoredAny>,
 }
 
+/// A variable is fixed (`value`) or free (`lower` and `upper`), never both.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
+#[schemars(extend("oneOf" = [
+    {"required": ["value"], "not": {"anyOf": [{"required": ["lower"]}, {"required": ["upper"]}]}},
+    {"required": ["lower", "upper"], "not": {"required": ["value"]}},
+]))]
 pub struct RawVariable {
     pub name: String,
     pub unit: String,
@@ -53,8 +59,13 @@ pub struct RawVariable {
     pub value: Option<Number>,
 }
 
+/// One sense: `maximize` or `minimize`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
+#[schemars(extend("oneOf" = [
+    {"required": ["maximize"], "not": {"required": ["minimize"]}},
+    {"required": ["minimize"], "not": {"required": ["maximize"]}},
+]))]
 pub struct RawObjective {
     pub maximize: Option<String>,
     pub minimize: Option<String>,
@@ -62,8 +73,10 @@ pub struct RawObjective {
     pub absolute: bool,
 }
 
+/// At least one limit.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
+#[schemars(extend("anyOf" = [{"required": ["lower"]}, {"required": ["upper"]}]))]
 pub struct RawConstraint {
     pub output: String,
     pub unit: String,
@@ -74,20 +87,39 @@ pub struct RawConstraint {
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RawSearch {
+    #[schemars(extend("minimum" = STARTS.0, "maximum" = STARTS.1))]
     pub starts: Option<i64>,
+    #[schemars(extend("minimum" = 0))]
     pub seed: Option<i64>,
+    #[schemars(extend("enum" = SOLVERS.names()))]
     pub solver: Option<String>,
+    #[schemars(extend("enum" = SAMPLINGS.names()))]
     pub sampling: Option<String>,
+    #[schemars(extend("minimum" = TOLERANCE.0, "maximum" = TOLERANCE.1))]
     pub tolerance: Option<Number>,
+    #[schemars(extend("minimum" = MAX_ITERATIONS.0, "maximum" = MAX_ITERATIONS.1))]
     pub max_iterations: Option<i64>,
+    #[schemars(extend("minimum" = THREADS.0, "maximum" = THREADS.1))]
     pub threads: Option<i64>,
 }
+
+/// The ranges of `[search]`'s keys (`--starts` and `--threads` take the same).
+pub const STARTS: (i64, i64) = (1, 1_000_000);
+pub const MAX_ITERATIONS: (i64, i64) = (1, 1_000_000);
+pub const THREADS: (i64, i64) = (0, 1024);
+/// Below 1e-14 a scaled KKT residual is rounding, which no solve can meet; above 1e-3 a
+/// start "converges" where it stands.
+pub const TOLERANCE: (f64, f64) = (1e-14, 1e-3);
 
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RawZones {
+    /// Each zone boundary once.
+    #[schemars(extend("uniqueItems" = true))]
     pub thresholds: Option<Vec<Number>>,
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub x_tolerance: Option<Number>,
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub objective_tolerance: Option<Number>,
     pub merge_mirror_images: Option<bool>,
 }

@@ -1,6 +1,6 @@
 //! Stress limits written as a fraction of the material's strength.
 
-use crate::model::material::Material;
+use crate::model::material::{Material, STRENGTH_FRACTIONS};
 use crate::vocab::units::Unit;
 use crate::vocab::Dimension;
 
@@ -12,9 +12,10 @@ pub fn strength_fraction(
     material: Option<&Material>,
     output: &str,
 ) -> Result<Option<Unit>, String> {
+    let [yield_, ultimate] = STRENGTH_FRACTIONS;
     let strength = match name {
-        "yield" => material.map(|m| m.yield_strength),
-        "ultimate" => material.map(|m| m.ultimate_strength),
+        n if n == yield_ => material.map(|m| m.yield_strength),
+        n if n == ultimate => material.map(|m| m.ultimate_strength),
         _ => return Ok(None),
     };
     if dimension != Dimension::Stress {

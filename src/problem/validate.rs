@@ -5,19 +5,38 @@
 use std::ops::Deref;
 
 use super::reader::{k, quoted, Reader, Res};
-use super::schema::{self, Number, RawProblem};
+use super::schema::{self, Number, RawProblem, MAX_ITERATIONS, STARTS, THREADS, TOLERANCE};
 use super::sections::Sections;
 use super::strength;
 use super::units::{self, short, Unit};
 use super::{
     Constraint, Objective, Problem, Sampling, SearchSettings, Segment, Sense, Solver, Variable,
-    ZoneSettings,
+    ZoneSettings, SAMPLINGS, SOLVERS,
 };
 use crate::model::registry::{self, ModelEntry};
 use crate::model::{Dimension, Model};
 
-/// The range of `search.tolerance`.
-pub const TOLERANCE_RANGE: (f64, f64) = (1e-14, 1e-3);
+/// Whether a variable of `dimension` must be positive: a length, a mass, a stiffness.
+pub(crate) fn positive_only(dimension: Dimension) -> bool {
+    matches!(
+        dimension,
+        Dimension::Length | Dimension::Mass | Dimension::Stiffness | Dimension::RotationalStiffness
+    )
+}
+
+/// Whether `name` (trimmed) may name a problem and its results folder: letters, digits,
+/// `-`, `_` and `.`, not starting with `.` (no `.`, `..` or hidden folder); the schema's
+/// [`NAME_PATTERN`] says the same.
+pub(crate) fn name_ok(name: &str) -> bool {
+    !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+        && !name.starts_with('.')
+}
+
+/// [`name_ok`] as a pattern, white space around allowed as the reader trims it.
+pub(crate) const NAME_PATTERN: &str = r"^\s*[A-Za-z0-9_-][A-Za-z0-9_.-]*\s*$";
 
 pub(crate) struct Validator<'a, 'b> {
     pub reader: Reader<'a, 'b>,
@@ -36,12 +55,7 @@ impl<'a, 'b> Deref for Validator<'a, 'b> {
 impl Validator<'_, '_> {
     pub fn problem(&self, raw: RawProblem) -> Res<Problem> {
         let name = raw.name.trim().to_string();
-        let name_ok = !name.is_empty()
-            && name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
-            && !name.starts_with('.');
-        if !name_ok {
+        if !name_ok(&name) {
             return Err(self.err(
                 &[k("name")],
                 format!(
@@ -123,6 +137,7 @@ impl Validator<'_, '_> {
             search: self.search(&raw.search)?,
             zones: self.zones(&raw.zones)?,
             refine: super::refine::settings(self, raw.refine.as_ref())?,
+            fingerprint: super::fingerprint(self.text),
         })
     }
 
@@ -149,13 +164,7 @@ impl Validator<'_, '_> {
             }
             let dim = params[p].dimension;
             let unit = Unit::parse(&v.unit, dim).map_err(|m| self.err(&path("unit"), m))?;
-            let must_be_positive = matches!(
-                dim,
-                Dimension::Length
-                    | Dimension::Mass
-                    | Dimension::Stiffness
-                    | Dimension::RotationalStiffness
-            );
+            let must_be_positive = positive_only(dim);
             let check = |key: &str, n: Number| -> Res<f64> {
                 let x = self.finite(&path(key), n)?;
                 let limit = model.angle_limit().filter(|_| dim == Dimension::Angle);
@@ -364,50 +373,35 @@ impl Validator<'_, '_> {
 
     fn search(&self, s: &schema::RawSearch) -> Res<SearchSettings> {
         let path = |key: &str| [k("search"), k(key)];
-        let count = |key: &str, v: Option<i64>, default: usize, min: i64, max: i64| -> Res<usize> {
-            match v {
-                None => Ok(default),
-                Some(n) if (min..=max).contains(&n) => Ok(n as usize),
-                Some(n) => Err(self.err(
-                    &path(key),
-                    format!("must lie between {min} and {max}, got {n}"),
-                )),
-            }
+        let count =
+            |key: &str, v: Option<i64>, default: usize, (min, max): (i64, i64)| -> Res<usize> {
+                match v {
+                    None => Ok(default),
+                    Some(n) if (min..=max).contains(&n) => Ok(n as usize),
+                    Some(n) => Err(self.err(
+                        &path(key),
+                        format!("must lie between {min} and {max}, got {n}"),
+                    )),
+                }
+            };
+        let solver = match &s.solver {
+            Some(name) => self.choice(&path("solver"), name, &SOLVERS)?,
+            None => Solver::Sqp,
         };
-        let solver = match s.solver.as_deref() {
-            None | Some("sqp") => Solver::Sqp,
-            Some("nelder-mead") => Solver::NelderMead,
-            Some(o) => {
-                return Err(self.err(
-                    &path("solver"),
-                    format!("unknown solver \"{o}\"; expected \"sqp\" or \"nelder-mead\""),
-                ))
-            }
-        };
-        let sampling = match s.sampling.as_deref() {
-            None | Some("uniform") => Sampling::Uniform,
-            Some("latin-hypercube") => Sampling::LatinHypercube,
-            Some(o) => {
-                return Err(self.err(
-                    &path("sampling"),
-                    format!(
-                        "unknown sampling \"{o}\"; expected \"uniform\" or \"latin-hypercube\""
-                    ),
-                ))
-            }
+        let sampling = match &s.sampling {
+            Some(name) => self.choice(&path("sampling"), name, &SAMPLINGS)?,
+            None => Sampling::Uniform,
         };
         let tolerance = match s.tolerance {
             None => 1e-10,
             Some(n) => {
                 let t = self.finite(&path("tolerance"), n)?;
-                // below 1e-14 a scaled KKT residual is rounding, which no solve can meet;
-                // above 1e-3 a start "converges" where it stands
-                if !(TOLERANCE_RANGE.0..=TOLERANCE_RANGE.1).contains(&t) {
+                if !(TOLERANCE.0..=TOLERANCE.1).contains(&t) {
                     return Err(self.err(
                         &path("tolerance"),
                         format!(
                             "must lie between {:e} and {:e}, got {t:e}",
-                            TOLERANCE_RANGE.0, TOLERANCE_RANGE.1
+                            TOLERANCE.0, TOLERANCE.1
                         ),
                     ));
                 }
@@ -422,13 +416,13 @@ impl Validator<'_, '_> {
             }
         };
         Ok(SearchSettings {
-            starts: count("starts", s.starts, 300, 1, 1_000_000)?,
+            starts: count("starts", s.starts, 300, STARTS)?,
             seed,
             solver,
             sampling,
             tolerance,
-            max_iterations: count("max_iterations", s.max_iterations, 500, 1, 1_000_000)?,
-            threads: count("threads", s.threads, 0, 0, 1024)?,
+            max_iterations: count("max_iterations", s.max_iterations, 500, MAX_ITERATIONS)?,
+            threads: count("threads", s.threads, 0, THREADS)?,
         })
     }
 

@@ -172,6 +172,9 @@ impl ConstraintReport {
 pub struct DesignReport {
     pub problem: String,
     pub model: String,
+    /// The problem file's content hashed ([`crate::problem::fingerprint`], hexadecimal):
+    /// `--optimum` compares it with the file it is given.
+    pub problem_fnv1a64: String,
     /// Variable -> value in the file's unit.
     pub design: IndexMap<String, f64>,
     /// Variable -> the file's unit.
@@ -214,6 +217,7 @@ impl DesignReport {
         let mut report = DesignReport {
             problem: problem.name.clone(),
             model: model.name().into(),
+            problem_fnv1a64: format!("{:016x}", problem.fingerprint),
             design: problem.design_in_file_units(x),
             design_units: IndexMap::new(),
             design_si: IndexMap::new(),

@@ -20,6 +20,7 @@ use crate::fe::verify::{Level, Verification};
 use crate::fe::Idealization;
 use crate::part::analysis::{FeCounterpart, Quantity};
 use crate::part::MM;
+use crate::problem::display::percent;
 use crate::problem::Problem;
 use crate::vocab::units::Unit;
 use compare::{analytic, displacements_at, value};
@@ -421,9 +422,9 @@ impl Display for VerifyTable<'_> {
                 (_, true) => String::new(),
                 (Some(stop), false) => format!(
                     " (NOT all within {} %: stopped, {stop})",
-                    100.0 * r.tolerance
+                    percent(r.tolerance)
                 ),
-                (None, false) => format!(" (NOT all within {} %)", 100.0 * r.tolerance),
+                (None, false) => format!(" (NOT all within {} %)", percent(r.tolerance)),
             }
         )?;
         writeln!(

@@ -24,10 +24,51 @@ impl fmt::Display for ProblemError {
             write!(f, ":{line}:{col}")?;
         }
         if !self.key.is_empty() {
-            write!(f, ": key `{}`", self.key)?;
+            write!(f, ": key `{}`", printable(&self.key))?;
         }
-        write!(f, ": {}", self.message)
+        write!(f, ": {}", printable(&self.message))
     }
+}
+
+/// The most characters of a key or value from the input that a message repeats.
+pub const ECHO_CHARS: usize = 60;
+
+/// `text` as a terminal may show it: each control character escaped (a NUL byte reads
+/// `\0`), and each quoted stretch (between `"` or backticks) and each unquoted word longer
+/// than [`ECHO_CHARS`] characters cut there, with an ellipsis. Messages repeat the input's
+/// keys and values, and a 900 kB key or a raw escape sequence is no help to anyone.
+pub fn printable(text: &str) -> String {
+    let mut out = String::with_capacity(text.len().min(4 * ECHO_CHARS));
+    let mut open: Option<char> = None;
+    let mut run = 0;
+    for c in text.chars() {
+        let quote = c == '"' || c == '`';
+        let boundary = match open {
+            Some(q) => c == q,
+            None => quote || c.is_whitespace(),
+        };
+        if boundary {
+            open = match open {
+                Some(_) => None,
+                None if quote => Some(c),
+                None => None,
+            };
+            run = 0;
+            out.push(c);
+            continue;
+        }
+        run += 1;
+        if run > ECHO_CHARS {
+            if run == ECHO_CHARS + 1 {
+                out.push('…');
+            }
+        } else if c.is_control() {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 impl std::error::Error for ProblemError {}
@@ -135,5 +176,33 @@ impl<'a> Locator<'a> {
             .map_or(before.len(), |nl| before.len() - nl - 1)
             + 1;
         (line, col)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_and_control_characters_are_not_echoed_raw() {
+        let long = "k".repeat(900_000);
+        let shown = printable(&format!("unknown field `{long}`, expected one of `name`"));
+        assert_eq!(
+            shown,
+            format!(
+                "unknown field `{}…`, expected one of `name`",
+                "k".repeat(60)
+            )
+        );
+        assert_eq!(
+            printable("\"a\0b\u{1b}[31m\" cannot name a results folder"),
+            "\"a\\0b\\u{1b}[31m\" cannot name a results folder"
+        );
+        let spaced = format!("\"{}\" is not a number", "a b ".repeat(100));
+        assert_eq!(printable(&spaced).chars().count(), 60 + 2 + 1 + 16);
+        // what is short passes unchanged
+        let plain =
+            "lower bound 25 is not below upper bound 20 (for a fixed variable write `value`)";
+        assert_eq!(printable(plain), plain);
     }
 }

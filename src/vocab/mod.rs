@@ -9,6 +9,7 @@
 pub mod dimension;
 pub mod error;
 pub mod reader;
+pub mod schema;
 pub mod sections;
 pub mod units;
 pub mod values;

@@ -5,7 +5,7 @@ use serde::de::DeserializeSeed;
 
 use super::error::{Locator, Segment};
 use super::units::{self, parse_quantity};
-use super::values::{Number, Quantity};
+use super::values::{Choices, Number, Quantity};
 use super::Dimension;
 use super::ProblemError;
 
@@ -116,6 +116,20 @@ impl Reader<'_, '_> {
     /// An error at the key `path`.
     pub fn err(&self, path: &[Segment], message: impl Into<String>) -> ProblemError {
         self.loc.error(path, message)
+    }
+
+    /// What `name` means among `choices`, or an error that names the key and every choice.
+    pub fn choice<T: Copy>(&self, path: &[Segment], name: &str, choices: &Choices<T>) -> Res<T> {
+        choices.get(name).ok_or_else(|| {
+            let what = match path.last() {
+                Some(Segment::Key(key)) => key.as_str(),
+                _ => "value",
+            };
+            self.err(
+                path,
+                format!("unknown {what} \"{name}\"; expected {}", choices.expected()),
+            )
+        })
     }
 
     /// A finite number.

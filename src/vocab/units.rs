@@ -156,6 +156,16 @@ fn units_of(dimension: Dimension) -> &'static [(&'static str, f64)] {
         .unwrap_or(&[])
 }
 
+/// Every unit name of `dimension`, the empty one of a plain ratio included.
+pub fn names(dimension: Dimension) -> Vec<&'static str> {
+    units_of(dimension).iter().map(|(n, _)| *n).collect()
+}
+
+/// Every dimension with its units and their factors to SI, as [`Unit::parse`] reads them.
+pub fn tables() -> &'static [(Dimension, &'static [(&'static str, f64)])] {
+    UNITS
+}
+
 /// The accepted unit names of a dimension, for messages.
 pub fn accepted(dimension: Dimension) -> String {
     units_of(dimension)

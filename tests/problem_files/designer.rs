@@ -3,6 +3,7 @@
 //! shell completions, a problem read from standard input, and a new user's first run.
 
 use crate::common;
+use crate::rejected::refused;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -263,6 +264,42 @@ fn the_schema_accepts_every_shipped_problem_and_refuses_unknown_keys() {
     let prr3 = std::fs::read_to_string("problems/prr3_frequency.toml").unwrap();
     let with_hinge = prr3.replace("[objective]", "[hinge]\nwidth = \"10 mm\"\n\n[objective]");
     assert!(!validator.is_valid(&as_json(&with_hinge)));
+}
+
+/// Issue 27, item 8: every file the reader's tests refuse, the schema refuses too, but for
+/// the few that JSON Schema cannot say, each with the reason.
+#[test]
+fn the_schema_refuses_what_the_reader_refuses() {
+    let validator = schema();
+    let cases = refused();
+    for case in &cases {
+        let Ok(toml) = toml::from_str::<toml::Value>(&case.text()) else {
+            // an editor's TOML reader refuses it before any schema
+            assert_eq!(case.file, "", "{}: not TOML", case.id);
+            continue;
+        };
+        let json = serde_json::to_value(toml).unwrap();
+        match &case.schema_cannot {
+            None => assert!(
+                !validator.is_valid(&json),
+                "{}: the schema accepts a file the reader refuses at `{}`",
+                case.id,
+                case.key
+            ),
+            // kept honest: one the schema learns to refuse leaves the list
+            Some(why) => assert!(
+                validator.is_valid(&json),
+                "{}: the schema refuses it now, though \"{why}\"",
+                case.id
+            ),
+        }
+    }
+    let cannot = cases.iter().filter(|c| c.schema_cannot.is_some()).count();
+    assert!(
+        cannot * 6 < cases.len(),
+        "a short list: {cannot} of {}",
+        cases.len()
+    );
 }
 
 #[test]

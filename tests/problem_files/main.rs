@@ -8,5 +8,9 @@ mod common;
 
 mod cli;
 mod designer;
+mod messages;
+mod optimum_report;
 mod problem_errors;
 mod problem_fuzz;
+mod rejected;
+mod stdout;

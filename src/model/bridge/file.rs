@@ -2,6 +2,7 @@
 //! optional `[dynamics]` and `[part]`, read and validated into a [`Bridge`].
 
 use serde::Deserialize;
+use serde_json::json;
 
 use super::dynamics::DynamicsSettings;
 use super::part::PartSettings;
@@ -9,9 +10,13 @@ use super::{Actuator, Bridge, BridgeSettings};
 use crate::model::entry::SectionSchema;
 use crate::model::hinge::HingeKind;
 use crate::model::material::{Material, RawMaterial};
-use crate::model::{Dimension, Mechanism};
+use crate::model::Mechanism;
 use crate::vocab::error::Segment;
 use crate::vocab::reader::{k, quoted, Res};
+use crate::vocab::schema::{
+    Measure, Measured, NonNegativeForce, NonNegativeLength, NonNegativeMass, PositiveLength,
+    PositiveStiffness,
+};
 use crate::vocab::sections::Sections;
 use crate::vocab::values::{Number, Quantity};
 
@@ -24,8 +29,9 @@ pub const SECTIONS: &[&str] = &[
 #[serde(deny_unknown_fields)]
 struct RawHinge {
     /// The kind of both hinges, unless `[hinge.b]` or `[hinge.d]` names another.
+    #[schemars(extend("enum" = HingeKind::NAMES))]
     kind: Option<String>,
-    width: Quantity,
+    width: Measured<PositiveLength>,
     b: Option<RawOneHinge>,
     d: Option<RawOneHinge>,
 }
@@ -42,40 +48,47 @@ struct RawHinges {
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawOneHinge {
+    #[schemars(extend("enum" = HingeKind::NAMES))]
     kind: String,
 }
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawActuator {
-    nominal_stroke: Quantity,
-    preload: Quantity,
-    stiffness: Option<Quantity>,
-    length: Option<Quantity>,
-    height: Option<Quantity>,
+    nominal_stroke: Measured<PositiveLength>,
+    preload: Measured<NonNegativeForce>,
+    stiffness: Option<Measured<PositiveStiffness>>,
+    length: Option<Measured<PositiveLength>>,
+    height: Option<Measured<PositiveLength>>,
 }
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawDynamics {
-    payload_mass: Quantity,
-    input_link_mass: Quantity,
-    output_link_mass: Quantity,
-    /// Moved to `[part]`: read only to say so.
+    payload_mass: Measured<NonNegativeMass>,
+    input_link_mass: Measured<NonNegativeMass>,
+    output_link_mass: Measured<NonNegativeMass>,
+    /// Moved to `[part]`: read only to say so, and no key of the schema.
+    #[schemars(skip)]
     link_thickness: Option<Quantity>,
+    #[schemars(extend("exclusiveMinimum" = DAMPING_RATIO.0, "maximum" = DAMPING_RATIO.1))]
     damping_ratio: Number,
 }
+
+/// `damping_ratio` lies in (this, that]: some damping, for a settling time to exist; above
+/// critical damping the +-2 % band is reached without oscillation, which is fine.
+const DAMPING_RATIO: (f64, f64) = (0.0, 10.0);
 
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawPart {
-    link_thickness: Option<Quantity>,
-    fillet_radius: Option<Quantity>,
-    input_block_width: Option<Quantity>,
-    input_block_height: Option<Quantity>,
-    output_block_width: Option<Quantity>,
-    output_block_height: Option<Quantity>,
-    min_slot: Option<Quantity>,
+    link_thickness: Option<Measured<PositiveLength>>,
+    fillet_radius: Option<Measured<NonNegativeLength>>,
+    input_block_width: Option<Measured<PositiveLength>>,
+    input_block_height: Option<Measured<PositiveLength>>,
+    output_block_width: Option<Measured<PositiveLength>>,
+    output_block_height: Option<Measured<PositiveLength>>,
+    min_slot: Option<Measured<NonNegativeLength>>,
 }
 
 /// The JSON Schema of each of the bridge's sections.
@@ -84,10 +97,34 @@ pub fn schema(g: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
         name,
         schema,
         required,
+        rules: Vec::new(),
     };
+    // each hinge's kind once: from [hinge.b] or [hinges.b], or else from hinge.kind
+    let hinge_rules = ["b", "d"]
+        .iter()
+        .flat_map(|which| {
+            let in_table = |table: &str| {
+                json!({"properties": {table: {"required": [which]}}, "required": [table]})
+            };
+            [
+                json!({"not": {"allOf": [in_table("hinge"), in_table("hinges")]}}),
+                json!({
+                    "if": {"properties": {"hinge": {"not": {"required": ["kind"]}}},
+                           "required": ["hinge"]},
+                    "then": {"anyOf": [in_table("hinge"), in_table("hinges")]},
+                }),
+            ]
+        })
+        .collect();
     vec![
-        one("material", g.subschema_for::<RawMaterial>(), true),
-        one("hinge", g.subschema_for::<RawHinge>(), true),
+        SectionSchema {
+            rules: crate::model::material::strength_rules("material"),
+            ..one("material", g.subschema_for::<RawMaterial>(), true)
+        },
+        SectionSchema {
+            rules: hinge_rules,
+            ..one("hinge", g.subschema_for::<RawHinge>(), true)
+        },
         one("hinges", g.subschema_for::<RawHinges>(), false),
         one("actuator", g.subschema_for::<RawActuator>(), true),
         one("dynamics", g.subschema_for::<RawDynamics>(), false),
@@ -134,9 +171,9 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         }
     };
     let (hinge_b, hinge_d) = (kind("b", &h.b, &hs.b)?, kind("d", &h.d, &hs.d)?);
-    let size = |key: &str, q: &Option<Quantity>| -> Res<Option<f64>> {
+    let size = |key: &str, q: &Option<Measured<PositiveLength>>| -> Res<Option<f64>> {
         q.as_ref()
-            .map(|q| s.positive(&[k("actuator"), k(key)], q, Dimension::Length))
+            .map(|q| s.measured(&[k("actuator"), k(key)], q))
             .transpose()
     };
     let actuator_size = [size("length", &a.length)?, size("height", &a.height)?];
@@ -144,7 +181,7 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
     let settings = BridgeSettings {
         hinge_b,
         hinge_d,
-        width: s.positive(&[k("hinge"), k("width")], &h.width, Dimension::Length)?,
+        width: s.measured(&[k("hinge"), k("width")], &h.width)?,
         material,
         actuator: actuator(s, &a)?,
         dynamics: d
@@ -171,14 +208,10 @@ fn hinge_kind(s: &Sections, path: &[Segment], kind: &str) -> Res<HingeKind> {
 fn actuator(s: &Sections, a: &RawActuator) -> Res<Actuator> {
     let path = |key: &str| [k("actuator"), k(key)];
     Ok(Actuator {
-        nominal_stroke: s.positive(
-            &path("nominal_stroke"),
-            &a.nominal_stroke,
-            Dimension::Length,
-        )?,
-        preload: s.non_negative(&path("preload"), &a.preload, Dimension::Force)?,
+        nominal_stroke: s.measured(&path("nominal_stroke"), &a.nominal_stroke)?,
+        preload: s.measured(&path("preload"), &a.preload)?,
         stiffness: match &a.stiffness {
-            Some(q) => Some(s.positive(&path("stiffness"), q, Dimension::Stiffness)?),
+            Some(q) => Some(s.measured(&path("stiffness"), q)?),
             None => None,
         },
     })
@@ -191,42 +224,38 @@ fn part_settings(
     [actuator_length, actuator_height]: [Option<f64>; 2],
 ) -> Res<PartSettings> {
     let d = PartSettings::default();
-    let length = |key: &str, q: &Option<Quantity>, default: f64, zero: bool| -> Res<f64> {
-        let path = [k("part"), k(key)];
-        match q {
-            None => Ok(default),
-            Some(q) if zero => s.non_negative(&path, q, Dimension::Length),
-            Some(q) => s.positive(&path, q, Dimension::Length),
-        }
-    };
+    fn length<M: Measure>(s: &Sections, key: &str, q: &Option<Measured<M>>, or: f64) -> Res<f64> {
+        q.as_ref()
+            .map_or(Ok(or), |q| s.measured(&[k("part"), k(key)], q))
+    }
     Ok(PartSettings {
-        link_thickness: length("link_thickness", &p.link_thickness, d.link_thickness, false)?,
-        fillet_radius: length("fillet_radius", &p.fillet_radius, d.fillet_radius, true)?,
+        link_thickness: length(s, "link_thickness", &p.link_thickness, d.link_thickness)?,
+        fillet_radius: length(s, "fillet_radius", &p.fillet_radius, d.fillet_radius)?,
         input_block_width: length(
+            s,
             "input_block_width",
             &p.input_block_width,
             d.input_block_width,
-            false,
         )?,
         input_block_height: length(
+            s,
             "input_block_height",
             &p.input_block_height,
             d.input_block_height,
-            false,
         )?,
         output_block_width: length(
+            s,
             "output_block_width",
             &p.output_block_width,
             d.output_block_width,
-            false,
         )?,
         output_block_height: length(
+            s,
             "output_block_height",
             &p.output_block_height,
             d.output_block_height,
-            false,
         )?,
-        min_slot: length("min_slot", &p.min_slot, d.min_slot, true)?,
+        min_slot: length(s, "min_slot", &p.min_slot, d.min_slot)?,
         actuator_length,
         actuator_height,
     })
@@ -242,14 +271,13 @@ fn dynamics(s: &Sections, d: &RawDynamics, link_thickness: f64) -> Res<DynamicsS
                 .to_string(),
         ));
     }
-    let mass = |key: &str, q: &Quantity| s.non_negative(&path(key), q, Dimension::Mass);
+    let mass = |key: &str, q: &Measured<NonNegativeMass>| s.measured(&path(key), q);
     let zeta = s.finite(&path("damping_ratio"), d.damping_ratio)?;
-    // the settling time is that of an oscillator: it needs some damping, and above
-    // critical damping the +-2 % band is reached without oscillation, which is fine
-    if !(zeta > 0.0 && zeta <= 10.0) {
+    let (above, most) = DAMPING_RATIO;
+    if !(zeta > above && zeta <= most) {
         return Err(s.err(
             &path("damping_ratio"),
-            format!("must lie in (0, 10], got {zeta}"),
+            format!("must lie in ({above}, {most}], got {zeta}"),
         ));
     }
     Ok(DynamicsSettings::new(

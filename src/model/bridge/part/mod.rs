@@ -484,14 +484,23 @@ fn size_problems(s: &PartSettings, q: &Quarter, t: f64) -> Vec<String> {
     let out_bottom = q.f[3][1] - q.hd * q.nd[1];
     let out_top = out_bottom + s.output_block_height;
     let side = |y: f64| q.f[3][0] + (y - q.f[3][1]) / q.nd[1] * q.nd[0];
-    if [out_top, out_bottom]
-        .iter()
-        .any(|&y| side(y) >= -0.5 * s.min_slot)
-    {
+    // the slot between the block's two sides, where it is narrowest
+    let gap = -2.0 * side(out_top).max(side(out_bottom));
+    if gap <= 0.0 {
         problems.push(format!(
             "part.output_block_width ({}) is too narrow for the faces of hinges d tilted {}: \
              the block's sides, which continue them, cross",
             mm(s.output_block_width),
+            deg(q.ud[1].atan2(q.ud[0]))
+        ));
+    } else if gap <= s.min_slot {
+        // the sides do not cross: the slot asked for is what does not fit
+        problems.push(format!(
+            "part.min_slot ({}) is wider than the slot between the sides of the output block \
+             ({} at its narrowest, the sides continuing the faces of hinges d tilted {}): make \
+             it at most that, or widen part.output_block_width",
+            mm(s.min_slot),
+            mm(gap),
             deg(q.ud[1].atan2(q.ud[0]))
         ));
     }
