@@ -81,6 +81,7 @@ pub struct RawSearch {
     pub tolerance: Option<Number>,
     pub max_iterations: Option<i64>,
     pub threads: Option<i64>,
+    pub fit_ranges: Option<super::FitRanges>,
 }
 
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]

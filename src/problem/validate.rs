@@ -429,6 +429,7 @@ impl Validator<'_, '_> {
             tolerance,
             max_iterations: count("max_iterations", s.max_iterations, 500, 1, 1_000_000)?,
             threads: count("threads", s.threads, 0, 0, 1024)?,
+            fit_ranges: s.fit_ranges.unwrap_or_default(),
         })
     }
 
