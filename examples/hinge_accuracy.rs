@@ -5,9 +5,13 @@
 //! formula against the FE's, and for the circular notch the error of Paros and Weisbord's
 //! simplified rotational compliance.
 //!
+//! The same checks at the edge of each kind's ranges of fit ([`HingeKind::fit`]) and
+//! outside them: what justifies each range.
+//!
 //! `cargo run --release --example hinge_accuracy` writes `results/hinges/accuracy.json` and
-//! `results/hinges/accuracy.md` (the table the README shows); `scripts/regenerate.sh` runs
-//! it, and `scripts/check_results.sh` checks the committed files come out the same.
+//! `results/hinges/accuracy.md` (the table the README shows), and `fit_ranges.json` and
+//! `fit_ranges.md` (the table `docs/hinges.md` shows); `scripts/regenerate.sh` runs it, and
+//! `scripts/check_results.sh` checks the committed files come out the same.
 
 use std::path::Path;
 
@@ -165,4 +169,137 @@ fn main() {
     write_json(&dir.join("accuracy.json"), &rows).unwrap();
     write_atomic(&dir.join("accuracy.md"), md.as_bytes()).unwrap();
     print!("{md}");
+    let (edges, md) = fit_edges(&m, &fe_material);
+    write_json(&dir.join("fit_ranges.json"), &edges).unwrap();
+    write_atomic(&dir.join("fit_ranges.md"), md.as_bytes()).unwrap();
+    print!("{md}");
+}
+
+/// One hinge at a value of one of its ranges' ratios.
+#[derive(Serialize)]
+struct Edge {
+    kind: HingeKind,
+    ratio: String,
+    range: String,
+    value: f64,
+    inside: bool,
+    dims_mm: Vec<f64>,
+    /// `(closed - FE) / FE` of the compliance that differs most.
+    worst_compliance: f64,
+    concentration_formula: f64,
+    concentration: f64,
+    /// The share of the rotation under a moment that happens in one root thickness of bar
+    /// on each side: `1 - c33 / c33` with elastic blocks (notches only: a strip's and a
+    /// leaf's blocks are their own thickness, not a bar's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    beside: Option<f64>,
+    fe_error: f64,
+}
+
+/// Each range's edge and two or three values beyond it, the other ratios of the kind at a
+/// typical value (`w = 10 mm`, aluminium 7075-T6).
+fn fit_edges(m: &Material, fe_material: &Elastic) -> (Vec<Edge>, String) {
+    let mm = 1e-3;
+    // (kind, which range, dimensions (mm) as a function of the ratio, its values)
+    type Dims = fn(f64) -> Vec<f64>;
+    let cases: [(HingeKind, usize, Dims, &[f64]); 6] = [
+        (
+            HingeKind::Strip,
+            0,
+            |v| vec![0.4 * v, 0.4],
+            &[2.0, 1.0, 0.5],
+        ),
+        (HingeKind::Circular, 0, |v| vec![1.0, v], &[1.0, 2.0, 8.0]),
+        (
+            HingeKind::Elliptical,
+            0,
+            |v| vec![2.0, 2.0 * v, 0.4 * v],
+            &[1.0, 2.0, 4.0],
+        ),
+        (
+            HingeKind::Elliptical,
+            1,
+            |v| vec![2.0, 1.0, v],
+            &[1.0, 2.0, 5.0],
+        ),
+        (
+            HingeKind::CornerFilleted,
+            0,
+            |v| vec![4.0, 0.4, 0.4 * v],
+            &[0.05, 0.02, 0.01, 0.0025],
+        ),
+        (
+            HingeKind::CornerFilleted,
+            1,
+            |v| vec![4.0, 4.0 * v, v],
+            &[0.5, 0.75, 1.0],
+        ),
+    ];
+    let mut rows = Vec::new();
+    for (kind, which, dims_of, values) in cases {
+        let fit = kind.fit()[which];
+        let stems: Vec<&str> = kind.dimensions().iter().map(|d| d.stem).collect();
+        for &v in values {
+            // six digits: the dimensions as written, not their products' rounding
+            let round = |d: f64| format!("{d:.5e}").parse::<f64>().unwrap_or(d);
+            let dims_mm: Vec<f64> = dims_of(v).into_iter().map(round).collect();
+            let dims: Vec<f64> = dims_mm.iter().map(|d| d * mm).collect();
+            let value = round(dims[fit.numerator] / dims[fit.denominator]);
+            let closed = kind.compliance(&dims, WIDTH, m);
+            let fe = single_hinge(kind, &dims, WIDTH, fe_material, Idealization::PlaneStress)
+                .unwrap_or_else(|e| panic!("{kind:?} {dims:?}: {e}"));
+            let f = fe.compliance();
+            let worst_compliance = [
+                (closed.c11, f.c11),
+                (closed.c22, f.c22),
+                (closed.c23, f.c23),
+                (closed.c33, f.c33),
+            ]
+            .iter()
+            .map(|(a, b)| rel(*a, *b))
+            .fold(0.0, |w: f64, d| if d.abs() > w.abs() { d } else { w });
+            let notch = matches!(kind, HingeKind::Circular | HingeKind::Elliptical);
+            rows.push(Edge {
+                kind,
+                ratio: format!("{}/{}", stems[fit.numerator], stems[fit.denominator]),
+                range: fit.range.text(),
+                value,
+                inside: fit.range.contains(value),
+                dims_mm,
+                worst_compliance,
+                concentration_formula: kind.stress_concentration(&dims),
+                concentration: fe.concentration.value,
+                beside: notch.then(|| 1.0 - f.c33 / fe.c33_elastic_blocks.value),
+                fe_error: fe.error(),
+            });
+        }
+    }
+    let pct = |v: f64| format!("{:+.1} %", 100.0 * v);
+    let mut md = String::from(
+        "| kind | ratio | range | value | dimensions (mm) | worst compliance: closed vs FE | \
+         stress concentration: formula / FE | rotation beside a notch | FE error |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in &rows {
+        let dims: Vec<String> = r.dims_mm.iter().map(|d| format!("{d}")).collect();
+        md += &format!(
+            "| {} | {} | {} | {}{} | {} | {} | {} | {} | {:.0e} |\n",
+            r.kind.name(),
+            r.ratio,
+            r.range,
+            r.value,
+            if r.inside { "" } else { " (outside)" },
+            dims.join(", "),
+            pct(r.worst_compliance),
+            if r.kind == HingeKind::Strip {
+                "- (sharp clamp)".to_string()
+            } else {
+                format!("{:.2} / {:.2}", r.concentration_formula, r.concentration)
+            },
+            r.beside
+                .map_or("-".into(), |b| format!("{:.0} %", 100.0 * b)),
+            r.fe_error.max(1e-16),
+        );
+    }
+    (rows, md)
 }

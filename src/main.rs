@@ -21,7 +21,7 @@ use flexopt::model::hinge::calculator;
 use flexopt::pareto::ParetoSpec;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
 use flexopt::problem::refine::FIDELITIES;
-use flexopt::problem::Problem;
+use flexopt::problem::{fit, Problem};
 use flexopt::report::part::write_part;
 use flexopt::report::summary::Wrote;
 use flexopt::report::sweep::write_sweep;
@@ -179,6 +179,7 @@ fn eval(path: &Path, design: &str, format: Option<&str>) -> Result<(), Failure> 
             path.display()
         );
     }
+    warn(path, &fit::warnings(&problem, &report.fit_ranges));
     let table = format.map_or(std::io::stdout().is_terminal(), |f| f == "table");
     if table {
         emit(&DesignTable {
@@ -236,6 +237,9 @@ fn hinge(
 ) -> Result<(), Failure> {
     let report = calculator::from_options(kind, given, width, material, stress_limit)
         .map_err(Failure::bad_input)?;
+    for c in report.fit_ranges.iter().filter(|c| !c.inside) {
+        eprintln!("warning: {}", c.warning());
+    }
     print_json(&report)
 }
 

@@ -10,7 +10,7 @@ use flexopt::fe::verify::VerifySettings;
 use flexopt::pareto::{pareto, ParetoSpec};
 use flexopt::part::{Part, PartError};
 use flexopt::problem::schema::{STARTS, THREADS};
-use flexopt::problem::{Problem, SOLVERS};
+use flexopt::problem::{fit, Problem, SOLVERS};
 use flexopt::refine::study::refine_study;
 use flexopt::report::pareto::write_pareto;
 use flexopt::report::refine::{RefineSummary, RefinedReport};
@@ -30,6 +30,9 @@ pub(crate) fn study_setup(
         ..
     } = *args;
     let problem = crate::start_command::load_problem(path)?;
+    if let Some(why) = flexopt::problem::fit::unreachable(&problem) {
+        return Err(Failure::bad_input(why));
+    }
     if problem.free_variables().next().is_none() {
         return Err(Failure::bad_input(format!(
             "{}: key `variables`: every variable has a fixed `value`, so there is nothing to \
@@ -121,6 +124,10 @@ pub(crate) fn run_study(
             "{}: interrupted before any start finished; nothing was written",
             problem.file.display()
         )));
+    }
+    let checks = fit::checks(problem, study.reported_design());
+    for w in fit::warnings(problem, &checks) {
+        eprintln!("warning: {}: {w}", problem.file.display());
     }
     // the optimum's part, for a feasible optimum of a model that has one
     let part = study

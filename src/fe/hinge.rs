@@ -33,6 +33,10 @@ pub struct HingeFe {
     /// Under the pure moment: the largest von Mises stress over the beam stress at the
     /// thinnest section, `6 M / (w t^2)`: the notch's stress concentration.
     pub concentration: Estimate,
+    /// The slope per moment with the blocks as elastic as the hinge: the hinge and one root
+    /// thickness of the bar it is cut in on each side. Against `c33` it tells how much of
+    /// the rotation happens beside the hinge, where a mechanism's rigid links take none.
+    pub c33_elastic_blocks: Estimate,
     /// Elements of each mesh.
     pub elements: Vec<usize>,
     /// Each coefficient's (c11, c22, c23, c32, c33) relative change over the last
@@ -166,7 +170,7 @@ pub fn single_hinge(
         0.25 * kind.thickness_at(dims, xi)
     };
     let mut m = mesh(&domain, &size, 0.5 * h)?;
-    let mut values: Vec<[f64; 6]> = Vec::new();
+    let mut values: Vec<[f64; 7]> = Vec::new();
     let mut elements = Vec::new();
     for _ in 0..3 {
         values.push(one_mesh(&m, l, h, t_min, width, material, idealization)?);
@@ -183,11 +187,12 @@ pub fn single_hinge(
         c32: series(3),
         c33: series(4),
         concentration: series(5),
+        c33_elastic_blocks: series(6),
         elements,
     })
 }
 
-/// `c11, c22, c23, c32, c33` and the concentration on one mesh.
+/// `c11, c22, c23, c32, c33`, the concentration and `c33` with elastic blocks on one mesh.
 fn one_mesh(
     m: &Mesh,
     l: f64,
@@ -196,7 +201,7 @@ fn one_mesh(
     width: f64,
     material: &Elastic,
     idealization: Idealization,
-) -> Result<[f64; 6], FeError> {
+) -> Result<[f64; 7], FeError> {
     let b = block(h);
     let tol = 1e-9 * l.max(h);
     let mut fixed = vec![false; 2 * m.nodes.len()];
@@ -285,5 +290,5 @@ fn one_mesh(
         .map(|(_, s)| material.von_mises(*s, idealization))
         .fold(0.0, f64::max);
     let beam = 6.0 / (width * t_min * t_min);
-    Ok([fa[0], c22, c23, c32, c33, peak / beam])
+    Ok([fa[0], c22, c23, c32, c33, peak / beam, face(&u_bending)[2]])
 }

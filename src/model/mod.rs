@@ -10,6 +10,7 @@
 
 pub mod bridge;
 pub mod entry;
+pub mod fit;
 pub mod hinge;
 pub mod material;
 pub mod mechanism;
@@ -176,6 +177,12 @@ pub trait Model: Send + Sync + std::fmt::Debug {
     /// symmetry; a study merges a design with its mirror image only where this says so.
     fn mirror(&self, x: &mut [f64]) -> bool;
 
+    /// The ranges of ratios of parameters within which the model's fitted formulas hold
+    /// (each hinge's, say): `eval`, `run` and `hinge` warn of a design outside them, and a
+    /// study keeps to them as constraints unless the problem file says otherwise. Empty for
+    /// a model without fitted formulas.
+    fn fit_limits(&self) -> &[fit::FitLimit];
+
     /// The outputs that can be computed with the model's settings.
     fn available_outputs(&self) -> Vec<usize> {
         (0..self.outputs().len())
@@ -272,6 +279,10 @@ macro_rules! model_from_all_outputs {
 
             fn mirror(&self, x: &mut [f64]) -> bool {
                 $crate::model::negate_angles(&$parameters, x)
+            }
+
+            fn fit_limits(&self) -> &[$crate::model::fit::FitLimit] {
+                &[]
             }
 
             fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {

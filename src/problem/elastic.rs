@@ -70,14 +70,18 @@ impl<'a, 'p> Elastic<'a, 'p> {
                 slacks += 1;
             }
         }
+        // the ranges of fit, counted after the problem's constraints, stay hard: a least
+        // violating design is still one the model can answer for
         let rows: Vec<_> = nlp
             .row_constraints()
-            .map(|k| match treatment[k] {
-                Treatment::Hard => Some((None, 0.0)),
-                Treatment::Elastic => Some((slack_of[k], 0.0)),
-                Treatment::Relaxed(r) => Some((None, r)),
-                Treatment::Dropped => None,
-            })
+            .map(
+                |k| match treatment.get(k).copied().unwrap_or(Treatment::Hard) {
+                    Treatment::Hard => Some((None, 0.0)),
+                    Treatment::Elastic => Some((slack_of[k], 0.0)),
+                    Treatment::Relaxed(r) => Some((None, r)),
+                    Treatment::Dropped => None,
+                },
+            )
             .collect();
         let n = nlp.dimension();
         let (mut lower, mut upper) = (vec![0.0; n], vec![1.0; n]);

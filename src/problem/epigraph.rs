@@ -63,7 +63,7 @@ impl<'a, 'p> Epigraph<'a, 'p> {
 
     /// The largest part (SI) at the scaled design `u`.
     fn largest_part(&self, u: &[f64]) -> f64 {
-        let mut out = vec![0.0; self.nlp.wanted().len()];
+        let mut out = vec![0.0; self.nlp.values()];
         self.nlp.outputs(&self.nlp.unscale(u), &mut out);
         self.slots
             .iter()
@@ -104,7 +104,7 @@ impl Problem for Epigraph<'_, '_> {
     fn evaluate(&self, v: &[f64], c: &mut [f64]) -> f64 {
         let n = self.nlp.dimension();
         let mut out = [0.0; MAX_WANTED];
-        let out = &mut out[..self.nlp.wanted().len()];
+        let out = &mut out[..self.nlp.values()];
         // one model evaluation: the design rows from it, then one row per part
         self.nlp.outputs(&self.nlp.unscale(&v[..n]), out);
         self.nlp.constraint_values(out, &mut c[..self.rows()]);
@@ -126,7 +126,7 @@ impl Problem for Epigraph<'_, '_> {
         let stride = n + 1;
         let np = self.nlp.parameter_count();
         let mut out = [0.0; MAX_WANTED];
-        let out = &mut out[..self.nlp.wanted().len()];
+        let out = &mut out[..self.nlp.values()];
         let mut model_jac = vec![0.0; out.len() * np];
         self.nlp
             .outputs_with_gradient(&self.nlp.unscale(&v[..n]), out, &mut model_jac);

@@ -8,6 +8,7 @@ pub mod design;
 pub mod display;
 pub mod elastic;
 pub mod epigraph;
+pub mod fit;
 pub mod init;
 pub mod json_schema;
 pub mod nlp;
@@ -105,6 +106,23 @@ pub const SAMPLINGS: Choices<Sampling> = Choices(&[
     ("latin-hypercube", Sampling::LatinHypercube),
 ]);
 
+/// What the study does with designs outside the ranges where the model's formulas hold
+/// (a notch hinge's t/r at most 1, say; the guide's Hinges chapter lists them).
+#[derive(
+    Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum FitRanges {
+    /// The ranges are constraints of the study; eval and run warn of a design outside them
+    /// (the default).
+    #[default]
+    Constraint,
+    /// The study may leave the ranges; eval and run warn of a design outside them.
+    Warn,
+    /// The study may leave the ranges, and nothing warns of it.
+    Allow,
+}
+
 /// How the multistart search runs.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SearchSettings {
@@ -117,6 +135,8 @@ pub struct SearchSettings {
     pub max_iterations: usize,
     /// Worker threads; 0 uses every core.
     pub threads: usize,
+    /// Designs outside the model's ranges of fit: constraints, warnings or neither.
+    pub fit_ranges: FitRanges,
 }
 
 /// How optima are merged and sorted into zones.

@@ -9,18 +9,27 @@
 //!   defines as a maximum (`Model::max_of`) becomes one such row per part: the same
 //!   feasible set, without the kinks of the max.
 //!
+//! - The ranges where the model's fits hold ([`super::fit`]), unless the file says
+//!   otherwise: each ratio's bounds are rows of the same form, after the problem's own
+//!   constraints, counted as constraints `constraints.len() + j` (the `j`-th range).
+//!
 //! The model is asked for exactly the outputs the objective and constraints name, once
 //! each (the objective first), at the full parameter vector: the free variables in place
-//! among the fixed values. Gradients are the model's exact ones, through the chain rule of
-//! the scaling.
+//! among the fixed values; the ranges' ratios follow them among the values the rows read.
+//! Gradients are the model's exact ones, through the chain rule of the scaling.
 
 use super::{Problem as DesignProblem, Sense};
+use crate::model::fit::FitLimit;
+use crate::model::scalar::Jet;
 use crate::model::{Model, MAX_PARAMETERS, MAX_WANTED};
 use crate::optim::Problem;
 
 /// Relative violation up to which a constraint counts as met: a constraint's value here is
 /// its relative margin, so this is the one place where the rule can be stated.
 pub const FEASIBILITY_TOLERANCE: f64 = 1e-8;
+
+// a design the study leaves on a range of fit's bound is inside it for the reports too
+const _: () = assert!(FEASIBILITY_TOLERANCE == crate::model::fit::TOLERANCE);
 
 /// Whether a solve ended at a design that meets every constraint: finite, within
 /// [`FEASIBILITY_TOLERANCE`] of each limit, and not a solve that failed or proved the
@@ -62,6 +71,8 @@ pub struct DesignNlp<'p> {
     all_free: bool,
     /// Output indices the model is asked for: no duplicates, objective first.
     wanted: Vec<usize>,
+    /// The ranges of fit the study keeps to; their ratios follow the wanted outputs.
+    fits: &'p [FitLimit],
     offset: Vec<f64>,
     range: Vec<f64>,
     zeros: Vec<f64>,
@@ -117,14 +128,29 @@ impl<'p> DesignNlp<'p> {
                 }
             }
         }
+        let fits = super::fit::constrained(problem);
+        for (j, f) in fits.iter().enumerate() {
+            let constraint = problem.constraints.len() + j;
+            let value = wanted.len() + j;
+            let bounds = [(f.range.lower, 1.0), (f.range.upper, -1.0)];
+            for (limit, sign) in bounds.into_iter().filter_map(|(l, s)| Some((l?, s))) {
+                rows.push(Row {
+                    constraint,
+                    value,
+                    sign,
+                    limit,
+                    scale: limit.abs(),
+                });
+            }
+        }
         let range: Vec<f64> = free.iter().map(|v| v.upper - v.lower).collect();
         let jacobian_factor = rows
             .iter()
             .flat_map(|r| range.iter().map(move |rj| r.sign * rj / r.scale))
             .collect();
         assert!(
-            wanted.len() <= MAX_WANTED,
-            "a problem names at most {MAX_WANTED} outputs"
+            wanted.len() + fits.len() <= MAX_WANTED,
+            "a problem names at most {MAX_WANTED} outputs and ranges of fit"
         );
         assert!(problem.variables.len() <= MAX_PARAMETERS);
         let free_index: Vec<usize> = free.iter().map(|v| v.parameter).collect();
@@ -135,6 +161,7 @@ impl<'p> DesignNlp<'p> {
             all_free: free_index.iter().copied().eq(0..problem.variables.len()),
             free: free_index,
             wanted,
+            fits,
             offset: free.iter().map(|v| v.lower).collect(),
             range,
             zeros: vec![0.0; free.len()],
@@ -181,20 +208,51 @@ impl<'p> DesignNlp<'p> {
         &self.wanted
     }
 
-    /// The wanted outputs (SI) at the free variables `free` (SI, model order).
-    pub fn outputs(&self, free: &[f64], out: &mut [f64]) {
-        let mut x = [0.0; MAX_PARAMETERS];
-        self.model
-            .evaluate(self.fill(free, &mut x), &self.wanted, out);
+    /// The number of values the rows read: the wanted outputs, then the ratios of the
+    /// ranges of fit the study keeps to.
+    pub fn values(&self) -> usize {
+        self.wanted.len() + self.fits.len()
     }
 
-    /// As [`DesignNlp::outputs`], with the model's Jacobian over all its parameters,
+    /// The wanted outputs (SI) at the free variables `free` (SI, model order), then the
+    /// ranges' ratios: [`DesignNlp::values`] of them.
+    pub fn outputs(&self, free: &[f64], out: &mut [f64]) {
+        let mut x = [0.0; MAX_PARAMETERS];
+        let x = self.fill(free, &mut x);
+        let (outputs, ratios) = out.split_at_mut(self.wanted.len());
+        self.model.evaluate(x, &self.wanted, outputs);
+        for (r, f) in ratios.iter_mut().zip(self.fits) {
+            *r = f.value(x);
+        }
+    }
+
+    /// As [`DesignNlp::outputs`], with the Jacobian over all the model's parameters,
     /// row-major (`jacobian[i * np + p]`, `np` the number of parameters).
     pub fn outputs_with_gradient(&self, free: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
         let mut x = [0.0; MAX_PARAMETERS];
         let x = self.fill(free, &mut x);
+        let w = self.wanted.len();
+        let np = x.len();
+        let (outputs, ratios) = out.split_at_mut(w);
+        let (model_jac, ratio_jac) = jacobian.split_at_mut(w * np);
         self.model
-            .evaluate_with_gradient(x, &self.wanted, out, jacobian);
+            .evaluate_with_gradient(x, &self.wanted, outputs, model_jac);
+        for ((r, row), f) in ratios
+            .iter_mut()
+            .zip(ratio_jac.chunks_exact_mut(np))
+            .zip(self.fits)
+        {
+            // the ratio's two terms seeded: the same generic code the value comes from; the
+            // value itself as `outputs` computes it, to the last digit
+            let mut seeded = [Jet::<2>::from(0.0); MAX_PARAMETERS];
+            seeded[f.numerator] = Jet::variable(x[f.numerator], 0);
+            seeded[f.denominator] = Jet::variable(x[f.denominator], 1);
+            let v = f.value(&seeded[..np]);
+            *r = f.value(x);
+            row.fill(0.0);
+            row[f.numerator] += v.grad[0];
+            row[f.denominator] += v.grad[1];
+        }
     }
 
     /// The full parameter vector of the free variables `free`, in `buf` unless every
@@ -229,7 +287,7 @@ impl<'p> DesignNlp<'p> {
             return self.stated_objective(solver_objective);
         }
         let mut out = [0.0; MAX_WANTED];
-        let out = &mut out[..self.wanted.len()];
+        let out = &mut out[..self.values()];
         self.outputs(&self.unscale(u), out);
         out[0]
     }
@@ -285,7 +343,7 @@ impl Problem for DesignNlp<'_> {
         let mut buf = [0.0; MAX_PARAMETERS];
         let x = self.unscale_into(u, &mut buf);
         let mut out = [0.0; MAX_WANTED];
-        let out = &mut out[..self.wanted.len()];
+        let out = &mut out[..self.values()];
         self.outputs(x, out);
         self.constraint_values(out, c);
         let o = &self.problem.objective;
@@ -304,7 +362,7 @@ impl Problem for DesignNlp<'_> {
         let mut buf = [0.0; MAX_PARAMETERS];
         let x = self.unscale_into(u, &mut buf);
         let mut out = [0.0; MAX_WANTED];
-        let out = &mut out[..self.wanted.len()];
+        let out = &mut out[..self.values()];
         // sized for the wei2017 problems (9 outputs of 8 parameters): a heap buffer per
         // evaluation showed in the solver's profile
         let (mut small, mut large) = ([0.0; 128], Vec::new());

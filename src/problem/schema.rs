@@ -101,6 +101,7 @@ pub struct RawSearch {
     pub max_iterations: Option<i64>,
     #[schemars(extend("minimum" = THREADS.0, "maximum" = THREADS.1))]
     pub threads: Option<i64>,
+    pub fit_ranges: Option<super::FitRanges>,
 }
 
 /// The ranges of `[search]`'s keys (`--starts` and `--threads` take the same).

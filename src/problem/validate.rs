@@ -423,6 +423,7 @@ impl Validator<'_, '_> {
             tolerance,
             max_iterations: count("max_iterations", s.max_iterations, 500, MAX_ITERATIONS)?,
             threads: count("threads", s.threads, 0, THREADS)?,
+            fit_ranges: s.fit_ranges.unwrap_or_default(),
         })
     }
 

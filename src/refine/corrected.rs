@@ -108,6 +108,9 @@ impl Model for Corrected {
     fn angle_limit(&self) -> Option<f64> {
         self.inner.angle_limit()
     }
+    fn fit_limits(&self) -> &[crate::model::fit::FitLimit] {
+        self.inner.fit_limits()
+    }
     /// None: the correction's slope runs across the design space, so a design and its
     /// mirror image are corrected by different factors.
     fn mirror(&self, _x: &mut [f64]) -> bool {

@@ -195,6 +195,11 @@ pub struct DesignReport {
     pub sense: crate::problem::Sense,
     pub absolute: bool,
     pub constraints: Vec<ConstraintReport>,
+    /// Each range where the model's fits hold, at this design: the ratio, its value and
+    /// whether it lies inside ([`crate::model::Model::fit_limits`]).
+    pub fit_ranges: Vec<crate::model::fit::FitCheck>,
+    /// Every constraint met and, where the file makes the ranges of fit constraints (the
+    /// default), every ratio inside its range.
     pub feasible: bool,
     /// The model's drawing data: nodes, mode shapes.
     #[serde(flatten)]
@@ -239,6 +244,7 @@ impl DesignReport {
                 .iter()
                 .map(|c| ConstraintReport::new(c, out[c.index], ACTIVE_TOLERANCE))
                 .collect(),
+            fit_ranges: crate::problem::fit::checks(problem, x),
             feasible: false,
             drawing: problem.depiction().drawing(x),
         };
@@ -258,8 +264,11 @@ impl DesignReport {
                 .display_units
                 .insert(info.name.into(), display::output_unit(problem, i).name);
         }
-        report.feasible =
-            report.objective.is_some() && report.constraints.iter().all(|c| c.satisfied);
+        let fits_met = problem.search.fit_ranges != crate::problem::FitRanges::Constraint
+            || report.fit_ranges.iter().all(|c| c.inside);
+        report.feasible = report.objective.is_some()
+            && report.constraints.iter().all(|c| c.satisfied)
+            && fits_met;
         report
     }
 

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use crate::pareto::Pareto;
 use crate::part::{Part, PartError};
+use crate::problem::nlp::ACTIVE_TOLERANCE;
 use crate::problem::{Problem, Solver};
 use crate::study::Study;
 
@@ -93,6 +94,21 @@ impl Display for StudySummary<'_> {
                     active.join(", ")
                 }
             )?;
+        }
+        // the ranges of fit the design reaches or leaves; the others say nothing
+        let at_edge: Vec<_> = report
+            .fit_ranges
+            .iter()
+            .filter(|c| {
+                let near = |b: Option<f64>| {
+                    b.is_some_and(|b| (c.value - b).abs() <= ACTIVE_TOLERANCE * b.abs())
+                };
+                !c.inside || near(c.lower) || near(c.upper)
+            })
+            .cloned()
+            .collect();
+        if !at_edge.is_empty() {
+            write!(s, "{}", super::table::FitLines(&at_edge))?;
         }
         writeln!(s, "zone  starts  optima  best        worst")?;
         for z in &study.clustering.zones {

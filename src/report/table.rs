@@ -6,6 +6,7 @@ use std::fmt::{self, Display};
 
 use super::display::{human, output_unit, with_unit};
 use super::{ConstraintReport, DesignReport};
+use crate::model::fit::FitCheck;
 use crate::problem::{Problem, Sense};
 
 /// `eval`'s table: the design, every output, the objective and each constraint.
@@ -58,6 +59,9 @@ impl Display for DesignTable<'_> {
         if !r.constraints.is_empty() {
             write!(s, "{}", ConstraintLines(&r.constraints))?;
         }
+        if !r.fit_ranges.is_empty() {
+            write!(s, "{}", FitLines(&r.fit_ranges))?;
+        }
         writeln!(
             s,
             "feasible: {}",
@@ -67,6 +71,34 @@ impl Display for DesignTable<'_> {
                 "NO"
             }
         )
+    }
+}
+
+/// The ranges where the model's fits hold, one aligned line each: the ratio, its value,
+/// its range, the hinge (or part) it belongs to, and whether the design lies outside.
+pub struct FitLines<'a>(pub &'a [FitCheck]);
+
+impl Display for FitLines<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            s,
+            "  {:<22} {:>14} {:>24}  {:<7} of",
+            "range of fit", "value", "range", ""
+        )?;
+        for c in self.0 {
+            let num = |v: Option<f64>| v.map_or(String::new(), human);
+            let range = format!("{} .. {}", num(c.lower), num(c.upper));
+            writeln!(
+                s,
+                "  {:<22} {:>14} {:>24}  {:<7} {}",
+                c.ratio,
+                human(c.value),
+                range.trim(),
+                if c.inside { "" } else { "OUTSIDE" },
+                c.owner
+            )?;
+        }
+        Ok(())
     }
 }
 

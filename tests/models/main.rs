@@ -1,6 +1,6 @@
-//! The mechanism models: the general bridge (statics, dynamics, hinges, stability far beyond
-//! Table 1's bounds), the papers' tables and equations, the 3-PRR and 3-PSS mechanisms, the
-//! Runge-Kutta step responses, a model added from outside the library, and the layout of `src/`
+//! The mechanism models: the general bridge (statics, dynamics, hinges and their ranges of
+//! fit, stability far beyond Table 1's bounds), the papers' tables and equations, the 3-PRR
+//! and 3-PSS mechanisms, the Runge-Kutta step responses, a model added from outside the library, and the layout of `src/`
 //! that lets one be added (no import cycle between its folders, no model's name outside
 //! `src/model/`).
 //!
@@ -11,6 +11,7 @@ mod common;
 
 mod bridge_dynamics;
 mod bridge_model;
+mod fit_ranges;
 mod hinges;
 mod layout;
 mod model_stability;

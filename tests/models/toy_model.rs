@@ -102,6 +102,10 @@ impl Model for Spring {
     fn mirror(&self, _: &mut [f64]) -> bool {
         false
     }
+
+    fn fit_limits(&self) -> &[flexopt::model::fit::FitLimit] {
+        &[]
+    }
 }
 
 #[derive(serde::Deserialize)]

@@ -412,6 +412,10 @@ impl Model for ClampedStrip {
     fn mirror(&self, _: &mut [f64]) -> bool {
         false
     }
+
+    fn fit_limits(&self) -> &[flexopt::model::fit::FitLimit] {
+        &[]
+    }
 }
 
 impl Depiction for ClampedStrip {}

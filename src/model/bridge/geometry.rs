@@ -11,6 +11,7 @@ use std::borrow::Cow;
 
 use serde::Serialize;
 
+use crate::model::fit::FitLimit;
 use crate::model::hinge::{Hinge, HingeKind, MAX_HINGE_DIMENSIONS};
 use crate::model::scalar::{Jet, Scalar};
 use crate::model::{check_parameters, Dimension, ParameterInfo};
@@ -133,6 +134,9 @@ pub struct Layout {
     /// Two strips: the parameters are Table 1's eight.
     #[serde(skip)]
     strips: bool,
+    /// Each hinge's ranges of fit over the parameters.
+    #[serde(skip)]
+    fit: Vec<FitLimit>,
 }
 
 impl Layout {
@@ -185,6 +189,12 @@ impl Layout {
         }
         let position = |name: &str| parameters.iter().position(|p| p.name == name).unwrap();
         let link = ["delta2", "l3", "delta3", "delta4"].map(position);
+        let mut fit = Vec::new();
+        for (kind, letter, slots) in [(hinge_b, 'b', &b), (hinge_d, 'd', &d)] {
+            let names: Vec<&str> = slots.iter().map(|&i| parameters[i].name.as_ref()).collect();
+            let owner = format!("hinge {letter} ({})", kind.name());
+            fit.extend(kind.fit_limits(&owner, slots, &names));
+        }
         Layout {
             hinge_b,
             hinge_d,
@@ -193,7 +203,13 @@ impl Layout {
             d,
             link,
             strips: hinge_b == HingeKind::Strip && hinge_d == HingeKind::Strip,
+            fit,
         }
+    }
+
+    /// Each hinge's ranges of fit over the parameters ([`HingeKind::fit_limits`]).
+    pub fn fit_limits(&self) -> &[FitLimit] {
+        &self.fit
     }
 
     /// The model's parameters, in order.

@@ -197,6 +197,10 @@ impl Model for Bridge {
     fn mirror(&self, x: &mut [f64]) -> bool {
         super::negate_angles(self.layout.parameters(), x)
     }
+
+    fn fit_limits(&self) -> &[super::fit::FitLimit] {
+        self.layout.fit_limits()
+    }
 }
 
 impl Depiction for Bridge {

@@ -5,6 +5,7 @@ use indexmap::IndexMap;
 use serde::Serialize;
 
 use super::{Compliance, HingeKind, HingeLoads};
+use crate::model::fit::{check_all, FitCheck};
 use crate::model::material::Material;
 
 /// The stiffnesses, inverses of the compliances.
@@ -48,6 +49,9 @@ pub struct HingeReport {
     pub max_moment: f64,
     pub max_rotation: f64,
     pub max_rotation_deg: f64,
+    /// The ratios of the kind's ranges of fit ([`HingeKind::fit`]) at these dimensions,
+    /// each against its range: outside one, the figures above are not to be trusted.
+    pub fit_ranges: Vec<FitCheck>,
 }
 
 /// The report of one hinge (dimensions in SI, in the kind's order).
@@ -96,6 +100,12 @@ pub fn report(
         max_moment,
         max_rotation,
         max_rotation_deg: max_rotation.to_degrees(),
+        fit_ranges: {
+            let stems: Vec<&str> = kind.dimensions().iter().map(|d| d.stem).collect();
+            let index: Vec<usize> = (0..stems.len()).collect();
+            let owner = format!("the {} hinge", kind.name());
+            check_all(&kind.fit_limits(&owner, &index, &stems), dims)
+        },
     }
 }
 

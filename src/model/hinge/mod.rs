@@ -43,10 +43,11 @@ pub mod profile;
 
 use serde::Serialize;
 
+use super::fit::FitLimit;
 use super::material::Material;
 use super::scalar::{max, Scalar};
 use super::Dimension;
-use kinds::Kind;
+use kinds::{FitRatio, Kind};
 
 /// The most dimensions a hinge kind has.
 pub const MAX_HINGE_DIMENSIONS: usize = 3;
@@ -150,6 +151,27 @@ impl HingeKind {
     /// that sets the length along the centre line.
     pub fn dimensions(self) -> &'static [HingeDimension] {
         with_kind!(self, k => kind_dimensions(k))
+    }
+
+    /// Where the kind's formulas hold ([`Kind::FIT`]).
+    pub fn fit(self) -> &'static [FitRatio] {
+        with_kind!(self, k => kind_fit(k))
+    }
+
+    /// The kind's ranges over a mechanism's parameters: `index[k]` is the parameter index of
+    /// the kind's dimension `k` and `names[k]` its name (`t2`); `owner` names the hinge in
+    /// warnings (`hinge b (circular)`).
+    pub fn fit_limits(self, owner: &str, index: &[usize], names: &[&str]) -> Vec<FitLimit> {
+        self.fit()
+            .iter()
+            .map(|f| FitLimit {
+                owner: owner.to_string(),
+                ratio: format!("{}/{}", names[f.numerator], names[f.denominator]),
+                numerator: index[f.numerator],
+                denominator: index[f.denominator],
+                range: f.range,
+            })
+            .collect()
     }
 
     /// The length of the hinge along its centre line (m).
@@ -265,6 +287,33 @@ fn kind_name<K: Kind>(_: &K) -> &'static str {
 
 fn kind_dimensions<K: Kind>(_: &K) -> &'static [HingeDimension] {
     K::DIMENSIONS
+}
+
+fn kind_fit<K: Kind>(_: &K) -> &'static [FitRatio] {
+    K::FIT
+}
+
+/// The table of every kind's ranges ([`HingeKind::fit`]), as the guide and
+/// `docs/hinges.md` show it (a test holds them to it).
+pub fn fit_table() -> String {
+    let mut md = String::from(
+        "| kind | ratio | range | what holds within it | source |\n|---|---|---|---|---|\n",
+    );
+    for &kind in HingeKind::ALL {
+        let stems: Vec<&str> = kind.dimensions().iter().map(|d| d.stem).collect();
+        for f in kind.fit() {
+            md += &format!(
+                "| {} | {}/{} | {} | {} | {} |\n",
+                kind.name(),
+                stems[f.numerator],
+                stems[f.denominator],
+                f.range.text(),
+                f.range.holds,
+                f.range.source
+            );
+        }
+    }
+    md
 }
 
 /// One hinge of a mechanism: its kind and its dimensions (SI, in the order of

@@ -1,7 +1,8 @@
 //! The right-circular notch: radius `r` from both sides, least thickness `t`; a bar
 //! `t + 2 r` thick with two half circles cut out, `2 r` long.
 
-use super::{dim, elliptical, from_moments, positive, Kind};
+use super::{dim, elliptical, from_moments, positive, FitRatio, Kind};
+use crate::model::fit::FitRange;
 use crate::model::hinge::integrals::{self, Span};
 use crate::model::hinge::{Compliance, HingeDimension};
 use crate::model::material::Material;
@@ -15,6 +16,21 @@ impl Kind for Circular {
     const NAME: &'static str = "circular";
     const DIMENSIONS: &'static [HingeDimension] =
         &[dim("r", "notch radius"), dim("t", "least thickness")];
+    /// A notch thin against its radius, as the literature's circular hinges are: beyond
+    /// `t/r = 1` the notch is a shallow dent in a bar, the bar beside it bends as much as
+    /// the notch does, and the mechanism's rigid links no longer hold.
+    const FIT: &'static [FitRatio] = &[FitRatio {
+        numerator: 1,
+        denominator: 0,
+        range: FitRange {
+            lower: None,
+            upper: Some(1.0),
+            holds: "the notch's beam model and Smith's K_t fit",
+            source: "Paros and Weisbord, Machine Design 37 (1965) 151, notches thin against \
+                     their radius; K_t of S. T. Smith, Flexures (2000), fitted to Peterson's \
+                     charts; the accuracy table's t/r from 0.05 to 1",
+        },
+    }];
 
     fn length<D: Scalar>(&self, dims: &[D]) -> D {
         dims[0] * 2.0

@@ -1,7 +1,8 @@
 //! The corner-filleted leaf: a leaf of thickness `t` whose ends widen by quarter circles
 //! of radius `r` to `t + 2 r`, `l` long fillets included.
 
-use super::{dim, from_moments, positive, Kind};
+use super::{dim, from_moments, positive, FitRatio, Kind};
+use crate::model::fit::FitRange;
 use crate::model::hinge::integrals::{self, Span};
 use crate::model::hinge::{Compliance, HingeDimension};
 use crate::model::material::Material;
@@ -17,6 +18,36 @@ impl Kind for CornerFilleted {
         dim("l", "length, fillets included"),
         dim("t", "thickness"),
         dim("r", "fillet radius"),
+    ];
+    /// A fillet the shoulder fit knows (`r/t >= 0.05`: below it the fit tends to its
+    /// sharp-step limit, 1.98, while the stress at the leaf's root is set by whatever
+    /// corner the part gives it), and a leaf that is a beam, as the strip's `l/t >= 2`.
+    const FIT: &'static [FitRatio] = &[
+        FitRatio {
+            numerator: 2,
+            denominator: 1,
+            range: FitRange {
+                lower: Some(0.05),
+                upper: None,
+                holds: "the shoulder fillet's K_t fit",
+                source: "W. C. Young and R. G. Budynas, Roark's Formulas for Stress and \
+                         Strain, 7th ed. (2002), Table 17.1 case 2b, for 0.1 <= h/r <= 2 (h/r \
+                         = 1 here); the single-hinge FE resolves the fillet and confirms the \
+                         fit from r/t = 0.05",
+            },
+        },
+        FitRatio {
+            numerator: 1,
+            denominator: 0,
+            range: FitRange {
+                lower: None,
+                upper: Some(0.5),
+                holds: "the leaf's beam model",
+                source: "N. Lobontiu, J. S. N. Paine, E. Garcia and M. Goldfarb, J. Mech. \
+                         Des. 123 (2001) 346, corner-filleted hinges as beams; the strip's \
+                         l/t >= 2",
+            },
+        },
     ];
 
     fn length<D: Scalar>(&self, dims: &[D]) -> D {

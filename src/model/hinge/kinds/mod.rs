@@ -15,6 +15,7 @@ pub use strip::Strip;
 use super::integrals::Moments;
 use super::profile::beam_stress_max;
 use super::{Compliance, HingeDimension, HingeLoads};
+use crate::model::fit::FitRange;
 use crate::model::material::Material;
 use crate::model::scalar::Scalar;
 use crate::model::Dimension;
@@ -29,6 +30,15 @@ pub(super) const fn dim(stem: &'static str, description: &'static str) -> HingeD
     }
 }
 
+/// A ratio of two of a kind's dimensions, `numerator / denominator` (indices into
+/// [`Kind::DIMENSIONS`]), and the range within which the kind's formulas hold.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitRatio {
+    pub numerator: usize,
+    pub denominator: usize,
+    pub range: FitRange,
+}
+
 /// What a hinge kind is. Dimensions are SI (m) unless said otherwise, in the order of
 /// [`Kind::DIMENSIONS`]; the methods are generic over the scalar so that the optimizer's
 /// gradients run through the very formulas the reports print.
@@ -39,6 +49,11 @@ pub trait Kind: Sized {
     /// that sets its length along the centre line (a strip's length, a circular notch's
     /// radius), which the bridge lays out as paper 004 lays out a strip's length.
     const DIMENSIONS: &'static [HingeDimension];
+    /// Where the kind's formulas hold: ranges of ratios of its dimensions, each with the
+    /// source that fitted or checked the formula. The guide's table of them is made from
+    /// these (`flexopt::model::hinge::fit_table`), and the study keeps a design inside them
+    /// unless the problem file says otherwise.
+    const FIT: &'static [FitRatio];
 
     /// The length of the hinge along its centre line (m).
     fn length<D: Scalar>(&self, dims: &[D]) -> D;

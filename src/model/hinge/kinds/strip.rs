@@ -1,7 +1,8 @@
 //! The leaf (strip) hinge: a straight beam of constant rectangular section, `l` long and
 //! `t` thick, paper 004's hinge.
 
-use super::{dim, positive, Kind};
+use super::{dim, positive, FitRatio, Kind};
+use crate::model::fit::FitRange;
 use crate::model::hinge::{Compliance, HingeDimension, HingeLoads};
 use crate::model::material::Material;
 use crate::model::scalar::Scalar;
@@ -13,6 +14,20 @@ pub struct Strip;
 impl Kind for Strip {
     const NAME: &'static str = "strip";
     const DIMENSIONS: &'static [HingeDimension] = &[dim("l", "length"), dim("t", "thickness")];
+    /// A beam: at least twice as long as it is thick. Paper 004's own optimum has
+    /// `l/t = 5`; below 2 the leaf is a stub whose rotation spreads into the bodies it
+    /// joins, which the mechanism takes as rigid.
+    const FIT: &'static [FitRatio] = &[FitRatio {
+        numerator: 0,
+        denominator: 1,
+        range: FitRange {
+            lower: Some(2.0),
+            upper: None,
+            holds: "the leaf's beam model",
+            source: "Timoshenko beam of Wei et al., Micromachines 8 (2017) 238, Eq. 2 (its \
+                     optimum: l/t = 5); the accuracy table's shortest leaf, l/t = 2",
+        },
+    }];
 
     fn length<D: Scalar>(&self, dims: &[D]) -> D {
         dims[0]
