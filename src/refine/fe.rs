@@ -87,9 +87,12 @@ fn read(v: &Verification, result: usize, what: FeCounterpart) -> Option<(f64, Op
     Some((o.estimate.value, o.estimate.relative_error))
 }
 
-/// The largest spread of a non-converging peak stress the refinement accepts as its
-/// error: beyond it the peak is a sharp root's, which grows without bound.
-const PEAK_CHANGE_LIMIT: f64 = 0.02;
+/// The largest spread (over the last three meshes) of a non-converging peak stress the
+/// refinement accepts as its error: beyond it the peak is a sharp root's, which grows
+/// without bound. Measured: a 0.2 mm fillet's peak on uniformly refined meshes turns within
+/// 1.8-1.9 % (wei2017's optimum and printed design), a sharp root's grows by more than 10 %
+/// (tests/part_and_fe/fe_verify.rs).
+const PEAK_SPREAD_LIMIT: f64 = 0.05;
 
 impl HighFidelity for FeFidelity<'_> {
     fn describe(&self) -> String {
@@ -132,7 +135,7 @@ impl HighFidelity for FeFidelity<'_> {
             })?;
             let peak = matches!(what, FeCounterpart::Output(id)
                 if v.analysis.outputs[id.0].quantity == Quantity::PeakStress);
-            if peak && error.is_none_or(|e| e > PEAK_CHANGE_LIMIT) {
+            if peak && error.is_none_or(|e| e > PEAK_SPREAD_LIMIT) {
                 return Err(
                     "the FE peak stress does not converge (a sharp root: give the part \
                             fillets, or set [refine] stress = \"section\")"
