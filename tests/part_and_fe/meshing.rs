@@ -28,29 +28,45 @@ fn nudge(v: f64, seed: &mut u64) -> f64 {
     w
 }
 
-fn nudged(domain: &Domain, seed: u64) -> Domain {
-    let mut s = seed;
-    let mut p = |q: [f64; 2]| [nudge(q[0], &mut s), nudge(q[1], &mut s)];
+/// `domain` with its points, radii and angles mapped.
+fn mapped(
+    domain: &Domain,
+    mut point: impl FnMut([f64; 2]) -> [f64; 2],
+    mut length: impl FnMut(f64) -> f64,
+    mut angle: impl FnMut(f64) -> f64,
+) -> Domain {
     let mut d = domain.clone();
-    for l in &mut d.loops {
-        for e in l.iter_mut() {
-            *e = match *e {
-                Edge::Line { a, b } => Edge::Line { a: p(a), b: p(b) },
-                Edge::Arc {
-                    centre,
-                    radius,
-                    start,
-                    sweep,
-                } => Edge::Arc {
-                    centre: p(centre),
-                    radius: p([radius, 0.0])[0],
-                    start: p([start, 0.0])[0],
-                    sweep: p([sweep, 0.0])[0],
-                },
-            };
-        }
+    for e in d.loops.iter_mut().flatten() {
+        *e = match *e {
+            Edge::Line { a, b } => Edge::Line {
+                a: point(a),
+                b: point(b),
+            },
+            Edge::Arc {
+                centre,
+                radius,
+                start,
+                sweep,
+            } => Edge::Arc {
+                centre: point(centre),
+                radius: length(radius),
+                start: angle(start),
+                sweep: angle(sweep),
+            },
+        };
     }
     d
+}
+
+fn nudged(domain: &Domain, seed: u64) -> Domain {
+    let s = std::cell::Cell::new(seed);
+    let one = |v: f64| {
+        let mut seed = s.get();
+        let w = nudge(v, &mut seed);
+        s.set(seed);
+        w
+    };
+    mapped(domain, |q| [one(q[0]), one(q[1])], one, one)
 }
 
 #[test]
@@ -106,28 +122,7 @@ fn the_outlines_corners_are_nodes_exactly_at_any_scale() {
         .unwrap();
     let domain = Domain::of_part(&Part::build(&spec.right_half().unwrap()).unwrap());
     for scale in [1.0, 1e-2, 1e-4] {
-        let mut d = domain.clone();
-        for l in &mut d.loops {
-            for e in l.iter_mut() {
-                *e = match *e {
-                    Edge::Line { a, b } => Edge::Line {
-                        a: a.map(|v| v * scale),
-                        b: b.map(|v| v * scale),
-                    },
-                    Edge::Arc {
-                        centre,
-                        radius,
-                        start,
-                        sweep,
-                    } => Edge::Arc {
-                        centre: centre.map(|v| v * scale),
-                        radius: radius * scale,
-                        start,
-                        sweep,
-                    },
-                };
-            }
-        }
+        let d = mapped(&domain, |p| p.map(|v| v * scale), |r| r * scale, |a| a);
         let size = d.size();
         let m = mesh(&d, &|_| 0.05 * size, 0.05 * size).unwrap();
         let nodes: std::collections::HashSet<[u64; 2]> =
