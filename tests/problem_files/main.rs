@@ -10,3 +10,4 @@ mod cli;
 mod designer;
 mod problem_errors;
 mod problem_fuzz;
+mod sets;
