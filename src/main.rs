@@ -22,7 +22,7 @@ use flexopt::pareto::ParetoSpec;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
 use flexopt::problem::refine::FIDELITIES;
 use flexopt::problem::{fit, Problem};
-use flexopt::report::part::write_part;
+use flexopt::report::part::write_part_set;
 use flexopt::report::summary::Wrote;
 use flexopt::report::sweep::write_sweep;
 use flexopt::report::table::DesignTable;
@@ -222,7 +222,7 @@ fn export(path: &Path, design: &DesignArgs, out: Option<PathBuf>) -> Result<(), 
     })?;
     warn(path, &part.warnings);
     let report = DesignReport::new(&problem, &x);
-    let files = write_part(|name| dir.join(name), &problem.name, &report.design, &part)
+    let files = write_part_set(&dir, &problem.name, &report.design, &part)
         .map_err(Failure::write_failed)?;
     emit(&Wrote(&files))
 }

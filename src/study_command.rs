@@ -5,7 +5,7 @@ use std::path::Path;
 
 use crate::args::StudyArgs;
 use crate::failure::{emit, Failure};
-use crate::verify_command::run_verify;
+use crate::verify_command::check_design;
 use flexopt::fe::verify::VerifySettings;
 use flexopt::pareto::{pareto, ParetoSpec};
 use flexopt::part::{Part, PartError};
@@ -16,6 +16,7 @@ use flexopt::report::pareto::write_pareto;
 use flexopt::report::refine::{RefineSummary, RefinedReport};
 use flexopt::report::study::{write_all_refined, RefinedFiles};
 use flexopt::report::summary::{infeasible_message, ParetoSummary, StudySummary};
+use flexopt::report::verify::VerifyTable;
 use flexopt::study::{self, Study, StudyOptions};
 
 /// Loads the problem and applies the command line's overrides of its `[search]`.
@@ -166,6 +167,19 @@ pub(crate) fn run_study(
             let part = design.and_then(|x| problem.mechanism().part(&x)?.ok());
             (report, part)
         });
+    // the FE check of the optimum, before the set is written: its folder `verify/` is part
+    // of the set, so that a later run without --verify leaves no check of another optimum
+    let check = verify && study.any_feasible && !study.interrupted && matches!(part, Some(Ok(_)));
+    let checked = check.then(|| {
+        if options.progress {
+            eprintln!("checking the optimum's part by finite elements...");
+        }
+        check_design(problem, study.reported_design(), &VerifySettings::default())
+    });
+    let verified = match &checked {
+        Some(Ok((report, v))) => Some((report, v)),
+        _ => None,
+    };
     let files = write_all_refined(
         dir,
         problem,
@@ -175,6 +189,7 @@ pub(crate) fn run_study(
             report,
             part: part.as_ref(),
         }),
+        verified,
     )
     .map_err(Failure::write_failed)?;
     emit(&StudySummary {
@@ -186,16 +201,10 @@ pub(crate) fn run_study(
     if let Some((report, _)) = &refined {
         emit(&RefineSummary(report))?;
     }
-    if verify && study.any_feasible && !study.interrupted {
-        if let Some(Ok(_)) = &part {
-            let settings = VerifySettings::default();
-            run_verify(
-                problem,
-                study.reported_design(),
-                &settings,
-                &dir.join("verify"),
-            )?;
-        }
+    match checked {
+        Some(Ok((report, _))) => emit(&VerifyTable(&report))?,
+        Some(Err(e)) => return Err(e),
+        None => {}
     }
     if study.interrupted {
         Err(Failure::interrupted(format!(

@@ -2,10 +2,10 @@
 
 use std::path::Path;
 
-use flexopt::fe::verify::{verify_design, VerifySettings};
+use flexopt::fe::verify::{verify_design, Verification, VerifySettings};
 use flexopt::problem::Problem;
 use flexopt::report::summary::Wrote;
-use flexopt::report::verify::{write_verify, VerifyReport, VerifyTable};
+use flexopt::report::verify::{write_verify_set, VerifyReport, VerifyTable};
 
 use crate::failure::{emit, Failure};
 
@@ -39,21 +39,31 @@ pub fn verify_settings(
     Ok(settings)
 }
 
-/// Checks the design `x` on its part, writes the files into `dir` and prints the table.
+/// Checks the design `x` on its part, writes the files into `dir` as one set and prints the
+/// table.
 pub fn run_verify(
     problem: &Problem,
     x: &[f64],
     settings: &VerifySettings,
     dir: &Path,
 ) -> Result<(), Failure> {
+    let (report, v) = check_design(problem, x, settings)?;
+    let files = write_verify_set(dir, &report, &v).map_err(Failure::write_failed)?;
+    emit(&VerifyTable(&report))?;
+    emit(&Wrote(&files))
+}
+
+/// Checks the design `x` on its part: the report and the verification it was made from.
+pub fn check_design(
+    problem: &Problem,
+    x: &[f64],
+    settings: &VerifySettings,
+) -> Result<(VerifyReport, Verification), Failure> {
     let v = verify_design(problem.mechanism(), x, settings).map_err(|e| {
         Failure::bad_input(format!(
             "{}: cannot check this design: {e}",
             problem.file.display()
         ))
     })?;
-    let report = VerifyReport::new(problem, x, &v);
-    let files = write_verify(|name| dir.join(name), &report, &v).map_err(Failure::write_failed)?;
-    emit(&VerifyTable(&report))?;
-    emit(&Wrote(&files))
+    Ok((VerifyReport::new(problem, x, &v), v))
 }

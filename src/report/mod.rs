@@ -57,6 +57,9 @@ pub fn temporary_path(path: &Path) -> PathBuf {
     }
 }
 
+/// The file [`check_writable`] writes, followed by its process id.
+const PROBE: &str = ".flexopt-probe-";
+
 /// Checks, before any computation, that `dir` can be created and written: a run whose
 /// results cannot be stored is bad input, not a failure found after the work is done.
 pub fn check_writable(dir: &Path) -> Result<(), WriteError> {
@@ -68,7 +71,7 @@ pub fn check_writable(dir: &Path) -> Result<(), WriteError> {
         return Err(fail(&"it is not a folder"));
     }
     std::fs::create_dir_all(dir).map_err(|e| fail(&e))?;
-    let probe = dir.join(format!(".flexopt-probe-{}", std::process::id()));
+    let probe = dir.join(format!("{PROBE}{}", std::process::id()));
     std::fs::File::create(&probe).map_err(|e| fail(&e))?;
     std::fs::remove_file(&probe).map_err(|e| fail(&e))
 }

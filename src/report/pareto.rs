@@ -4,17 +4,22 @@ use std::path::{Path, PathBuf};
 
 use plotters::prelude::*;
 
+use super::folder::OutputSet;
 use super::plot::{draw_legend, format_tick, range, render_png, FAMILY};
 use super::{write_json, WriteError};
 use crate::pareto::Pareto;
 
-/// Writes `pareto.json` and `pareto.png` into `dir`; returns the paths.
+/// Writes `pareto.json` and `pareto.png` into `dir`, added to the folder's set
+/// ([`super::folder`]: a run's files there stay, an earlier front is replaced); returns the
+/// paths in place.
 pub fn write_pareto(dir: &Path, front: &Pareto) -> Result<Vec<PathBuf>, WriteError> {
-    let json = dir.join("pareto.json");
-    let png = dir.join("pareto.png");
-    write_json(&json, front)?;
-    plot(&png, front)?;
-    Ok(vec![json, png])
+    let names = ["pareto.json", "pareto.png"];
+    let set = OutputSet::begin(dir)?;
+    set.write(|set| {
+        write_json(&set.path(names[0]), front)?;
+        plot(&set.path(names[1]), front)
+    })?;
+    set.commit_added(&names)
 }
 
 fn plot(path: &Path, front: &Pareto) -> Result<(), WriteError> {

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use plotters::prelude::*;
 use serde::Serialize;
 
+use super::folder::OutputSet;
 use super::plot::{render_png, FAMILY};
 use super::{write_atomic, write_json, WriteError};
 use crate::part::{dxf, svg, Annotation, Part, PartMm, MM};
@@ -50,6 +51,19 @@ pub fn write_part(
     )?;
     drawing_png(&files[3], problem, part)?;
     Ok(files)
+}
+
+/// Writes the four part files into `dir` as one set in place of the folder's earlier one
+/// ([`super::folder`]); returns the paths in place.
+pub fn write_part_set(
+    dir: &Path,
+    problem: &str,
+    design: &indexmap::IndexMap<String, f64>,
+    part: &Part,
+) -> Result<Vec<PathBuf>, WriteError> {
+    let set = OutputSet::begin(dir)?;
+    set.write(|set| write_part(|name| set.path(name), problem, design, part))?;
+    set.commit(&PART_FILES)
 }
 
 /// The colour of a named face in the drawing.

@@ -10,7 +10,9 @@ use serde::Serialize;
 use super::folder::OutputSet;
 use super::part::{write_part, PART_FILES};
 use super::study_plots::{configurations_png, zones_png};
+use super::verify::{write_verify, VerifyReport, VERIFY_FILES, VERIFY_FOLDER};
 use super::{write_atomic, write_json, DesignReport, WriteError};
+use crate::fe::verify::Verification;
 use crate::optim::Status;
 use crate::part::{Part, PartError};
 use crate::problem::{Problem, Solver};
@@ -275,7 +277,7 @@ pub fn write_all(
     study: &Study,
     part: Option<&Result<Part, PartError>>,
 ) -> Result<Vec<PathBuf>, WriteError> {
-    write_all_refined(dir, problem, study, part, None)
+    write_all_refined(dir, problem, study, part, None, None)
 }
 
 /// The files of a refinement, written with the study's set.
@@ -293,24 +295,59 @@ pub const REFINED_PART_FILES: [&str; 4] = [
     "refined_part.png",
 ];
 
-/// [`write_all`], with `refined.json` and the refined design's part files in the set.
+/// [`write_all`], with `refined.json` and the refined design's part files in the set, and
+/// the FE check of the optimum (`run --verify`) as its folder `verify/`, itself a set.
 pub fn write_all_refined(
     dir: &Path,
     problem: &Problem,
     study: &Study,
     part: Option<&Result<Part, PartError>>,
     refined: Option<RefinedFiles>,
+    verified: Option<(&VerifyReport, &Verification)>,
 ) -> Result<Vec<PathBuf>, WriteError> {
     let set = OutputSet::begin(dir)?;
+    let written = set.write(|set| {
+        let mut written = write_study(set, problem, study, part)?;
+        if let Some(r) = refined {
+            write_json(&set.path("refined.json"), r.report)?;
+            written.push("refined.json");
+            if let (Some(part), Some(design)) = (r.part, r.report.refined.as_ref()) {
+                let named = |f: &str| set.path(&format!("refined_{f}"));
+                write_part(named, &problem.name, &design.design, part)?;
+                written.extend(REFINED_PART_FILES);
+            }
+        }
+        if let Some((report, v)) = verified {
+            write_verify(|f| set.path(VERIFY_FOLDER).join(f), report, v)?;
+            set.seal_folder(VERIFY_FOLDER, &VERIFY_FILES)?;
+            written.push(VERIFY_FOLDER);
+        }
+        Ok(written)
+    })?;
+    set.commit(&written)
+}
+
+/// The files of a study, in the order they are written (a model without a drawing of its
+/// configurations writes the first five), before the part's.
+pub const STUDY_FILES: [&str; 6] = [
+    "optimum.json",
+    "starts.json",
+    "starts.csv",
+    "zones.json",
+    "zones.png",
+    "configurations.png",
+];
+
+/// Writes the study's files and the optimum's part into the set's staging folder; returns
+/// their names.
+fn write_study(
+    set: &OutputSet,
+    problem: &Problem,
+    study: &Study,
+    part: Option<&Result<Part, PartError>>,
+) -> Result<Vec<&'static str>, WriteError> {
     let records = start_records(problem, study);
-    let files = [
-        "optimum.json",
-        "starts.json",
-        "starts.csv",
-        "zones.json",
-        "zones.png",
-        "configurations.png",
-    ];
+    let files = STUDY_FILES;
     let path = |name: &str| set.path(name);
     let optimum = optimum_report(problem, study, part);
     write_json(&path(files[0]), &optimum)?;
@@ -318,9 +355,8 @@ pub fn write_all_refined(
     write_atomic(&path(files[2]), csv(problem, &records).as_bytes())?;
     write_json(&path(files[3]), &zones_report(problem, study))?;
     zones_png(&path(files[4]), problem, study)?;
-    // a model without a drawing of its configurations writes the first five
     let best = study.reported_design();
-    let mut written: Vec<&str> = files[..5].to_vec();
+    let mut written = files[..5].to_vec();
     if problem.depiction().skeleton(best).is_some() {
         configurations_png(&path(files[5]), problem, study)?;
         written.push(files[5]);
@@ -329,14 +365,5 @@ pub fn write_all_refined(
         write_part(path, &problem.name, &optimum.design.design, part)?;
         written.extend(PART_FILES);
     }
-    if let Some(r) = refined {
-        write_json(&path("refined.json"), r.report)?;
-        written.push("refined.json");
-        if let (Some(part), Some(design)) = (r.part, r.report.refined.as_ref()) {
-            let named = |f: &str| set.path(&format!("refined_{f}"));
-            write_part(named, &problem.name, &design.design, part)?;
-            written.extend(REFINED_PART_FILES);
-        }
-    }
-    set.commit(&written)
+    Ok(written)
 }

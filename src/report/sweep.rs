@@ -2,15 +2,29 @@
 
 use std::path::{Path, PathBuf};
 
+use super::folder::OutputSet;
 use super::plot::{line_panels, Panel};
 use super::{write_json, WriteError};
 use crate::sweep::Sweep;
 
-/// Writes `<variable>.json` and `<variable>.png` into `dir`.
+/// Writes `<variable>.json` and `<variable>.png` into `dir`, added to the folder's set
+/// ([`super::folder`]: the sweeps of other variables stay, an earlier sweep of this one is
+/// replaced); returns the paths in place.
 pub fn write_sweep(dir: &Path, sweep: &Sweep) -> Result<Vec<PathBuf>, WriteError> {
-    let json = dir.join(format!("{}.json", sweep.variable));
-    let png = dir.join(format!("{}.png", sweep.variable));
-    write_json(&json, sweep)?;
+    let names = [
+        format!("{}.json", sweep.variable),
+        format!("{}.png", sweep.variable),
+    ];
+    let set = OutputSet::begin(dir)?;
+    set.write(|set| {
+        write_json(&set.path(&names[0]), sweep)?;
+        plot(&set.path(&names[1]), sweep)
+    })?;
+    set.commit_added(&[&names[0], &names[1]])
+}
+
+/// `<variable>.png`: a panel per output.
+fn plot(png: &Path, sweep: &Sweep) -> Result<(), WriteError> {
     let around = sweep.around.get(&sweep.variable).copied();
     let panels: Vec<Panel> = sweep
         .order
@@ -50,11 +64,10 @@ pub fn write_sweep(dir: &Path, sweep: &Sweep) -> Result<Vec<PathBuf>, WriteError
         (420, 300)
     };
     line_panels(
-        &png,
+        png,
         &format!("{}: outputs against {}", sweep.problem, sweep.variable),
         &panels,
         columns,
         cell,
-    )?;
-    Ok(vec![json, png])
+    )
 }

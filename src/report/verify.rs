@@ -11,6 +11,7 @@ use indexmap::IndexMap;
 use plotters::prelude::*;
 use serde::Serialize;
 
+use super::folder::OutputSet;
 use super::plot::{render_png, FAMILY};
 use super::{write_atomic, write_json, WriteError};
 use crate::fe::element::Element;
@@ -35,6 +36,10 @@ pub const VERIFY_FILES: [&str; 5] = [
     "part.inp",
     "part3d.inp",
 ];
+
+/// The folder of a run's set that holds its check (`run --verify`), and where `verify`
+/// writes by default.
+pub const VERIFY_FOLDER: &str = "verify";
 
 /// The mesh level of `part.inp` and of `part3d.inp` (the first mesh: its outputs are within
 /// about 0.5 % of the extrapolated ones, `verify.json` lists them by level), and the 3D
@@ -177,6 +182,18 @@ pub fn write_verify(
     write_atomic(&files[3], deck.two_d(Idealization::PlaneStrain).as_bytes())?;
     write_atomic(&files[4], deck.three_d(DECK_3D_LAYERS).as_bytes())?;
     Ok(files)
+}
+
+/// Writes the verification's files into `dir` as one set in place of the folder's earlier
+/// one ([`super::folder`]); returns the paths in place.
+pub fn write_verify_set(
+    dir: &Path,
+    report: &VerifyReport,
+    v: &Verification,
+) -> Result<Vec<PathBuf>, WriteError> {
+    let set = OutputSet::begin(dir)?;
+    set.write(|set| write_verify(|name| set.path(name), report, v))?;
+    set.commit(&VERIFY_FILES)
 }
 
 /// A colour of the scale from blue (low) to red (high), `t` in [0, 1].

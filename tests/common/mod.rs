@@ -105,3 +105,82 @@ pub fn printed(x: f64, digits: i32) -> f64 {
     let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
     (x * scale).round() / scale
 }
+
+/// Runs the `flexopt` binary with `args` on a disk that holds no file longer than `blocks`
+/// blocks of 512 bytes (the shell's `ulimit -f`, SIGXFSZ ignored): a write past it fails with
+/// EFBIG, as on a full disk, without root.
+pub fn flexopt_on_full_disk(blocks: u32, args: &[&str]) -> std::process::Output {
+    std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            "trap '' XFSZ; ulimit -f {blocks}; exec \"$0\" \"$@\""
+        ))
+        .arg(env!("CARGO_BIN_EXE_flexopt"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// Every file under `dir`, hidden ones too, with its size and FNV-1a hash (a folder with
+/// neither): two folders with equal snapshots hold the same files.
+pub fn snapshot(dir: &std::path::Path) -> std::collections::BTreeMap<String, Option<(u64, u64)>> {
+    walkdir::WalkDir::new(dir)
+        .min_depth(1)
+        .into_iter()
+        .map(|entry| {
+            let entry = entry.unwrap();
+            let rel = entry
+                .path()
+                .strip_prefix(dir)
+                .unwrap()
+                .display()
+                .to_string();
+            if entry.file_type().is_dir() {
+                return (format!("{rel}/"), None);
+            }
+            let bytes = std::fs::read(entry.path()).unwrap();
+            let hash = flexopt::report::folder::fnv1a64(&bytes);
+            (rel, Some((bytes.len() as u64, hash)))
+        })
+        .collect()
+}
+
+/// Asserts that `dir` holds one whole set of files and nothing else but `others` (the
+/// user's): every file its `manifest.json` lists, with the size and FNV-1a hash listed; every
+/// folder it lists a whole set itself; nothing hidden (a staging folder, a lock, a temporary
+/// file). Returns the names the manifest lists.
+pub fn assert_whole_set(dir: &std::path::Path, others: &[&str]) -> Vec<String> {
+    let text = std::fs::read_to_string(dir.join("manifest.json"))
+        .unwrap_or_else(|e| panic!("{}: no manifest: {e}", dir.display()));
+    let manifest: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mut listed = Vec::new();
+    for f in manifest["files"].as_array().unwrap() {
+        let name = f["name"].as_str().unwrap();
+        let path = dir.join(name);
+        if f["folder"] == true {
+            assert!(path.is_dir(), "{}: {f}", dir.display());
+            assert_whole_set(&path, &[]);
+        } else {
+            let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            assert_eq!(bytes.len() as u64, f["bytes"].as_u64().unwrap(), "{f}");
+            let hash = format!("{:016x}", flexopt::report::folder::fnv1a64(&bytes));
+            assert_eq!(hash, f["fnv1a64"].as_str().unwrap(), "{f}");
+        }
+        listed.push(name.to_string());
+    }
+    let mut present: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    present.sort();
+    let mut expected: Vec<String> = listed
+        .iter()
+        .map(String::as_str)
+        .chain(others.iter().copied())
+        .chain(["manifest.json"])
+        .map(String::from)
+        .collect();
+    expected.sort();
+    assert_eq!(present, expected, "{}", dir.display());
+    listed
+}

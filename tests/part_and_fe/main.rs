@@ -1,6 +1,6 @@
 //! The part and the finite elements: the bridge's outline and its checks, the elements
 //! against exact solutions and against CalculiX, the check of a design, and the refinement
-//! of an optimum against the finite elements.
+//! of an optimum against the finite elements, and the sets of files the commands write.
 //!
 //! One test binary per subject (issue 21): each file is a module, the fixtures are shared.
 
@@ -15,3 +15,4 @@ mod fe_verify;
 mod meshing;
 mod part;
 mod refine;
+mod sets;

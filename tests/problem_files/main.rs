@@ -13,4 +13,5 @@ mod optimum_report;
 mod problem_errors;
 mod problem_fuzz;
 mod rejected;
+mod sets;
 mod stdout;
