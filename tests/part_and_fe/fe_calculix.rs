@@ -166,9 +166,13 @@ fn ccx_and_flexopt_agree_on_the_same_mesh_and_3d_lies_between_the_2d_bounds() {
                 .two_d(idealization);
             let thin = run_ccx("thin", &deck, &model, 0);
             let thin = model.measures(&thin);
+            // ccx makes CPS6 one layer of 3D elements 1e-4 as thick as the part is wide:
+            // at that aspect its own solve holds about 1e-4, and its answer moves with the
+            // mesh's last bits (nodes moved by under 1e-12 m took it from below 1e-4 to
+            // 1.05e-4), far beyond any plane-stress effect of the thickness (about 1e-11)
             for (o, t) in ours.iter().zip(thin) {
                 assert!(
-                    rel(t, *o) < 1e-4,
+                    rel(t, *o) < 2e-4,
                     "CPS6 at 1e-4 of the width: {t:e} against {o:e}"
                 );
             }
