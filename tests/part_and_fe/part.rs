@@ -51,7 +51,7 @@ fn intersect(s: (P, P), t: (P, P)) -> bool {
 }
 
 /// No two non-adjacent segments of the outline (all loops together) meet.
-fn assert_simple(part: &PartMm) {
+pub(crate) fn assert_simple(part: &PartMm) {
     let all: Vec<(usize, usize, (P, P))> = part
         .loops
         .iter()
