@@ -31,6 +31,12 @@ pub fn run_verify(
     settings: &VerifySettings,
     dir: &Path,
 ) -> Result<(), Failure> {
+    if let Some(Err(e)) = problem.mechanism().part(x) {
+        return Err(Failure::cannot_be_made(format!(
+            "{}: this design gives no part that can be made: {e}",
+            problem.file.display()
+        )));
+    }
     let v = verify_design(problem.mechanism(), x, settings).map_err(|e| {
         Failure::bad_input(format!(
             "{}: cannot check this design: {e}",
