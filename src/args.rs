@@ -29,8 +29,8 @@ const PROBLEM: &str = "The problem file (TOML; `flexopt init` writes one to star
 const EXIT_CODES: &str = "Exit codes: 0 success; 1 files or output that could not be \
 written; 2 a rejected problem file, design or option (the message names the file, the key \
 and what is wrong); 3 no feasible design (run, pareto; refined by FE: none meets the \
-constraints on the part); 4 feasible designs but none converged; 5 an optimum whose part \
-cannot be made; 130 interrupted (Ctrl-C).";
+constraints on the part); 4 feasible designs but none converged; 5 a part that cannot be \
+made (export, verify; run: its optimum's); 130 interrupted (Ctrl-C).";
 
 /// The models a problem file can name, from the registry: the first is the default.
 fn models() -> PossibleValuesParser {

@@ -33,6 +33,14 @@ impl Failure {
         }
     }
 
+    /// Exit code 5: a part that cannot be made with the problem's `[part]` sizes.
+    pub fn cannot_be_made(e: impl Display) -> Self {
+        Failure {
+            code: 5,
+            message: e.to_string(),
+        }
+    }
+
     /// Exit code 3: no feasible design; the results were written all the same. (Exit code
     /// 4, a feasible design that did not converge, is built where it arises.)
     pub fn no_feasible(e: impl Display) -> Self {

@@ -215,10 +215,16 @@ fn export(path: &Path, design: &DesignArgs, out: Option<PathBuf>) -> Result<(), 
     let dir = out.unwrap_or_else(|| problem.default_output_dir().join("export"));
     check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
     let part = problem.mechanism().part_or_error(&x).map_err(|e| {
-        Failure::bad_input(format!(
+        let message = format!(
             "{}: this design gives no part that can be made: {e}",
             path.display()
-        ))
+        );
+        // a model without a part is a problem file's mistake, not its part's
+        if problem.mechanism().part_spec(&x).is_some() {
+            Failure::cannot_be_made(message)
+        } else {
+            Failure::bad_input(message)
+        }
     })?;
     warn(path, &part.warnings);
     let report = DesignReport::new(&problem, &x);

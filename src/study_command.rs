@@ -225,15 +225,12 @@ pub(crate) fn run_study(
             ),
         })
     } else if let Some(Err(e)) = &part {
-        Err(Failure {
-            code: 5,
-            message: format!(
-                "{}: the optimum gives no part that can be made with the [part] sizes: {e}; \
-                 its analytic results are written, its part files are not \
-                 (optimum.json: part_problems)",
-                problem.file.display()
-            ),
-        })
+        Err(Failure::cannot_be_made(format!(
+            "{}: the optimum gives no part that can be made with the [part] sizes: {e}; its \
+             analytic results are written, its part files are not (optimum.json: \
+             part_problems)",
+            problem.file.display()
+        )))
     } else if let Some((r, _)) = refined
         .as_ref()
         .filter(|(r, _)| !r.converged || !r.feasible)

@@ -59,6 +59,12 @@ pub fn check_design(
     x: &[f64],
     settings: &VerifySettings,
 ) -> Result<(VerifyReport, Verification), Failure> {
+    if let Some(Err(e)) = problem.mechanism().part(x) {
+        return Err(Failure::cannot_be_made(format!(
+            "{}: this design gives no part that can be made: {e}",
+            problem.file.display()
+        )));
+    }
     let v = verify_design(problem.mechanism(), x, settings).map_err(|e| {
         Failure::bad_input(format!(
             "{}: cannot check this design: {e}",

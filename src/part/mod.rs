@@ -13,7 +13,8 @@
 //! coordinate makes a round trip through another unit.
 //!
 //! Files: `analysis.rs` (the check a model asks of its part), `outline.rs` (union, exact
-//! coordinates, fillets, loops), `checks.rs` (what cannot be made), `mm.rs` (the part as
+//! coordinates, fillets, loops), `checks.rs` (what cannot be made, on the solids),
+//! `widths.rs` (bodies thinner than their hinges, on the outline), `mm.rs` (the part as
 //! its files hold it), `dxf.rs`, `svg.rs` (the writers).
 
 pub mod analysis;
@@ -24,6 +25,7 @@ mod mm;
 pub mod outline;
 mod roots;
 pub mod svg;
+mod widths;
 
 use serde::Serialize;
 
@@ -202,6 +204,10 @@ impl Part {
             return Err(PartError { problems });
         }
         let loops = outline::outline(spec).map_err(|problems| PartError { problems })?;
+        let problems = widths::too_thin(spec, &loops);
+        if !problems.is_empty() {
+            return Err(PartError { problems });
+        }
         let area = loops.iter().map(Loop::signed_area).sum();
         let bounding_box = loops.iter().map(Loop::bounding_box).fold(
             [

@@ -51,7 +51,7 @@ fn intersect(s: (P, P), t: (P, P)) -> bool {
 }
 
 /// No two non-adjacent segments of the outline (all loops together) meet.
-fn assert_simple(part: &PartMm) {
+pub(crate) fn assert_simple(part: &PartMm) {
     let all: Vec<(usize, usize, (P, P))> = part
         .loops
         .iter()
@@ -527,7 +527,7 @@ fn export_writes_the_four_files_and_refuses_a_part_that_cannot_be_made() {
         "--out",
         dir.to_str().unwrap(),
     ]);
-    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(out.status.code(), Some(5));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains("problems/wei2017.toml") && err.contains("overlaps the upper output block"),

@@ -248,3 +248,148 @@ fn run_and_pareto_reject_a_problem_without_free_variables() {
         );
     }
 }
+
+/// The issue's sliver links (issue 27, item 2): 40/-40/40 deg with 0.8 mm hinges, a link
+/// about 0.5 mm across; 44/-44/44 deg with 20 mm lengths and 0.4 mm hinges, a needle.
+const SLIVERS: [&str; 2] = [
+    "l2=10,delta2=40,t2=0.8,l3=10,delta3=-40,l4=10,delta4=40,t4=0.8",
+    "l2=20,delta2=44,t2=0.4,l3=20,delta3=-44,l4=20,delta4=44,t4=0.4",
+];
+
+/// What every refusal of a sliver says: the link, its width, the place and the rule.
+fn assert_names_the_sliver(err: &str, rule: &str) {
+    for quarter in ["upper left", "upper right", "lower left", "lower right"] {
+        let at = err
+            .find(&format!("the middle link c ({quarter}) is "))
+            .unwrap_or_else(|| panic!("no {quarter} link in {err}"));
+        let rest = &err[at..];
+        let end = rest.find(";").unwrap_or(rest.len());
+        let message = &rest[..end];
+        assert!(
+            message.contains(" mm across at (")
+                && message.contains(&format!("thinner than the hinges it carries ({rule})")),
+            "{message}"
+        );
+    }
+}
+
+#[test]
+fn export_verify_and_run_refuse_a_sliver_link_with_exit_5() {
+    let dir = std::env::temp_dir().join(format!("flexopt-sliver-{}", std::process::id()));
+    let out_dir = dir.to_str().unwrap();
+    for (design, rule) in SLIVERS.iter().zip(["0.8000 mm", "0.4000 mm"]) {
+        for command in ["export", "verify"] {
+            let out = flexopt(&[
+                command,
+                "problems/wei2017.toml",
+                "--design",
+                design,
+                "--out",
+                out_dir,
+            ]);
+            assert_eq!(out.status.code(), Some(5), "{command} {design}");
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert!(
+                err.contains("problems/wei2017.toml")
+                    && err.contains("this design gives no part that can be made"),
+                "{err}"
+            );
+            assert_names_the_sliver(&err, rule);
+            for file in ["part.dxf", "part.json", "verify.json", "stress.png"] {
+                assert!(!dir.join(file).exists(), "{command} wrote {file}");
+            }
+        }
+    }
+    // a run whose optimum is the needle: the study is written, the part refused
+    let problem = dir.join("sliver.toml");
+    std::fs::write(&problem, SLIVER_PROBLEM).unwrap();
+    let out = flexopt(&[
+        "run",
+        problem.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out_dir,
+    ]);
+    assert_eq!(out.status.code(), Some(5));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("sliver.toml") && err.contains("no part that can be made"));
+    assert_names_the_sliver(&err, "0.4000 mm");
+    let optimum: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("optimum.json")).unwrap()).unwrap();
+    let problems = optimum["part_problems"].as_array().unwrap();
+    assert!(
+        problems.len() == 4
+            && problems
+                .iter()
+                .all(|p| p.as_str().unwrap().contains(" mm across at (")),
+        "{problems:?}"
+    );
+    assert!(!dir.join("part.dxf").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A bridge whose lengths and angles are the needle's, only hinge b's thickness free.
+const SLIVER_PROBLEM: &str = r#"
+name = "sliver"
+model = "bridge"
+
+[material]
+preset = "al7075-t6"
+
+[hinge]
+kind = "strip"
+width = "10 mm"
+
+[actuator]
+nominal_stroke = "17.4 um"
+preload = "40 N"
+
+[[variables]]
+name = "l2"
+unit = "mm"
+value = 20
+
+[[variables]]
+name = "delta2"
+unit = "deg"
+value = 44
+
+[[variables]]
+name = "t2"
+unit = "mm"
+lower = 0.4
+upper = 0.5
+
+[[variables]]
+name = "l3"
+unit = "mm"
+value = 20
+
+[[variables]]
+name = "delta3"
+unit = "deg"
+value = -44
+
+[[variables]]
+name = "l4"
+unit = "mm"
+value = 20
+
+[[variables]]
+name = "delta4"
+unit = "deg"
+value = 44
+
+[[variables]]
+name = "t4"
+unit = "mm"
+value = 0.4
+
+[objective]
+maximize = "amplification"
+absolute = true
+
+[search]
+starts = 4
+seed = 1
+"#;
