@@ -88,7 +88,7 @@ fn a_slot_too_wide_is_blamed_on_min_slot() {
     ];
     let words =
         ["part.min_slot (10 mm) is wider than the slot between the sides of the output block"];
-    let err = says(&export, 2, &words);
+    let err = says(&export, 5, &words);
     assert!(
         !err.contains("output_block_width (10 mm) is too narrow"),
         "{err}"
