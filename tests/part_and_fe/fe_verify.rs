@@ -28,6 +28,16 @@ fn output<'a>(v: &'a Verification, k: usize, name: &str) -> &'a flexopt::fe::ver
         .unwrap()
 }
 
+/// The check of `model`'s part at `x` with the default settings.
+fn checked(model: &Bridge, x: &[f64]) -> Verification {
+    verify_design(
+        &Mechanism::complete(model.clone()),
+        x,
+        &VerifySettings::default(),
+    )
+    .unwrap()
+}
+
 fn analytic(model: &Bridge, x: &[f64], name: &str) -> f64 {
     let i = model.output_index(name).unwrap();
     let mut v = [0.0];
@@ -39,12 +49,7 @@ fn analytic(model: &Bridge, x: &[f64], name: &str) -> f64 {
 fn the_printed_design_converges_and_deviates_as_table_2_does() {
     let model = bridge(PartSettings::default());
     let x = table1_optimum();
-    let v = verify_design(
-        &Mechanism::complete(model.clone()),
-        &x,
-        &VerifySettings::default(),
-    )
-    .unwrap();
+    let v = checked(&model, &x);
     assert!(v.converged);
     assert!(v.levels.len() >= 3);
     for r in &v.results {
@@ -142,12 +147,7 @@ fn a_sharp_roots_peak_stress_is_reported_as_not_converging() {
         ..PartSettings::default()
     });
     let x = table1_optimum();
-    let v = verify_design(
-        &Mechanism::complete(model.clone()),
-        &x,
-        &VerifySettings::default(),
-    )
-    .unwrap();
+    let v = checked(&model, &x);
     // the peak never stops the refinement and is never extrapolated; the rest converge
     assert!(v.converged);
     for k in 0..2 {
@@ -170,12 +170,7 @@ fn a_sharp_roots_peak_stress_is_reported_as_not_converging() {
     // the fillets stand beyond the model's hinge, where it has rigid bodies: the bodies'
     // faces move out by the radius and the fillets' zones, thicker than the hinge but far
     // from rigid, add compliance, so the filleted part is the softer one
-    let filleted = verify_design(
-        &Mechanism::complete(bridge(PartSettings::default())),
-        &x,
-        &VerifySettings::default(),
-    )
-    .unwrap();
+    let filleted = checked(&bridge(PartSettings::default()), &x);
     assert!(
         output(&filleted, 1, "fe_k_in").estimate.value < output(&v, 1, "fe_k_in").estimate.value
     );

@@ -69,8 +69,8 @@ fn nudged(domain: &Domain, seed: u64) -> Domain {
     mapped(domain, |q| [one(q[0]), one(q[1])], one, one)
 }
 
-#[test]
-fn an_outline_nudged_in_its_last_bits_meshes_into_the_same_triangles() {
+/// The region of the right half of paper 004's printed design, as the check meshes it.
+fn printed_half() -> Domain {
     let mechanism = Mechanism::complete(flexopt::model::bridge::Bridge::new(
         common::wei2017_settings(),
     ));
@@ -78,8 +78,12 @@ fn an_outline_nudged_in_its_last_bits_meshes_into_the_same_triangles() {
         .part_spec(&common::table1_optimum())
         .unwrap()
         .unwrap();
-    let half = Part::build(&spec.right_half().unwrap()).unwrap();
-    let domain = Domain::of_part(&half);
+    Domain::of_part(&Part::build(&spec.right_half().unwrap()).unwrap())
+}
+
+#[test]
+fn an_outline_nudged_in_its_last_bits_meshes_into_the_same_triangles() {
+    let domain = printed_half();
     // the check's own sizes: four elements through each hinge's thickness, growing away
     let (size, coarse) = size_function(&domain, 4.0);
     let reference = mesh(&domain, &size, coarse).unwrap();
@@ -113,14 +117,7 @@ fn an_outline_nudged_in_its_last_bits_meshes_into_the_same_triangles() {
 /// clamped corners and gave zero stress).
 #[test]
 fn the_outlines_corners_are_nodes_exactly_at_any_scale() {
-    let mechanism = Mechanism::complete(flexopt::model::bridge::Bridge::new(
-        common::wei2017_settings(),
-    ));
-    let spec = mechanism
-        .part_spec(&common::table1_optimum())
-        .unwrap()
-        .unwrap();
-    let domain = Domain::of_part(&Part::build(&spec.right_half().unwrap()).unwrap());
+    let domain = printed_half();
     for scale in [1.0, 1e-2, 1e-4] {
         let d = mapped(&domain, |p| p.map(|v| v * scale), |r| r * scale, |a| a);
         let size = d.size();
