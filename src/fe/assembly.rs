@@ -82,9 +82,17 @@ fn element_dofs<E: Element>(mesh: &Mesh<E>, e: usize) -> E::PerDof<usize> {
 
 /// Each node's neighbours (itself included), sorted.
 fn adjacency<E: Element>(mesh: &Mesh<E>) -> Vec<Vec<usize>> {
-    let mut adj: Vec<Vec<usize>> = vec![Vec::new(); mesh.nodes.len()];
-    for el in &mesh.elements {
-        let el = el.as_ref();
+    adjacency_of(mesh.nodes.len(), mesh.elements.iter().map(|el| el.as_ref()))
+}
+
+/// Each of `nodes` nodes' neighbours (itself included), sorted, for elements given by
+/// their nodes.
+pub fn adjacency_of<'a>(
+    nodes: usize,
+    elements: impl Iterator<Item = &'a [usize]>,
+) -> Vec<Vec<usize>> {
+    let mut adj: Vec<Vec<usize>> = vec![Vec::new(); nodes];
+    for el in elements {
         for &a in el {
             adj[a].extend_from_slice(el);
         }
@@ -103,8 +111,14 @@ fn solve_error(what: &str, e: impl std::fmt::Debug) -> FeError {
 impl Pattern {
     /// The pattern of `mesh` with the degrees of freedom `fixed` held.
     pub fn new<E: Element>(mesh: &Mesh<E>, fixed: &[bool]) -> Result<Self, FeError> {
+        Self::of_graph(&adjacency(mesh), 2, fixed)
+    }
+
+    /// The pattern of a mesh whose nodes are coupled as `adj` says (each node's neighbours,
+    /// itself included, sorted), with `per_node` degrees of freedom a node numbered
+    /// `per_node * node + k`, the degrees of freedom `fixed` held.
+    pub fn of_graph(adj: &[Vec<usize>], per_node: usize, fixed: &[bool]) -> Result<Self, FeError> {
         let dofs = Dofs::new(fixed);
-        let adj = adjacency(mesh);
         let n = dofs.count();
         // the lower triangle, column by column: a free degree of freedom's column holds the
         // free ones of its node's neighbours numbered at or after it (the numbering follows
@@ -113,13 +127,13 @@ impl Pattern {
         let mut row_idx = Vec::new();
         col_ptr.push(0);
         for (node, neighbours) in adj.iter().enumerate() {
-            for k in 0..2 {
-                let Some(c) = dofs.free(2 * node + k) else {
+            for k in 0..per_node {
+                let Some(c) = dofs.free(per_node * node + k) else {
                     continue;
                 };
                 for &m in neighbours {
-                    for j in 0..2 {
-                        if let Some(r) = dofs.free(2 * m + j) {
+                    for j in 0..per_node {
+                        if let Some(r) = dofs.free(per_node * m + j) {
                             if r >= c {
                                 row_idx.push(r);
                             }
@@ -131,11 +145,11 @@ impl Pattern {
         }
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         // the ordering of the nodes, expanded to their free degrees of freedom
-        let nodes = mesh.nodes.len();
+        let nodes = adj.len();
         let mut node_ptr = Vec::with_capacity(nodes + 1);
         let mut node_idx = Vec::new();
         node_ptr.push(0);
-        for neighbours in &adj {
+        for neighbours in adj {
             node_idx.extend_from_slice(neighbours);
             node_ptr.push(node_idx.len());
         }
@@ -152,8 +166,8 @@ impl Pattern {
         .map_err(|e| solve_error("the ordering failed", e))?;
         let mut fwd = Vec::with_capacity(n);
         for &node in &perm {
-            for k in 0..2 {
-                if let Some(d) = dofs.free(2 * node + k) {
+            for k in 0..per_node {
+                if let Some(d) = dofs.free(per_node * node + k) {
                     fwd.push(d);
                 }
             }
@@ -198,22 +212,47 @@ impl Pattern {
         for e in 0..mesh.elements.len() {
             let k = element(e)?;
             let ed = element_dofs(mesh, e);
-            let d = E::PerDof::from_fn(|k| self.dofs.free(ed[k]));
-            for b in 0..2 * E::NODES {
-                let Some(c) = d[b] else { continue };
-                let rows = s.row_idx_of_col_raw(c);
-                let start = s.col_ptr()[c];
-                for a in 0..2 * E::NODES {
-                    if let Some(r) = d[a].filter(|&r| r >= c) {
-                        let at = rows.binary_search(&r).map_err(|_| {
-                            FeError::Solve("an entry is missing from the pattern".into())
-                        })?;
-                        values[start + at] += k[a][b];
-                    }
+            self.scatter(&mut values, ed.as_ref(), |a, b| k[a][b])?;
+        }
+        Ok(SparseColMat::new(self.symbolic.clone(), values))
+    }
+
+    /// Adds an element matrix `k(a, b)` (one row and column a degree of freedom of `dofs`)
+    /// into `values`, the entries of a matrix on this pattern; rows and columns of fixed
+    /// degrees of freedom are dropped.
+    pub fn scatter(
+        &self,
+        values: &mut [f64],
+        dofs: &[usize],
+        k: impl Fn(usize, usize) -> f64,
+    ) -> Result<(), FeError> {
+        let s = self.symbolic.as_ref();
+        for (b, &db) in dofs.iter().enumerate() {
+            let Some(c) = self.dofs.free(db) else {
+                continue;
+            };
+            let rows = s.row_idx_of_col_raw(c);
+            let start = s.col_ptr()[c];
+            for (a, &da) in dofs.iter().enumerate() {
+                if let Some(r) = self.dofs.free(da).filter(|&r| r >= c) {
+                    let at = rows.binary_search(&r).map_err(|_| {
+                        FeError::Solve("an entry is missing from the pattern".into())
+                    })?;
+                    values[start + at] += k(a, b);
                 }
             }
         }
-        Ok(SparseColMat::new(self.symbolic.clone(), values))
+        Ok(())
+    }
+
+    /// A matrix on this pattern from its entries (as [`Pattern::scatter`] fills them).
+    pub fn matrix(&self, values: Vec<f64>) -> SparseColMat<usize, f64> {
+        SparseColMat::new(self.symbolic.clone(), values)
+    }
+
+    /// The number of entries of a matrix on this pattern (its lower triangle).
+    pub fn entries(&self) -> usize {
+        self.symbolic.compute_nnz()
     }
 
     /// The stiffness matrix for `material` and `width` in `idealization`.

@@ -18,6 +18,7 @@ use std::fmt::Write as _;
 
 use super::element::{Elastic, Element, Idealization, PartElement};
 use super::mesh::{EdgeNodes, Mesh};
+use super::solid::Layers;
 
 /// A load case: its name, its nodal forces (N, two a node) for the 2D deck, and the same
 /// loads as uniform tractions on boundary edges (Pa) for the 3D deck.
@@ -133,20 +134,23 @@ impl<E: Element> Deck<'_, E> {
         out
     }
 
-    /// The 3D deck: the mesh extruded through the width in `layers` layers of prisms,
-    /// the clamping face held on its whole surface, the loads as pressures on the faces
-    /// (the faces of a load must be normal to its traction, as the bridge's are).
-    pub fn three_d(&self, layers: usize) -> String {
+    /// The 3D deck: the mesh extruded through the half-width (`z` from 0 to `w / 2`) in the
+    /// graded `layers` of prisms, the mid-width plane `z = 0` held in z (the plane of
+    /// symmetry), the clamping face held on its whole surface, the loads as pressures on the
+    /// faces (the faces of a load must be normal to its traction, as the bridge's are):
+    /// the whole plate's displacements, under half of its loads. Node `plane * n + k + 1`
+    /// stands on the 2D node `k` (of `n`).
+    pub fn three_d(&self, layers: &Layers) -> String {
         let mut out = String::new();
         let _ = writeln!(
             out,
-            "*HEADING\n{} (3D, {layers} layers of {}, flexopt)",
+            "*HEADING\n{} (3D, half of the width in {} graded layers of {}, flexopt)",
             self.title,
+            layers.count,
             E::CALCULIX_EXTRUDED
         );
         let n2 = self.mesh.nodes.len();
-        let planes = 2 * layers + 1;
-        let h = self.width / (2 * layers) as f64;
+        let planes = layers.planes();
         let id = |plane: usize, node: usize| plane * n2 + node + 1;
         // the nodes the prism has on its middle plane (corners) appear on every plane, the
         // others on the even planes
@@ -163,13 +167,13 @@ impl<E: Element> Deck<'_, E> {
         for plane in 0..planes {
             for (i, p) in self.mesh.nodes.iter().enumerate() {
                 if used(plane, i) {
-                    node_line(&mut out, id(plane, i), p[0], p[1], Some(plane as f64 * h));
+                    node_line(&mut out, id(plane, i), p[0], p[1], Some(layers.z(plane)));
                 }
             }
         }
         let _ = writeln!(out, "*ELEMENT, TYPE={}, ELSET=EALL", E::CALCULIX_EXTRUDED);
         let mut e3 = 0;
-        for layer in 0..layers {
+        for layer in 0..layers.count {
             for el in &self.mesh.elements {
                 e3 += 1;
                 let s: Vec<String> = E::EXTRUSION
@@ -202,9 +206,10 @@ impl<E: Element> Deck<'_, E> {
             sets(&mut out, name, through(nodes).into_iter());
         }
         sets(&mut out, "clamp", through(&self.clamp).into_iter());
+        sets(&mut out, "midwidth", (0..n2).map(|n| id(0, n)));
         material(&mut out, &self.material);
         let _ = writeln!(out, "*SOLID SECTION, ELSET=EALL, MATERIAL=PART");
-        let _ = writeln!(out, "*BOUNDARY\nCLAMP, 1, 3");
+        let _ = writeln!(out, "*BOUNDARY\nCLAMP, 1, 3\nMIDWIDTH, 3, 3");
         // each boundary edge's element and its side
         let mut side = std::collections::HashMap::new();
         for (e, el) in self.mesh.elements.iter().enumerate() {
@@ -231,7 +236,7 @@ impl<E: Element> Deck<'_, E> {
                     let normal = [(q[1] - p[1]) / len, -(q[0] - p[0]) / len];
                     // a pressure pushes against the outward normal
                     let pressure = -(traction[0] * normal[0] + traction[1] * normal[1]);
-                    for layer in 0..layers {
+                    for layer in 0..layers.count {
                         let _ = writeln!(
                             out,
                             "{}, P{}, {:.10e}",

@@ -17,10 +17,11 @@ pub mod loads;
 pub mod mesh;
 pub mod modal;
 pub mod richardson;
+pub mod solid;
 pub mod stress;
 pub mod verify;
 
-pub use element::{Elastic, Idealization};
+pub use element::{Elastic, Fidelity, Idealization};
 
 /// Why an analysis could not be done.
 #[derive(Debug, Clone, PartialEq)]

@@ -12,7 +12,7 @@ pub mod fit;
 pub mod init;
 pub mod json_schema;
 pub mod nlp;
-mod optimum_file;
+pub mod optimum_file;
 pub mod refine;
 pub mod schema;
 mod strength;

@@ -17,8 +17,8 @@ use super::{write_atomic, write_json, WriteError};
 use crate::fe::element::Element;
 use crate::fe::mesh::Mesh;
 use crate::fe::richardson::Estimate;
-use crate::fe::verify::{Level, Verification};
-use crate::fe::Idealization;
+use crate::fe::verify::{Level, Output, SolidSolve, Verification};
+use crate::fe::{Fidelity, Idealization};
 use crate::part::analysis::{FeCounterpart, Quantity};
 use crate::part::MM;
 use crate::problem::display::percent;
@@ -42,10 +42,9 @@ pub const VERIFY_FILES: [&str; 5] = [
 pub const VERIFY_FOLDER: &str = "verify";
 
 /// The mesh level of `part.inp` and of `part3d.inp` (the first mesh: its outputs are within
-/// about 0.5 % of the extrapolated ones, `verify.json` lists them by level), and the 3D
-/// deck's layers through the width.
+/// about 0.5 % of the extrapolated ones, `verify.json` lists them by level; the 3D deck is
+/// the 3D check's finest solve, its graded layers through the half-width).
 const DECK_LEVEL: usize = 0;
-const DECK_3D_LAYERS: usize = 2;
 
 /// One FE output in `verify.json`.
 #[derive(Debug, Clone, Serialize)]
@@ -96,13 +95,39 @@ pub struct VerifyReport {
     /// Why the sequence stopped before converging: the budget of degrees of freedom.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub budget_stop: Option<String>,
+    /// The 3D solves behind the 3D values (in-plane mesh level, layers through the
+    /// half-width).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub solid_solves: Vec<SolidSolve>,
+    /// Why there are no 3D values.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solid_note: Option<String>,
+    /// The plate's width over its thinnest hinge, and the fidelity that ratio calls for
+    /// ([`Fidelity::for_plate`]): the column to read.
+    pub width_over_thickness: f64,
+    pub read: Fidelity,
 }
 
-fn key(i: Idealization) -> &'static str {
-    match i {
-        Idealization::PlaneStress => "plane_stress",
-        Idealization::PlaneStrain => "plane_strain",
+fn key(f: Fidelity) -> &'static str {
+    match f {
+        Fidelity::PlaneStress => "plane_stress",
+        Fidelity::PlaneStrain => "plane_strain",
+        Fidelity::Solid => "3d",
     }
+}
+
+/// Each fidelity the check made: its outputs and its actuation force.
+fn fidelities(v: &Verification) -> Vec<(Fidelity, &[Output], f64)> {
+    v.results
+        .iter()
+        .zip(&v.actuation_force)
+        .map(|(r, &f)| (Fidelity::from(r.idealization), r.outputs.as_slice(), f))
+        .chain(
+            v.solid
+                .iter()
+                .map(|s| (Fidelity::Solid, s.outputs.as_slice(), s.actuation_force)),
+        )
+        .collect()
 }
 
 impl VerifyReport {
@@ -113,9 +138,9 @@ impl VerifyReport {
             .find(|&i| problem.mechanism().fe_counterpart(i) == Some(FeCounterpart::ActuationForce))
             .and_then(|i| value(model, x, i));
         let mut outputs = IndexMap::new();
-        for (r, &own_force) in v.results.iter().zip(&v.actuation_force) {
+        for (fidelity, outputs_of, own_force) in fidelities(v) {
             let mut map = IndexMap::new();
-            for o in &r.outputs {
+            for o in outputs_of {
                 let stated = &v.analysis.outputs[o.id.0];
                 let analytic = a[o.id.0];
                 let fe = o.estimate.value;
@@ -138,19 +163,22 @@ impl VerifyReport {
                     },
                 );
             }
-            outputs.insert(key(r.idealization), map);
+            outputs.insert(key(fidelity), map);
         }
+        let thinnest = crate::fe::geometry::Domain::of_part(&v.half)
+            .hinges
+            .iter()
+            .map(|h| h.thickness)
+            .fold(f64::INFINITY, f64::min);
         VerifyReport {
             problem: problem.name.clone(),
             design: problem.design_in_file_units(x),
             tolerance: v.tolerance,
             converged: v.converged,
             test_force: v.test_force,
-            actuation_force: v
-                .results
-                .iter()
-                .zip(&v.actuation_force)
-                .map(|(r, &f)| (key(r.idealization), f))
+            actuation_force: fidelities(v)
+                .into_iter()
+                .map(|(f, _, force)| (key(f), force))
                 .collect(),
             analytic_actuation_force: actuation_force,
             displacements_at: displacements_at(v),
@@ -158,6 +186,10 @@ impl VerifyReport {
             outputs,
             seconds: v.seconds,
             budget_stop: v.budget_stop.map(|b| b.to_string()),
+            solid_solves: v.solid.as_ref().map_or(Vec::new(), |s| s.solves.clone()),
+            solid_note: v.solid_note.clone(),
+            width_over_thickness: v.width / thinnest,
+            read: Fidelity::for_plate(v.width, thinnest),
         }
     }
 }
@@ -180,7 +212,7 @@ pub fn write_verify(
     let model = v.full_model(DECK_LEVEL).map_err(|e| fail(&files[3], &e))?;
     let deck = model.deck(&title, &v.material, v.width, 1.0);
     write_atomic(&files[3], deck.two_d(Idealization::PlaneStrain).as_bytes())?;
-    write_atomic(&files[4], deck.three_d(DECK_3D_LAYERS).as_bytes())?;
+    write_atomic(&files[4], deck.three_d(&v.solid_layers()).as_bytes())?;
     Ok(files)
 }
 
@@ -444,16 +476,31 @@ impl Display for VerifyTable<'_> {
                 (None, false) => format!(" (NOT all within {} %)", percent(r.tolerance)),
             }
         )?;
-        writeln!(
-            s,
-            "{:<21} {:>24} {:>24} {:>10} {:>20}",
-            "", "FE plane stress", "FE plane strain", "analytic", "deviation (ps / pe)"
-        )?;
-        let (ps, pe) = (&r.outputs["plane_stress"], &r.outputs["plane_strain"]);
-        for (name, a) in ps {
-            let b = &pe[name];
+        let columns: Vec<(&str, &IndexMap<&'static str, OutputReport>)> =
+            r.outputs.iter().map(|(k, m)| (*k, m)).collect();
+        let read = key(r.read);
+        let title = |k: &str| match k {
+            "plane_stress" => "FE plane stress",
+            "plane_strain" => "FE plane strain",
+            _ => "FE 3D",
+        };
+        let mut head = format!("{:<21}", "");
+        for (k, _) in &columns {
+            head += &format!(" {:>24}", title(k));
+        }
+        head += &format!(
+            " {:>10} {:>20}",
+            "analytic",
+            format!("deviation ({})", r.read.name())
+        );
+        writeln!(s, "{}", head.trim_end())?;
+        let (_, first) = columns[0];
+        for (name, a) in first {
             let (_, unit) = shown(a, 1.0);
-            let cell = |o: &OutputReport| {
+            let cell = |o: Option<&OutputReport>| {
+                let Some(o) = o else {
+                    return "-".to_string();
+                };
                 let (v, _) = shown(o, o.estimate.value);
                 let e = &o.estimate;
                 match e.relative_error {
@@ -474,31 +521,57 @@ impl Display for VerifyTable<'_> {
             let analytic = a
                 .analytic
                 .map_or("-".to_string(), |v| significant(shown(a, v).0, 5));
-            let deviation = match (a.deviation_percent, b.deviation_percent) {
-                (Some(x), Some(y)) => format!("{x:+.1} % / {y:+.1} %"),
-                _ => "-".to_string(),
-            };
+            let deviation = r
+                .outputs
+                .get(read)
+                .and_then(|m| m.get(name))
+                .and_then(|o| o.deviation_percent)
+                .map_or("-".to_string(), |x| format!("{x:+.1} %"));
             let label = if unit.is_empty() {
                 name.to_string()
             } else {
                 format!("{name} ({unit})")
             };
-            writeln!(
-                s,
-                "{label:<21} {:>24} {:>24} {analytic:>10} {deviation:>20}",
-                cell(a),
-                cell(b)
-            )?;
+            let mut line = format!("{label:<21}");
+            for (_, m) in &columns {
+                line += &format!(" {:>24}", cell(m.get(name)));
+            }
+            writeln!(s, "{line} {analytic:>10} {deviation:>20}")?;
         }
+        let forces: Vec<String> = r
+            .actuation_force
+            .iter()
+            .map(|(k, f)| format!("{f:.1} N {}", title(k).trim_start_matches("FE ")))
+            .collect();
         writeln!(
             s,
-            "{}stresses at the actuation force ({:.1} N plane stress, {:.1} N plane strain{}); read \
-             plane strain for a part much wider than its hinges are thick",
+            "{}stresses at the actuation force ({}{})",
             r.displacements_at,
-            r.actuation_force.get("plane_stress").copied().unwrap_or(f64::NAN),
-            r.actuation_force.get("plane_strain").copied().unwrap_or(f64::NAN),
+            forces.join(", "),
             r.analytic_actuation_force
                 .map_or(String::new(), |f| format!(", analytic {f:.1} N"))
+        )?;
+        let solid = match &r.solid_note {
+            Some(why) => format!("no 3D check: {why}"),
+            None => {
+                let largest = r.solid_solves.iter().map(|s| s.dofs).max().unwrap_or(0);
+                format!(
+                    "3D: the finest plane strain times 3D / plane strain from {} solves through \
+                     the half-width (1 to {} graded layers, the largest {} degrees of freedom)",
+                    r.solid_solves.len(),
+                    r.solid_solves.iter().map(|s| s.layers).max().unwrap_or(0),
+                    largest
+                )
+            }
+        };
+        writeln!(
+            s,
+            "{solid}; the plate is {:.3} times as wide as its thinnest hinge is thick: read {} \
+             (plane stress below {}, plane strain above {}, 3D between)",
+            r.width_over_thickness,
+            r.read.name(),
+            crate::fe::element::SOLID_RULE.0,
+            crate::fe::element::SOLID_RULE.1
         )
     }
 }

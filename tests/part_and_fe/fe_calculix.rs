@@ -21,7 +21,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use flexopt::fe::calculix::read_displacements;
-use flexopt::fe::verify::{verify, FullModel, Verification, VerifySettings};
+use flexopt::fe::solid::Extruded;
+use flexopt::fe::verify::{verify, verify_design, FullModel, Verification, VerifySettings};
 use flexopt::fe::{Elastic, Idealization};
 use flexopt::problem::Problem;
 
@@ -54,9 +55,8 @@ fn printed_verification() -> Verification {
     verify(&spec, &material, &VerifySettings::default()).unwrap()
 }
 
-/// Runs ccx on `deck` in a fresh folder; the displacements of each step as full vectors
-/// (two a node of `model`'s mesh, the 2D nodes: in 3D those of the mid plane `plane`).
-fn run_ccx(name: &str, deck: &str, model: &FullModel, plane: usize) -> Vec<Vec<f64>> {
+/// Runs ccx on `deck` in a fresh folder; its `.dat` file.
+fn ccx_dat(name: &str, deck: &str) -> String {
     let dir: PathBuf =
         std::env::temp_dir().join(format!("flexopt-ccx-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -73,6 +73,13 @@ fn run_ccx(name: &str, deck: &str, model: &FullModel, plane: usize) -> Vec<Vec<f
         String::from_utf8_lossy(&out.stdout)
     );
     std::fs::remove_dir_all(&dir).unwrap();
+    dat
+}
+
+/// Runs ccx on `deck`; the displacements of each step as full vectors (two a node of
+/// `model`'s mesh, the 2D nodes: in 3D those of the plane `plane`).
+fn run_ccx(name: &str, deck: &str, model: &FullModel, plane: usize) -> Vec<Vec<f64>> {
+    let dat = ccx_dat(name, deck);
     let n2 = model.mesh.nodes.len();
     read_displacements(&dat)
         .into_iter()
@@ -179,12 +186,12 @@ fn ccx_and_flexopt_agree_on_the_same_mesh_and_3d_lies_between_the_2d_bounds() {
         }
     }
     model.mesh = curved;
-    // the 3D part: ccx on the mesh extruded through the width, read on its mid plane
-    let layers = 2;
+    // the 3D part: ccx on the mesh extruded through the half-width, read on its mid-width
+    // plane (plane 0, held in z)
     let deck = model
         .deck("printed design", &v.material, v.width, 1.0)
-        .three_d(layers);
-    let u3 = run_ccx("3d", &deck, &model, layers);
+        .three_d(&v.solid_layers());
+    let u3 = run_ccx("3d", &deck, &model, 0);
     let solid = model.measures(&u3);
     let (stress, strain) = (&bounds[0], &bounds[1]);
     eprintln!("plane stress {stress:?}\n3D           {solid:?}\nplane strain {strain:?}");
@@ -194,5 +201,73 @@ fn ccx_and_flexopt_agree_on_the_same_mesh_and_3d_lies_between_the_2d_bounds() {
             strain[k] < solid[k] && solid[k] < stress[k],
             "{k}: {stress:?} {solid:?} {strain:?}"
         );
+    }
+}
+
+/// Reads ccx's 3D displacements (node `plane * n + k + 1` on the 2D node `k`) into a field
+/// on `ext` (three a node).
+fn solid_field(ext: &Extruded, steps: Vec<Vec<(usize, [f64; 3])>>) -> Vec<Vec<f64>> {
+    let n2 = ext.flat.nodes.len();
+    steps
+        .into_iter()
+        .map(|step| {
+            let mut u = vec![f64::NAN; 3 * ext.nodes.len()];
+            for (id, d) in step {
+                let n = ext
+                    .node((id - 1) / n2, (id - 1) % n2)
+                    .expect("a node of the deck");
+                u[3 * n..3 * n + 3].copy_from_slice(&d);
+            }
+            u
+        })
+        .collect()
+}
+
+#[test]
+fn flexopt_3d_and_ccx_agree_on_the_same_extruded_mesh() {
+    if !ccx_available() {
+        return;
+    }
+    // the optimum's part (curved fillets and all): both programs integrate the wedges with
+    // the same nine-point rule, so the meshes need not be straightened
+    let p = Problem::load(Path::new("problems/wei2017.toml")).unwrap();
+    let x = flexopt::problem::optimum_file::design_from_optimum(
+        &p,
+        Path::new("results/wei2017/optimum.json"),
+    )
+    .unwrap()
+    .x;
+    let settings = VerifySettings {
+        max_levels: 3,
+        modal: false,
+        solid: false,
+        ..VerifySettings::default()
+    };
+    let v = verify_design(p.mechanism(), &x, &settings).unwrap();
+    let model = v.full_model(0).unwrap();
+    let layers = v.solid_layers();
+    let (ext, ours) = model.solve_3d(&v.material, layers).unwrap();
+    let deck = model
+        .deck("optimum", &v.material, v.width, 1.0)
+        .three_d(&layers);
+    let dat = ccx_dat("solid", &deck);
+    let theirs = solid_field(&ext, read_displacements(&dat));
+    assert_eq!(theirs.len(), ours.len());
+    // every node's displacement (ccx prints seven digits), and the faces' means
+    for (case, (a, b)) in ours.iter().zip(&theirs).enumerate() {
+        let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let worst = a
+            .iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0f64, f64::max);
+        assert!(worst < 1e-6 * scale, "case {case}: {worst:e} of {scale:e}");
+    }
+    let (m_ours, m_theirs) = (
+        model.measures_3d(&ext, &ours),
+        model.measures_3d(&ext, &theirs),
+    );
+    for (a, b) in m_ours.iter().zip(&m_theirs) {
+        assert!(rel(*b, *a) < 1e-6, "ccx {b:e} against flexopt {a:e}");
     }
 }

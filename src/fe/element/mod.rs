@@ -180,6 +180,67 @@ impl Idealization {
     }
 }
 
+/// What a value of the FE check stands for: the plate in one of the 2D idealizations, or
+/// the part itself in 3D (its mesh extruded through the width, [`crate::fe::solid`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+pub enum Fidelity {
+    #[serde(rename = "plane_stress")]
+    PlaneStress,
+    #[serde(rename = "plane_strain")]
+    PlaneStrain,
+    #[serde(rename = "3d")]
+    Solid,
+}
+
+impl Fidelity {
+    pub fn name(self) -> &'static str {
+        match self {
+            Fidelity::PlaneStress => "plane stress",
+            Fidelity::PlaneStrain => "plane strain",
+            Fidelity::Solid => "3D",
+        }
+    }
+
+    /// The 2D idealization, for a 2D one.
+    pub fn plane(self) -> Option<Idealization> {
+        match self {
+            Fidelity::PlaneStress => Some(Idealization::PlaneStress),
+            Fidelity::PlaneStrain => Some(Idealization::PlaneStrain),
+            Fidelity::Solid => None,
+        }
+    }
+
+    /// The fidelity a plate `width` wide over hinges at least `thinnest` thick needs: a 2D
+    /// idealization where it is within [`SOLID_RULE_ERROR`] of the 3D part, 3D between.
+    /// The bounds are measured on wei2017's optimum, its width varied (3D against the
+    /// nearer bound, docs/guide/src/fe-check.md): the 3D stiffnesses approach plane
+    /// strain as `1 - c t / w` and plane stress as `1 + c' (w / t)^2`.
+    pub fn for_plate(width: f64, thinnest: f64) -> Fidelity {
+        let ratio = width / thinnest;
+        if ratio < SOLID_RULE.0 {
+            Fidelity::PlaneStress
+        } else if ratio > SOLID_RULE.1 {
+            Fidelity::PlaneStrain
+        } else {
+            Fidelity::Solid
+        }
+    }
+}
+
+impl From<Idealization> for Fidelity {
+    fn from(i: Idealization) -> Self {
+        match i {
+            Idealization::PlaneStress => Fidelity::PlaneStress,
+            Idealization::PlaneStrain => Fidelity::PlaneStrain,
+        }
+    }
+}
+
+/// The range of `width / thinnest hinge` in which [`Fidelity::for_plate`] asks for 3D.
+pub const SOLID_RULE: (f64, f64) = (0.5, 100.0);
+/// What the 2D idealizations outside [`SOLID_RULE`] may differ from 3D by, at most.
+pub const SOLID_RULE_ERROR: f64 = 0.005;
+
 /// An isotropic linear elastic material, SI.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Elastic {

@@ -10,7 +10,7 @@ use crate::part::analysis::{ActuationCase, Analysis, Quantity};
 use crate::part::half::SYMMETRY;
 use crate::part::Actuation;
 
-use super::statement::{case_forces, measure, static_value, Edges, Stated};
+use super::statement::{case_forces, measure, output_values, static_value, Edges, Stated};
 
 /// What the part gives the analysis.
 pub(super) struct Setup {
@@ -313,19 +313,12 @@ pub(super) fn solve_level(
         let sideways = loads::uniform_force(m, edges.get(payload), w, [force, 0.0]);
         f_first = f_output.min(lowest(held(&holds.cut_y), &sideways)?);
     }
-    let values = setup
-        .analysis
-        .outputs
-        .iter()
-        .map(|o| {
-            static_value(o.quantity, &measured, force).unwrap_or(match o.quantity {
-                Quantity::SectionStress => best.0,
-                Quantity::PeakStress => peak,
-                Quantity::SymmetricFrequency => f_output,
-                _ => f_first,
-            })
-        })
-        .collect();
+    let values = output_values(&setup.analysis, &measured, force, |q| match q {
+        Quantity::SectionStress => best.0,
+        Quantity::PeakStress => peak,
+        Quantity::SymmetricFrequency => f_output,
+        _ => f_first,
+    });
     Ok(LevelResult {
         values,
         peak_at: m.nodes[peak_node],

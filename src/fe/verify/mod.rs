@@ -27,14 +27,16 @@
 //!   symmetry.
 
 mod level;
+mod solid;
 mod statement;
 mod whole;
 
+pub use solid::{Solid3d, SolidSolve, SOLID_LAYERS};
 pub use whole::FullModel;
 
 use serde::Serialize;
 
-use super::element::{Elastic, Idealization};
+use super::element::{Elastic, Fidelity, Idealization};
 use super::geometry::Domain;
 use super::loads;
 use super::mesh::{mesh_within, Mesh};
@@ -63,6 +65,8 @@ pub struct VerifySettings {
     pub body_stiffening: f64,
     /// Compute the natural modes too (where the material has a density).
     pub modal: bool,
+    /// Make the 3D check too ([`Solid3d`]).
+    pub solid: bool,
     /// The most degrees of freedom a mesh of the half part may have: the sequence stops
     /// before a mesh that would have more, and a part whose first mesh would is refused
     /// ([`FeError::Budget`]). Memory grows with it, about 4 kB a degree of freedom for both
@@ -112,6 +116,7 @@ impl Default for VerifySettings {
             per_thickness: 4.0,
             body_stiffening: 1.0,
             modal: true,
+            solid: true,
             max_dofs: MAX_DOFS,
         }
     }
@@ -190,6 +195,46 @@ pub struct Verification {
     pub modal: bool,
     /// The sequence stopped at the budget before converging.
     pub budget_stop: Option<BudgetStop>,
+    /// The 3D check, where it was asked for and the budget allowed it.
+    pub solid: Option<Solid3d>,
+    /// Why the 3D check asked for was not made.
+    pub solid_note: Option<String>,
+}
+
+impl Verification {
+    /// The outputs of `fidelity`, where the check made it.
+    pub fn outputs(&self, fidelity: Fidelity) -> Option<&[Output]> {
+        match fidelity.plane() {
+            Some(i) => self
+                .results
+                .iter()
+                .find(|r| r.idealization == i)
+                .map(|r| r.outputs.as_slice()),
+            None => self.solid.as_ref().map(|s| s.outputs.as_slice()),
+        }
+    }
+
+    /// The layers of the 3D check's finest solve (those of `part3d.inp`).
+    pub fn solid_layers(&self) -> crate::fe::solid::Layers {
+        let thinnest = Domain::of_part(&self.half)
+            .hinges
+            .iter()
+            .map(|h| h.thickness)
+            .fold(f64::INFINITY, f64::min);
+        crate::fe::solid::Layers::graded(SOLID_LAYERS, self.width, thinnest)
+    }
+
+    /// The actuation force of `fidelity` (N), where the check made it.
+    pub fn actuation_force_of(&self, fidelity: Fidelity) -> Option<f64> {
+        match fidelity.plane() {
+            Some(i) => self
+                .results
+                .iter()
+                .position(|r| r.idealization == i)
+                .map(|k| self.actuation_force[k]),
+            None => self.solid.as_ref().map(|s| s.actuation_force),
+        }
+    }
 }
 
 /// Verifies the part of `spec` (a whole part, symmetric about the y axis) with `material`.
@@ -313,6 +358,7 @@ pub fn verify(
         }
         m = m.refined(&setup.domain);
     };
+    let strain_levels: Vec<Vec<f64>> = per[1].iter().map(|r| r.values.clone()).collect();
     let results = Idealization::BOTH
         .iter()
         .zip(per)
@@ -366,8 +412,25 @@ pub fn verify(
             actuation.nominal_stroke * k + actuation.preload
         })
         .collect();
+    let (solid, solid_note) = if settings.solid {
+        match solid::check(
+            &meshes,
+            &setup,
+            &strain_levels,
+            &results[1].outputs,
+            settings.test_force,
+            settings.max_dofs,
+        )? {
+            Ok(s) => (Some(s), None),
+            Err(why) => (None, Some(why)),
+        }
+    } else {
+        (None, None)
+    };
     Ok(Verification {
         part,
+        solid,
+        solid_note,
         analysis: setup.analysis,
         half,
         levels,

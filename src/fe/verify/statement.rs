@@ -317,6 +317,40 @@ pub(super) fn measure(m: &Mesh, edges: &Edges, terms: &[Read], u: &[f64]) -> f64
         .unwrap_or(0.0)
 }
 
+/// A measure's value from a 3D field on `ext` (three a node): the faces' mean
+/// displacements over their area through the half-width.
+pub(super) fn measure_solid(
+    ext: &crate::fe::solid::Extruded,
+    edges: &Edges,
+    terms: &[Read],
+    u: &[f64],
+) -> f64 {
+    terms
+        .iter()
+        .map(|t| {
+            let faces = ext.side_faces(edges.get(&t.face));
+            let d = crate::fe::solid::mean_displacement(ext, &faces, u);
+            t.weight * (d[0] * t.direction[0] + d[1] * t.direction[1])
+        })
+        .reduce(|a, b| a + b)
+        .unwrap_or(0.0)
+}
+
+/// Every output's value (in the analysis's order): the static ones from the measures at the
+/// test force `force`, the others as `other` gives them.
+pub(super) fn output_values(
+    analysis: &Analysis,
+    measured: &[f64],
+    force: f64,
+    other: impl Fn(Quantity) -> f64,
+) -> Vec<f64> {
+    analysis
+        .outputs
+        .iter()
+        .map(|o| static_value(o.quantity, measured, force).unwrap_or_else(|| other(o.quantity)))
+        .collect()
+}
+
 /// The static outputs (those read from the measures alone) at the test force `force`;
 /// `None` for the others.
 pub(super) fn static_value(q: Quantity, values: &[f64], force: f64) -> Option<f64> {

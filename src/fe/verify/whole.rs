@@ -1,11 +1,12 @@
 //! The whole part's model at one level of a verification, for CalculiX and for checks.
 
 use super::level::face_nodes;
-use super::statement::{case_forces, measure, whole, Edges, Read};
+use super::statement::{case_forces, measure, measure_solid, whole, Edges, Read};
 use super::Verification;
 use crate::fe::element::{Elastic, Idealization};
 use crate::fe::geometry::Domain;
 use crate::fe::mesh::{EdgeNodes, Mesh};
+use crate::fe::solid::{self, Extruded, Layers};
 use crate::fe::{loads, FeError};
 
 /// The whole part's mesh at one level of a verification, with its faces and the static load
@@ -123,6 +124,47 @@ impl FullModel {
             &zero,
             &loads,
         )
+    }
+
+    /// The displacements (full vectors, three a node of `ext`, this mesh extruded in
+    /// `layers`) of the load cases in 3D, by flexopt's own solve: the half-width, the
+    /// clamped faces held through it, the mid-width plane held in z, the loads as uniform
+    /// tractions on their faces (the model of [`crate::fe::calculix::Deck::three_d`]).
+    pub fn solve_3d(
+        &self,
+        material: &Elastic,
+        layers: Layers,
+    ) -> Result<(Extruded<'_>, Vec<Vec<f64>>), FeError> {
+        let ext = Extruded::new(&self.mesh, layers);
+        let fixed = solid::fixed(&ext, &self.clamp, &[]);
+        let loads: Vec<Vec<f64>> = self
+            .cases
+            .iter()
+            .map(|c| {
+                let mut f = vec![0.0; 3 * ext.nodes.len()];
+                for (edges, t) in &c.tractions {
+                    let faces = ext.side_faces(edges);
+                    for (s, v) in
+                        f.iter_mut()
+                            .zip(solid::traction_forces(&ext, &faces, [t[0], t[1], 0.0]))
+                    {
+                        *s += v;
+                    }
+                }
+                f
+            })
+            .collect();
+        let (u, _) = solid::solve(&ext, material, &fixed, &loads)?;
+        Ok((ext, u))
+    }
+
+    /// The part's measures of 3D displacement fields on `ext` (as [`FullModel::measures`]:
+    /// the faces' mean displacements, over their area through the half-width).
+    pub fn measures_3d(&self, ext: &Extruded, u: &[Vec<f64>]) -> Vec<f64> {
+        self.measures
+            .iter()
+            .map(|(case, terms)| measure_solid(ext, &self.edges, terms, &u[*case]))
+            .collect()
     }
 
     /// The part's measures, in the statement's order, of the displacement fields of its
