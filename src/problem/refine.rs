@@ -4,7 +4,9 @@
 //! ```toml
 //! [refine]
 //! fidelity = "fe"                # or "none"; `run --refine fe|none` overrides it
-//! idealization = "plane-strain"  # the FE that counts: "plane-strain" or "plane-stress"
+//! idealization = "3d"            # the FE that counts: "3d", "plane-strain" or "plane-stress"
+//!                                # (absent: by the plate's width over its thinnest hinge,
+//!                                # `fe::Fidelity::for_plate`)
 //! stress = "peak"                # the FE stress that stands for `stress_max`: "peak" or "section"
 //! tolerance = 1e-3               # relative change of the FE outputs that ends it
 //! max_fe = 12                    # FE checks at most, per refined optimum
@@ -15,7 +17,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::reader::{k, Reader, Res};
-use crate::fe::Idealization;
+use crate::fe::Fidelity;
 use crate::vocab::values::{Choices, Number};
 
 /// The `[refine]` section as written.
@@ -44,9 +46,10 @@ pub struct RawRefine {
 
 /// `fidelity`, and `run --refine`: refined against the FE (`true`) or not.
 pub const FIDELITIES: Choices<bool> = Choices(&[("fe", true), ("none", false)]);
-pub const IDEALIZATIONS: Choices<Idealization> = Choices(&[
-    ("plane-strain", Idealization::PlaneStrain),
-    ("plane-stress", Idealization::PlaneStress),
+pub const IDEALIZATIONS: Choices<Fidelity> = Choices(&[
+    ("3d", Fidelity::Solid),
+    ("plane-strain", Fidelity::PlaneStrain),
+    ("plane-stress", Fidelity::PlaneStress),
 ]);
 pub const STRESSES: Choices<StressMeasure> = Choices(&[
     ("peak", StressMeasure::Peak),
@@ -86,7 +89,9 @@ pub enum RefineFrom {
 pub struct RefineSettings {
     /// `run` refines (`fidelity = "fe"`).
     pub enabled: bool,
-    pub idealization: Idealization,
+    /// The FE that counts; `None`: by the plate's width over its thinnest hinge at each
+    /// design ([`Fidelity::for_plate`]).
+    pub idealization: Option<Fidelity>,
     pub stress: StressMeasure,
     pub tolerance: f64,
     pub max_fe: usize,
@@ -98,7 +103,7 @@ impl Default for RefineSettings {
     fn default() -> Self {
         RefineSettings {
             enabled: false,
-            idealization: Idealization::PlaneStrain,
+            idealization: None,
             stress: StressMeasure::Peak,
             tolerance: 1e-3,
             max_fe: 12,
@@ -129,7 +134,7 @@ pub(crate) fn settings(r: &Reader, raw: Option<&RawRefine>) -> Res<RefineSetting
         }
     };
     if let Some(v) = &raw.idealization {
-        s.idealization = r.choice(&path("idealization"), v, &IDEALIZATIONS)?;
+        s.idealization = Some(r.choice(&path("idealization"), v, &IDEALIZATIONS)?);
     }
     if let Some(v) = &raw.stress {
         s.stress = r.choice(&path("stress"), v, &STRESSES)?;

@@ -50,10 +50,11 @@ impl Context<'_> {
         let m = self.high.measure(x, &asked)?;
         let mut measured = vec![None; self.outputs.len()];
         let mut errors = vec![None; self.outputs.len()];
-        let mut next = m.values.iter().zip(&m.errors);
+        let mut margins = vec![0.0; self.outputs.len()];
+        let mut next = m.values.iter().zip(&m.errors).zip(&m.margins);
         for (k, &c) in self.corrected.iter().enumerate() {
             if c {
-                let (v, e) = next.next().expect("one value per output asked");
+                let ((v, e), margin) = next.next().expect("one value per output asked");
                 if !v.is_finite() {
                     return Err(format!(
                         "the measured {} is not a number",
@@ -62,6 +63,7 @@ impl Context<'_> {
                 }
                 measured[k] = Some(*v);
                 errors[k] = *e;
+                margins[k] = *margin;
             }
         }
         let c = Check {
@@ -69,6 +71,7 @@ impl Context<'_> {
             analytic,
             measured,
             errors,
+            margins,
             objective: 0.0,
             violations: Vec::new(),
             feasible: false,
@@ -79,28 +82,22 @@ impl Context<'_> {
         Ok(self.rescore(c))
     }
 
-    /// The objective, violations, feasibility and merit of `c` from its values.
+    /// The objective, violations, feasibility and merit of `c` from its values: each
+    /// constraint met by its output's margin, or violated.
     pub(super) fn rescore(&self, mut c: Check) -> Check {
         let values: Vec<f64> = (0..self.outputs.len()).map(|k| c.value(k)).collect();
-        let tolerance: Vec<f64> = c
-            .errors
-            .iter()
-            .map(|e| e.unwrap_or(0.0).max(FEASIBILITY_TOLERANCE))
-            .collect();
-        let (objective, violations, phi) = self.score(&values);
-        c.feasible = self
-            .problem
-            .constraints
-            .iter()
-            .zip(&violations)
-            .all(|(con, v)| {
-                let k = self.slot(con.index);
-                *v <= tolerance[k]
-            });
+        let (objective, violations, phi) = self.score(&values, &c.margins);
+        c.feasible = violations.iter().all(|&v| v <= FEASIBILITY_TOLERANCE);
         c.objective = objective;
         c.violations = violations;
         c.merit = phi;
         c
+    }
+
+    /// The merit of `c`'s values with the margins `margins`.
+    pub(super) fn merit_with(&self, c: &Check, margins: &[f64]) -> f64 {
+        let values: Vec<f64> = (0..self.outputs.len()).map(|k| c.value(k)).collect();
+        self.score(&values, margins).2
     }
 
     pub(super) fn slot(&self, output: usize) -> usize {
@@ -111,8 +108,9 @@ impl Context<'_> {
     }
 
     /// The stated objective, each constraint's relative violation and the merit of
-    /// output values in the order of `outputs`.
-    pub(super) fn score(&self, values: &[f64]) -> (f64, Vec<f64>, f64) {
+    /// output values in the order of `outputs`, each limit tightened by its output's
+    /// relative margin `margins` (0 for none).
+    pub(super) fn score(&self, values: &[f64], margins: &[f64]) -> (f64, Vec<f64>, f64) {
         let o = &self.problem.objective;
         let objective = if o.absolute {
             values[0].abs()
@@ -125,9 +123,14 @@ impl Context<'_> {
             .constraints
             .iter()
             .map(|c| {
-                let v = values[self.slot(c.index)];
-                let below = c.lower.map_or(0.0, |lo| (lo - v) / scale(lo));
-                let above = c.upper.map_or(0.0, |hi| (v - hi) / scale(hi));
+                let k = self.slot(c.index);
+                let (v, m) = (values[k], margins[k]);
+                let below = c
+                    .lower
+                    .map_or(0.0, |lo| (lo + m * scale(lo) - v) / scale(lo));
+                let above = c
+                    .upper
+                    .map_or(0.0, |hi| (v - hi + m * scale(hi)) / scale(hi));
                 below.max(above).max(0.0)
             })
             .collect();
@@ -161,24 +164,31 @@ impl Context<'_> {
             .collect()
     }
 
-    /// The surrogate's merit at `x`.
-    pub(super) fn surrogate_merit(&self, corrections: &[Option<Correction>], x: &[f64]) -> f64 {
+    /// The surrogate's merit at `x`, with the margins `margins`.
+    pub(super) fn surrogate_merit(
+        &self,
+        corrections: &[Option<Correction>],
+        x: &[f64],
+        margins: &[f64],
+    ) -> f64 {
         let mut values = self.analytic(self.problem.model(), x);
         for (v, c) in values.iter_mut().zip(corrections) {
             if let Some(c) = c {
                 *v *= c.factor(x);
             }
         }
-        self.score(&values).2
+        self.score(&values, margins).2
     }
 
-    /// The corrected problem within the trust region of half-width `delta` around `x`.
+    /// The corrected problem within the trust region of half-width `delta` around the
+    /// centre `centre`, each measured limit tightened by the centre's margin.
     pub(super) fn surrogate(
         &self,
         corrections: &[Option<Correction>],
-        x: &[f64],
+        centre: &Check,
         delta: f64,
     ) -> Surrogate {
+        let x = &centre.x;
         let pairs: Vec<(usize, Correction)> = self
             .outputs
             .iter()
@@ -190,11 +200,12 @@ impl Context<'_> {
             self.problem.mechanism.physics.clone(),
             &pairs,
         )));
-        // aim inside each measured limit by the margin, so that a measurement a little off
-        // the surrogate's prediction still meets it
+        // aim inside each measured limit by its margin and a little more, so that a
+        // measurement a little off the surrogate's prediction still meets it
         for c in &mut p.constraints {
-            if self.corrected[self.slot(c.index)] {
-                let m = self.margin;
+            let k = self.slot(c.index);
+            if self.corrected[k] {
+                let m = self.margin + centre.margins[k];
                 c.lower = c
                     .lower
                     .map(|lo| lo + m * if lo == 0.0 { 1.0 } else { lo.abs() });
@@ -222,11 +233,16 @@ impl Context<'_> {
             .fold(0.0, f64::max)
     }
 
-    /// The largest relative change of a measured output from `a` to `b`.
+    /// The largest relative change of a measured output from `a` to `b`, each less the
+    /// larger of the two measurements' error estimates (a change within them is not
+    /// resolved by the measurement), never below 0.
     pub(super) fn change(&self, a: &Check, b: &Check) -> f64 {
         (0..self.outputs.len())
-            .filter_map(|k| Some((a.measured[k]?, b.measured[k]?)))
-            .map(|(x, y)| ((y - x) / y).abs())
+            .filter_map(|k| {
+                let (x, y) = (a.measured[k]?, b.measured[k]?);
+                let noise = a.errors[k].unwrap_or(0.0).max(b.errors[k].unwrap_or(0.0));
+                Some((((y - x) / y).abs() - noise).max(0.0))
+            })
             .fold(0.0, f64::max)
     }
 

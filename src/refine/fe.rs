@@ -5,8 +5,9 @@
 use serde_json::json;
 
 use super::{HighFidelity, Measurement};
+use crate::fe::element::SOLID_RULE;
 use crate::fe::verify::{verify_design, Verification, VerifySettings};
-use crate::fe::Idealization;
+use crate::fe::Fidelity;
 use crate::model::Mechanism;
 use crate::part::analysis::{Analysis, FeCounterpart, Quantity};
 use crate::problem::refine::{RefineSettings, StressMeasure};
@@ -14,7 +15,8 @@ use crate::problem::refine::{RefineSettings, StressMeasure};
 /// The FE check of a model's part.
 pub struct FeFidelity<'a> {
     pub mechanism: &'a Mechanism,
-    pub idealization: Idealization,
+    /// The FE that counts; `None`: by the rule at each design ([`Fidelity::for_plate`]).
+    pub idealization: Option<Fidelity>,
     pub stress: StressMeasure,
     pub settings: VerifySettings,
 }
@@ -43,9 +45,16 @@ impl<'a> FeFidelity<'a> {
             mechanism,
             idealization: refine.idealization,
             stress: refine.stress,
+            // the 3D check whatever counts: it is the next fidelity up from either 2D
+            // idealization, whose difference from it is part of their margins
+            // three meshes at every design, whether or not their outputs converged: a
+            // fourth at some designs only would move the outputs by steps as the design
+            // moves; an error above the tolerance widens the output's margin instead
             settings: VerifySettings {
                 tolerance: refine.tolerance,
+                max_levels: 3,
                 modal,
+                solid: true,
                 ..VerifySettings::default()
             },
         }
@@ -68,19 +77,18 @@ impl<'a> FeFidelity<'a> {
     }
 }
 
-/// The value and estimated relative error of `what` in `result` (the idealization's index
-/// in `v.results`).
-fn read(v: &Verification, result: usize, what: FeCounterpart) -> Option<(f64, Option<f64>)> {
+/// The value and estimated relative error of `what` in `fidelity`.
+fn read(v: &Verification, fidelity: Fidelity, what: FeCounterpart) -> Option<(f64, Option<f64>)> {
     let id = match what {
         FeCounterpart::ActuationForce => {
             // from its stiffness, whose error it carries
             let stiffness = v.analysis.actuation?.stiffness;
-            let (_, e) = read(v, result, FeCounterpart::Output(stiffness))?;
-            return Some((v.actuation_force[result], e));
+            let (_, e) = read(v, fidelity, FeCounterpart::Output(stiffness))?;
+            return Some((v.actuation_force_of(fidelity)?, e));
         }
         FeCounterpart::Output(id) => id,
     };
-    let o = v.results[result].outputs.iter().find(|o| o.id == id)?;
+    let o = v.outputs(fidelity)?.iter().find(|o| o.id == id)?;
     // the verification's own estimate: the extrapolation's error where the output converges,
     // else the spread of its last values (a sharp root's peak grows by a third a refinement,
     // which the caller refuses)
@@ -96,7 +104,14 @@ const PEAK_SPREAD_LIMIT: f64 = 0.05;
 
 impl HighFidelity for FeFidelity<'_> {
     fn describe(&self) -> String {
-        format!("finite elements, {}", self.idealization.name())
+        match self.idealization {
+            Some(f) => format!("finite elements, {}", f.name()),
+            None => format!(
+                "finite elements, by the plate's width over its thinnest hinge (3D from {} to {}, \
+                 a 2D idealization outside)",
+                SOLID_RULE.0, SOLID_RULE.1
+            ),
+        }
     }
 
     fn measures(&self, x: &[f64], output: usize) -> bool {
@@ -115,18 +130,24 @@ impl HighFidelity for FeFidelity<'_> {
 
     fn measure(&self, x: &[f64], outputs: &[usize]) -> Result<Measurement, String> {
         let v = verify_design(self.mechanism, x, &self.settings).map_err(|e| e.to_string())?;
-        let which = v
-            .results
-            .iter()
-            .position(|r| r.idealization == self.idealization)
-            .ok_or("the FE check gave no result in the idealization asked for")?;
+        let fidelity = self.idealization.unwrap_or_else(|| v.fidelity_for_part());
+        if v.outputs(fidelity).is_none() {
+            return Err(format!(
+                "the FE check gave no {} result{}",
+                fidelity.name(),
+                v.solid_note
+                    .as_ref()
+                    .map_or(String::new(), |why| format!(": {why}"))
+            ));
+        }
         let mut values = Vec::new();
         let mut errors = Vec::new();
+        let mut margins = Vec::new();
         for &o in outputs {
             let what = self
                 .counterpart(&v.analysis, o)
                 .ok_or("an output without an FE counterpart")?;
-            let (value, error) = read(&v, which, what).ok_or_else(|| {
+            let (value, error) = read(&v, fidelity, what).ok_or_else(|| {
                 let name = match what {
                     FeCounterpart::Output(id) => v.analysis.outputs[id.0].name,
                     FeCounterpart::ActuationForce => v.analysis.actuation.map_or("", |a| a.name),
@@ -142,28 +163,46 @@ impl HighFidelity for FeFidelity<'_> {
                         .to_string(),
                 );
             }
+            // the next fidelity up from a 2D idealization is the 3D check; above 3D there is
+            // none here, its error estimate covering its own discretization
+            let gap = match fidelity {
+                Fidelity::Solid => Some(0.0),
+                _ => read(&v, Fidelity::Solid, what)
+                    .map(|(solid, _)| ((solid - value) / value).abs()),
+            };
+            margins.push(error.unwrap_or(0.0) + gap.unwrap_or(0.0));
             values.push(value);
             errors.push(error);
         }
+        let outputs: serde_json::Map<_, _> = [
+            Fidelity::PlaneStress,
+            Fidelity::PlaneStrain,
+            Fidelity::Solid,
+        ]
+        .into_iter()
+        .filter_map(|f| {
+            let mut map = serde_json::Map::new();
+            for o in v.outputs(f)? {
+                map.insert(o.name.to_string(), json!(o.estimate.value));
+            }
+            if let (Some(a), Some(force)) = (v.analysis.actuation, v.actuation_force_of(f)) {
+                map.insert(a.name.into(), json!(force));
+            }
+            Some((f.name().to_string(), serde_json::Value::Object(map)))
+        })
+        .collect();
         let detail = json!({
+            "fidelity": fidelity,
             "levels": v.levels.len(),
             "elements": v.levels.last().map_or(0, |l| l.elements),
             "converged": v.converged,
             "seconds": v.seconds,
-            "outputs": v.results.iter().enumerate().map(|(i, r)| {
-                let mut map = serde_json::Map::new();
-                for o in &r.outputs {
-                    map.insert(o.name.to_string(), json!(o.estimate.value));
-                }
-                if let Some(a) = v.analysis.actuation {
-                    map.insert(a.name.into(), json!(v.actuation_force[i]));
-                }
-                (r.idealization.name().to_string(), serde_json::Value::Object(map))
-            }).collect::<serde_json::Map<_, _>>(),
+            "outputs": outputs,
         });
         Ok(Measurement {
             values,
             errors,
+            margins,
             detail,
         })
     }

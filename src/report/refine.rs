@@ -25,6 +25,10 @@ pub struct OutputRow {
     pub measured: Option<f64>,
     /// The measurement's estimated relative error.
     pub error: Option<f64>,
+    /// The relative margin by which the measured value must meet its limits for the part
+    /// to meet them: the error plus the difference from the fidelity used to the next one
+    /// up (`null` where not measured).
+    pub required_margin: Option<f64>,
     /// `(analytic - measured) / measured`.
     pub deviation: Option<f64>,
 }
@@ -37,7 +41,7 @@ pub struct MeasuredDesign {
     pub design_si: IndexMap<String, f64>,
     /// The objective as the problem states it, measured where measured (SI).
     pub objective: f64,
-    /// Every constraint met as measured, each to its measurement's error estimate.
+    /// Every constraint met as measured, each by its output's required margin.
     pub feasible: bool,
     pub outputs: Vec<OutputRow>,
     /// Each constraint with the value that counts (measured where measured).
@@ -70,6 +74,7 @@ impl MeasuredDesign {
                     analytic: si.from_si(c.analytic[k]),
                     measured: c.measured[k].map(|m| si.from_si(m)),
                     error: c.errors[k],
+                    required_margin: c.measured[k].map(|_| c.margins[k]),
                     deviation: c.measured[k].map(|m| (c.analytic[k] - m) / m),
                 }
             })

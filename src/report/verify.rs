@@ -165,11 +165,7 @@ impl VerifyReport {
             }
             outputs.insert(key(fidelity), map);
         }
-        let thinnest = crate::fe::geometry::Domain::of_part(&v.half)
-            .hinges
-            .iter()
-            .map(|h| h.thickness)
-            .fold(f64::INFINITY, f64::min);
+        let thinnest = v.thinnest_hinge();
         VerifyReport {
             problem: problem.name.clone(),
             design: problem.design_in_file_units(x),

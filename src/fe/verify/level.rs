@@ -13,6 +13,7 @@ use crate::part::Actuation;
 use super::statement::{case_forces, measure, output_values, static_value, Edges, Stated};
 
 /// What the part gives the analysis.
+#[derive(Debug, Clone)]
 pub(super) struct Setup {
     pub(super) domain: Domain,
     pub(super) material: Elastic,
@@ -138,6 +139,8 @@ pub(super) fn holds(m: &Mesh, setup: &Setup) -> Result<Holds, FeError> {
 pub(super) struct LevelResult {
     pub(super) values: Vec<f64>,
     pub(super) peak_at: [f64; 2],
+    /// The node of the peak stress.
+    pub(super) peak_node: usize,
     pub(super) section_at: String,
     pub(super) section_point: [f64; 2],
     pub(super) displacement: Vec<f64>,
@@ -322,6 +325,7 @@ pub(super) fn solve_level(
     Ok(LevelResult {
         values,
         peak_at: m.nodes[peak_node],
+        peak_node,
         section_at: best.1,
         section_point: best.2,
         displacement: u_act,

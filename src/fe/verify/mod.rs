@@ -199,6 +199,8 @@ pub struct Verification {
     pub solid: Option<Solid3d>,
     /// Why the 3D check asked for was not made.
     pub solid_note: Option<String>,
+    /// What the part gave the analysis, for further solves of its meshes.
+    setup: Setup,
 }
 
 impl Verification {
@@ -214,14 +216,58 @@ impl Verification {
         }
     }
 
-    /// The layers of the 3D check's finest solve (those of `part3d.inp`).
-    pub fn solid_layers(&self) -> crate::fe::solid::Layers {
-        let thinnest = Domain::of_part(&self.half)
+    /// The fidelity the part calls for by its width over its thinnest hinge
+    /// ([`Fidelity::for_plate`]).
+    pub fn fidelity_for_part(&self) -> Fidelity {
+        Fidelity::for_plate(self.width, self.thinnest_hinge())
+    }
+
+    /// The thinnest hinge's thickness (m).
+    pub fn thinnest_hinge(&self) -> f64 {
+        Domain::of_part(&self.half)
             .hinges
             .iter()
             .map(|h| h.thickness)
-            .fold(f64::INFINITY, f64::min);
-        crate::fe::solid::Layers::graded(SOLID_LAYERS, self.width, thinnest)
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// A direct 3D solve of the mesh at `level` in `layers` graded layers (no ratio to
+    /// plane strain): each static output and the peak stress by name, as a check of the 3D
+    /// values on a finer mesh than theirs.
+    pub fn solid_direct(
+        &self,
+        level: usize,
+        layers: usize,
+    ) -> Result<Vec<(&'static str, f64)>, FeError> {
+        let m = self
+            .meshes
+            .get(level)
+            .ok_or_else(|| FeError::Setup(format!("the check has no mesh at level {level}")))?;
+        let strain = &self.results[1];
+        // the plane-strain peak's node on that mesh, through which the 3D peak is read
+        let h = holds(m, &self.setup)?;
+        let peak_node = solve_level(
+            m,
+            &self.setup,
+            &h,
+            None,
+            Idealization::PlaneStrain,
+            self.test_force,
+        )?
+        .peak_node;
+        let layers = crate::fe::solid::Layers::graded(layers, self.width, self.thinnest_hinge());
+        let r = solid::solve_solid(m, &self.setup, layers, self.test_force, peak_node)?;
+        Ok(strain
+            .outputs
+            .iter()
+            .map(|o| (o.name, r.values[o.id.0]))
+            .filter(|(_, v)| v.is_finite())
+            .collect())
+    }
+
+    /// The layers of the 3D check's finest solve (those of `part3d.inp`).
+    pub fn solid_layers(&self) -> crate::fe::solid::Layers {
+        crate::fe::solid::Layers::graded(SOLID_LAYERS, self.width, self.thinnest_hinge())
     }
 
     /// The actuation force of `fidelity` (N), where the check made it.
@@ -358,7 +404,10 @@ pub fn verify(
         }
         m = m.refined(&setup.domain);
     };
-    let strain_levels: Vec<Vec<f64>> = per[1].iter().map(|r| r.values.clone()).collect();
+    let strain_levels: Vec<(Vec<f64>, usize)> = per[1]
+        .iter()
+        .map(|r| (r.values.clone(), r.peak_node))
+        .collect();
     let results = Idealization::BOTH
         .iter()
         .zip(per)
@@ -431,7 +480,8 @@ pub fn verify(
         part,
         solid,
         solid_note,
-        analysis: setup.analysis,
+        analysis: setup.analysis.clone(),
+        setup,
         half,
         levels,
         meshes,

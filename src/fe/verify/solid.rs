@@ -23,11 +23,14 @@ pub(super) struct SolidResult {
     pub(super) dofs: usize,
 }
 
+/// The 3D solve of `m` in `layers`; its peak stress the largest von Mises stress through
+/// the width over the 2D node `peak_node` (where the plane-strain peak is on this mesh).
 pub(super) fn solve_solid(
     m: &Mesh,
     setup: &Setup,
     layers: Layers,
     force: f64,
+    peak_node: usize,
 ) -> Result<SolidResult, FeError> {
     let d = &setup.domain;
     let stated = &setup.stated;
@@ -72,17 +75,17 @@ pub(super) fn solve_solid(
     let scale = (a.nominal_stroke * stiffness + a.preload) / force;
     let u_act: Vec<f64> = fields[act.case].iter().map(|v| v * scale).collect();
     let von_mises = solid::nodal_von_mises(&ext, &setup.material, &u_act);
-    let (peak, node) =
-        von_mises
-            .iter()
-            .enumerate()
-            .fold((f64::NEG_INFINITY, 0), |best, (i, &v)| {
-                if v > best.0 {
-                    (v, i)
-                } else {
-                    best
-                }
-            });
+    // through the width at the 2D peak: the same place on every solve, so that the ratio
+    // to plane strain follows the design smoothly (the largest over the whole mesh jumps
+    // between nodes of the coarse mesh as the design moves: measured, by 0.5 % for a step
+    // of 3e-3 of the bounds)
+    let (peak, node) = (0..layers.planes())
+        .filter_map(|plane| ext.node(plane, peak_node))
+        .map(|n| (von_mises[n], n))
+        .fold(
+            (f64::NEG_INFINITY, 0),
+            |best, v| if v.0 > best.0 { v } else { best },
+        );
     let values = output_values(&setup.analysis, &measured, force, |q| match q {
         Quantity::PeakStress => peak,
         _ => f64::NAN,
@@ -113,7 +116,8 @@ pub struct SolidSolve {
 /// layer and at four), while the 3D values themselves change by 1e-3: the ratio converges
 /// much faster in the plane than the values do. Its error, stated, is the sum of three:
 /// the plane-strain value's own estimate, the ratio's through the width (Richardson over
-/// 1, 2 and 4 layers, [`estimate`]), and the ratio's change from the first in-plane mesh to
+/// 1, 2 and 4 layers, [`estimate`], where the three converge; else, as a peak stress's
+/// sequence turns, the spread of 2 and 4 layers), and the ratio's change from the first in-plane mesh to
 /// the second at one layer (no extrapolation: the change itself).
 #[derive(Debug, Clone)]
 pub struct Solid3d {
@@ -149,7 +153,7 @@ fn solid_dofs(m: &Mesh, layers: usize) -> usize {
 pub(super) fn check(
     meshes: &[Mesh],
     setup: &Setup,
-    strain_levels: &[Vec<f64>],
+    strain_levels: &[(Vec<f64>, usize)],
     strain: &[Output],
     force: f64,
     max_dofs: usize,
@@ -170,7 +174,13 @@ pub(super) fn check(
     let layers = |n: usize| Layers::graded(n, setup.width, thinnest);
     let timed = |level: usize, n: usize| -> Result<(SolidResult, SolidSolve), FeError> {
         let start = std::time::Instant::now();
-        let r = solve_solid(&meshes[level], setup, layers(n), force)?;
+        let r = solve_solid(
+            &meshes[level],
+            setup,
+            layers(n),
+            force,
+            strain_levels[level].1,
+        )?;
         let solve = SolidSolve {
             level,
             layers: n,
@@ -198,12 +208,19 @@ pub(super) fn check(
     let mut outputs = Vec::new();
     for o in strain {
         let k = o.id.0;
-        let ratio = |r: &SolidResult, level: usize| r.values[k] / strain_levels[level][k];
+        let ratio = |r: &SolidResult, level: usize| r.values[k] / strain_levels[level].0[k];
         let ratios: Vec<f64> = through.iter().map(|r| ratio(r, 0)).collect();
         if !ratios.iter().all(|r| r.is_finite()) {
             continue;
         }
-        let layered = estimate(&ratios);
+        let mut layered = estimate(&ratios);
+        if !layered.converging {
+            // one layer has no zone at the free face, where a stress peaks: for a peak it
+            // lies outside the asymptotic range, and the spread of the last two (2 and 4
+            // layers) is the error quoted, never an extrapolation
+            layered.relative_error = Some((ratios[2] - ratios[1]).abs() / ratios[2].abs());
+            layered.oscillating = true;
+        }
         let moved = second.as_ref().map(|(r, _)| {
             let (a, b) = (ratio(&rest[0].0, 0), ratio(r, 1));
             (b - a).abs() / b.abs()
