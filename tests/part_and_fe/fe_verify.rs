@@ -55,17 +55,8 @@ fn the_printed_design_converges_and_deviates_as_table_2_does() {
     for r in &v.results {
         for o in &r.outputs {
             let e = &o.estimate;
-            if o.name == "fe_stress_max" {
-                // the peak at a 0.2 mm fillet, on meshes refined uniformly, turns (plane
-                // stress 153.6 -> 156.7 -> 155.9 MPa): its spread is quoted, about 2 %
-                assert!(
-                    e.converging || e.relative_error.is_some_and(|r| r < 0.025),
-                    "{:?}: {e:?} {:?}",
-                    r.idealization,
-                    o.values
-                );
-                continue;
-            }
+            // the peak at a 0.2 mm fillet too: the first mesh is graded there (it turned by
+            // 2 % on meshes sized for the hinges alone)
             assert!(
                 e.within(0.005),
                 "{:?} {}: {e:?} {:?}",

@@ -10,6 +10,7 @@ mod common;
 mod fe_budget;
 mod fe_calculix;
 mod fe_exact;
+mod fe_fillet;
 mod fe_generic;
 mod fe_verify;
 mod link_width;

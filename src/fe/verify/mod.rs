@@ -26,6 +26,7 @@
 //!   the part), the payload on its face; the lowest frequency: the lowest mode of either
 //!   symmetry.
 
+mod grading;
 mod level;
 mod solid;
 mod statement;
@@ -44,6 +45,7 @@ use super::richardson::{estimate, Estimate};
 use super::FeError;
 use crate::part::analysis::{Analysis, FeOutputId, Quantity};
 use crate::part::{Part, PartSpec};
+pub use grading::PER_RADIUS;
 pub use level::size_function;
 use level::{face_edges, holds, solve_level, LevelResult, Setup};
 
@@ -320,8 +322,36 @@ pub fn verify(
         stated,
     };
     let modal = settings.modal && material.density > 0.0 && setup.analysis.modal.is_some();
-    let (size, coarse) = size_function(&setup.domain, settings.per_thickness);
-    let mut m = mesh_within(&setup.domain, &size, coarse, settings.max_dofs / 2)?;
+    let (base, coarse) = size_function(&setup.domain, settings.per_thickness);
+    let budget = settings.max_dofs / 2;
+    let first = mesh_within(&setup.domain, &base, coarse, budget)?;
+    // graded at the fillets near the peak, unless that breaks the budget the ungraded keeps
+    let arcs = grading::arcs_to_grade(&first, &setup, settings.test_force)?;
+    let (mut m, arcs) = if arcs.is_empty() {
+        (first, arcs)
+    } else {
+        match mesh_within(
+            &setup.domain,
+            &grading::graded(&base, arcs.clone()),
+            coarse,
+            budget,
+        ) {
+            Ok(graded) => (graded, arcs),
+            Err(FeError::Budget(_)) => (first, Vec::new()),
+            Err(e) => return Err(e),
+        }
+    };
+    let size = grading::graded(&base, arcs);
+    let values_of = |results: &[LevelResult], meshes: &[Mesh], k: usize| -> Vec<f64> {
+        match setup.analysis.outputs[k].quantity {
+            Quantity::PeakStress => {
+                let at = results.last().expect("one level at least").peak_at;
+                let levels = meshes.iter().zip(results.iter().map(|r| &r.von_mises[..]));
+                grading::followed(levels, at, size(at))
+            }
+            _ => results.iter().map(|r| r.values[k]).collect(),
+        }
+    };
     let mut budget_stop = None;
     let mut levels = Vec::new();
     let mut meshes = Vec::new();
@@ -384,10 +414,7 @@ pub fn verify(
             let done = per.iter().all(|results| {
                 (0..outputs.len())
                     .filter(|&k| outputs[k].converges && (modal || !outputs[k].quantity.is_modal()))
-                    .all(|k| {
-                        let values: Vec<f64> = results.iter().map(|r| r.values[k]).collect();
-                        estimate(&values).within(settings.tolerance)
-                    })
+                    .all(|k| estimate(&values_of(results, &meshes, k)).within(settings.tolerance))
             });
             if done || levels.len() >= max_levels {
                 break done;
@@ -421,7 +448,7 @@ pub fn verify(
                 .enumerate()
                 .filter(|(_, o)| modal || !o.quantity.is_modal())
                 .map(|(k, o)| {
-                    let values: Vec<f64> = results.iter().map(|r| r.values[k]).collect();
+                    let values = values_of(&results, &meshes, k);
                     Output {
                         id: FeOutputId(k),
                         name: o.name,
