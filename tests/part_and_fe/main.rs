@@ -12,6 +12,7 @@ mod fe_calculix;
 mod fe_exact;
 mod fe_generic;
 mod fe_verify;
+mod first_mode;
 mod link_width;
 mod meshing;
 mod part;
