@@ -47,16 +47,26 @@ fn the_refined_design_meets_the_first_mode_on_the_part_where_the_analytic_optimu
     // the model meets the limit with the output mode's frequency; the part's sway is far below
     let model = p.model();
     let mut stand_in = [0.0];
-    model.evaluate(&x0, &[model.output_index("first_frequency").unwrap()], &mut stand_in);
+    model.evaluate(
+        &x0,
+        &[model.output_index("first_frequency").unwrap()],
+        &mut stand_in,
+    );
     assert!(stand_in[0] >= LIMIT, "model {}", stand_in[0]);
     let (f0, _) = first_mode(&p, &x0);
-    assert!(f0 < 0.7 * LIMIT, "the analytic optimum's first mode {f0} Hz");
+    assert!(
+        f0 < 0.7 * LIMIT,
+        "the analytic optimum's first mode {f0} Hz"
+    );
     let r = refine_study(&p, &s);
     let refinement = &r.all[r.chosen].1;
     assert_eq!(refinement.status, RefineStatus::Converged);
     let x = &refinement.result.as_ref().unwrap().x;
     let (f, e) = first_mode(&p, x);
-    assert!(f >= LIMIT * (1.0 - e), "the refined design's first mode {f} Hz (+-{e})");
+    assert!(
+        f >= LIMIT * (1.0 - e),
+        "the refined design's first mode {f} Hz (+-{e})"
+    );
     // and the output mode, above it, stays above the limit too
     let v = verify_design(p.mechanism(), x, &VerifySettings::default()).unwrap();
     let strain = v
@@ -71,7 +81,10 @@ fn the_refined_design_meets_the_first_mode_on_the_part_where_the_analytic_optimu
         .unwrap()
         .estimate
         .value;
-    assert!(output_mode >= f, "output mode {output_mode} Hz under the first {f} Hz");
+    assert!(
+        output_mode >= f,
+        "output mode {output_mode} Hz under the first {f} Hz"
+    );
 }
 
 #[test]
@@ -91,11 +104,16 @@ fn a_first_mode_limit_is_refused_without_the_refinement_and_marked_where_shown()
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(
         stderr.contains(&format!("{FILE}: key `constraints[5].output`"))
-            && stderr.contains("\"first_frequency\" is measured by the part's finite elements only")
+            && stderr
+                .contains("\"first_frequency\" is measured by the part's finite elements only")
             && stderr.contains("run --refine fe"),
         "{stderr}"
     );
-    assert!(!out_dir.exists(), "an unrefined run wrote {}", out_dir.display());
+    assert!(
+        !out_dir.exists(),
+        "an unrefined run wrote {}",
+        out_dir.display()
+    );
     // a front is a set of analytic optima
     let out = flexopt(&[
         "pareto",
@@ -133,8 +151,20 @@ fn a_first_mode_limit_is_refused_without_the_refinement_and_marked_where_shown()
     );
     // a sweep neither
     let out = flexopt(&[
-        "sweep", FILE, "--param", "t2", "--from", "0.4", "--to", "0.5", "--steps", "2",
-        "--outputs", "first_frequency", "--out", out_dir.to_str().unwrap(),
+        "sweep",
+        FILE,
+        "--param",
+        "t2",
+        "--from",
+        "0.4",
+        "--to",
+        "0.5",
+        "--steps",
+        "2",
+        "--outputs",
+        "first_frequency",
+        "--out",
+        out_dir.to_str().unwrap(),
     ]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
