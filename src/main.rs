@@ -104,6 +104,11 @@ fn run(command: Command) -> Result<(), Failure> {
             if let Some(r) = refine {
                 problem.refine.enabled = FIDELITIES.get(&r).unwrap_or(false);
             }
+            if !problem.refine.enabled {
+                if let Some(e) = problem.stand_in_error("an unrefined run") {
+                    return Err(Failure::bad_input(e));
+                }
+            }
             let dir = output_dir(&problem, study.out)?;
             run_study(&problem, &options, &dir, verify)
         }
@@ -116,6 +121,10 @@ fn run(command: Command) -> Result<(), Failure> {
             study,
         } => {
             let (problem, options) = study_setup(&problem, &study)?;
+            // a front's every point is an analytic optimum
+            if let Some(e) = problem.stand_in_error("a front") {
+                return Err(Failure::bad_input(e));
+            }
             let spec = ParetoSpec {
                 output: vary,
                 from,

@@ -102,9 +102,10 @@ pub(crate) fn outputs(model: &str) -> Result<(), Failure> {
          constraint gives another, SI in JSON)\n"
     );
     for (i, o) in m.outputs().iter().enumerate() {
-        let note = match m.unavailable(i) {
-            Some(_) => " (needs [dynamics])",
-            None => "",
+        let note = match (m.unavailable(i), o.stand_in) {
+            (Some(_), _) => " (needs [dynamics])".to_string(),
+            (None, Some(what)) => format!(" (the model's value: {what})"),
+            (None, None) => String::new(),
         };
         text += &format!(
             "  {:<18} {:<9} {}{note}\n",

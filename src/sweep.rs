@@ -134,7 +134,7 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
         }
     }
     let wanted: Vec<usize> = if spec.outputs.is_empty() {
-        model.available_outputs()
+        model.analytic_outputs()
     } else {
         spec.outputs
             .iter()
@@ -149,9 +149,16 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
                         ),
                     )
                 })?;
-                match model.unavailable(i) {
-                    Some(why) => Err(err("--outputs", why)),
-                    None => Ok(i),
+                match (model.unavailable(i), model.outputs()[i].stand_in) {
+                    (Some(why), _) => Err(err("--outputs", why)),
+                    (None, Some(what)) => Err(err(
+                        "--outputs",
+                        format!(
+                            "output \"{name}\" is measured by the part's finite elements \
+                             only (the model's value is {what}); `verify` measures it"
+                        ),
+                    )),
+                    (None, None) => Ok(i),
                 }
             })
             .collect::<Result<_, _>>()?

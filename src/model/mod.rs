@@ -60,6 +60,12 @@ pub struct OutputInfo {
     /// (a stroke of micrometres among spans of millimetres).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub display: Option<&'static str>,
+    /// Set where only a higher fidelity gives the quantity (the part's first natural mode,
+    /// which no closed form of the model reaches): what the model's value is instead, for
+    /// the refinement to correct. Analytic reports leave such an output out and mark a
+    /// limit on it; only a refined optimum meets it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stand_in: Option<&'static str>,
 }
 
 impl OutputInfo {
@@ -69,6 +75,7 @@ impl OutputInfo {
             dimension,
             description,
             display: None,
+            stand_in: None,
         }
     }
 
@@ -76,6 +83,14 @@ impl OutputInfo {
     pub const fn shown_in(self, unit: &'static str) -> Self {
         OutputInfo {
             display: Some(unit),
+            ..self
+        }
+    }
+
+    /// The same, given only by a higher fidelity; `what` says what the model's value is.
+    pub const fn standing_in(self, what: &'static str) -> Self {
+        OutputInfo {
+            stand_in: Some(what),
             ..self
         }
     }
@@ -187,6 +202,16 @@ pub trait Model: Send + Sync + std::fmt::Debug {
     fn available_outputs(&self) -> Vec<usize> {
         (0..self.outputs().len())
             .filter(|&i| self.unavailable(i).is_none())
+            .collect()
+    }
+
+    /// The available outputs the model itself gives: without those whose value only stands
+    /// in for a higher fidelity's ([`OutputInfo::stand_in`]).
+    fn analytic_outputs(&self) -> Vec<usize> {
+        let infos = self.outputs();
+        self.available_outputs()
+            .into_iter()
+            .filter(|&i| infos[i].stand_in.is_none())
             .collect()
     }
 

@@ -232,6 +232,39 @@ impl Problem {
         .problem(raw)
     }
 
+    /// The error of a command that would meet the objective or a constraint on an output
+    /// only a higher fidelity gives ([`crate::model::OutputInfo::stand_in`]) by the model's
+    /// stand-in alone, naming the first such key; `doing` is what the command does.
+    pub fn stand_in_error(&self, doing: &str) -> Option<ProblemError> {
+        let outputs = self.model().outputs();
+        let key = match self.objective.sense {
+            Sense::Maximize => "objective.maximize".to_string(),
+            Sense::Minimize => "objective.minimize".to_string(),
+        };
+        std::iter::once((key, self.objective.index))
+            .chain(
+                self.constraints
+                    .iter()
+                    .enumerate()
+                    .map(|(i, c)| (format!("constraints[{i}].output"), c.index)),
+            )
+            .find_map(|(key, i)| {
+                let what = outputs[i].stand_in?;
+                Some(ProblemError {
+                    file: self.file.clone(),
+                    key,
+                    position: None,
+                    message: format!(
+                        "\"{}\" is measured by the part's finite elements only (the model's \
+                         value is {what}): {doing} would meet it with the model's value alone; \
+                         refine against the finite elements (run --refine fe, or [refine] \
+                         fidelity = \"fe\")",
+                        outputs[i].name
+                    ),
+                })
+            })
+    }
+
     /// The mechanism's physics.
     pub fn model(&self) -> &dyn Model {
         self.mechanism.physics.as_ref()

@@ -133,6 +133,10 @@ pub struct ConstraintReport {
     pub satisfied: bool,
     /// Within the activity tolerance of a limit.
     pub active: bool,
+    /// Where the model's value only stands in for what a higher fidelity measures
+    /// ([`crate::model::OutputInfo::stand_in`]): what it is instead.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stand_in: Option<String>,
 }
 
 impl ConstraintReport {
@@ -165,6 +169,7 @@ impl ConstraintReport {
             relative_margin: relative,
             satisfied: relative.is_some_and(|r| r >= -FEASIBILITY_TOLERANCE),
             active: relative.is_some_and(|r| r.abs() <= active_tol),
+            stand_in: None,
         }
     }
 }
@@ -210,10 +215,20 @@ pub struct DesignReport {
 }
 
 impl DesignReport {
-    /// Evaluates every output of `problem`'s model at the full design `x` (SI).
+    /// Evaluates every output of `problem`'s model at the full design `x` (SI): those it
+    /// gives itself, and the stand-ins the objective and constraints name, which only they
+    /// report, marked.
     pub fn new(problem: &Problem, x: &[f64]) -> Self {
         let model = problem.model();
-        let all = model.available_outputs();
+        let analytic = model.analytic_outputs();
+        let mut all = analytic.clone();
+        for i in std::iter::once(problem.objective.index)
+            .chain(problem.constraints.iter().map(|c| c.index))
+        {
+            if !all.contains(&i) {
+                all.push(i);
+            }
+        }
         let mut values = vec![0.0; all.len()];
         model.evaluate(x, &all, &mut values);
         // indexed like the model's outputs; the objective and constraints are available ones
@@ -245,7 +260,10 @@ impl DesignReport {
             constraints: problem
                 .constraints
                 .iter()
-                .map(|c| ConstraintReport::new(c, out[c.index], ACTIVE_TOLERANCE))
+                .map(|c| ConstraintReport {
+                    stand_in: model.outputs()[c.index].stand_in.map(str::to_string),
+                    ..ConstraintReport::new(c, out[c.index], ACTIVE_TOLERANCE)
+                })
                 .collect(),
             fit_ranges: crate::problem::fit::checks(problem, x),
             feasible: false,
@@ -257,7 +275,7 @@ impl DesignReport {
                 .insert(v.name.clone(), v.unit.name.clone());
             report.design_si.insert(v.name.clone(), xi);
         }
-        for (&i, &v) in all.iter().zip(&values) {
+        for (&i, &v) in analytic.iter().zip(&values) {
             let info = &model.outputs()[i];
             report.outputs.insert(info.name.into(), finite(v));
             report

@@ -31,6 +31,10 @@ pub struct OutputRow {
     pub required_margin: Option<f64>,
     /// `(analytic - measured) / measured`.
     pub deviation: Option<f64>,
+    /// Where the analytic value only stands in for the measured quantity
+    /// ([`crate::model::OutputInfo::stand_in`]): what it is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stand_in: Option<&'static str>,
 }
 
 /// A measured design.
@@ -76,6 +80,7 @@ impl MeasuredDesign {
                     error: c.errors[k],
                     required_margin: c.measured[k].map(|_| c.margins[k]),
                     deviation: c.measured[k].map(|m| (c.analytic[k] - m) / m),
+                    stand_in: model.outputs()[o].stand_in,
                 }
             })
             .collect();
@@ -285,6 +290,11 @@ impl Display for RefineSummary<'_> {
                 num(Some(rb.analytic)),
                 num(rb.measured)
             )?;
+        }
+        for r in &a.outputs {
+            if let Some(what) = r.stand_in {
+                writeln!(s, "{}: the model's value is {what}", r.output)?;
+            }
         }
         let met = |m: &MeasuredDesign| if m.feasible { "meets" } else { "VIOLATES" };
         writeln!(

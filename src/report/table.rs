@@ -137,6 +137,16 @@ impl Display for ConstraintLines<'_> {
                 c.unit,
             )?;
         }
+        for c in self.0 {
+            if let Some(what) = &c.stand_in {
+                writeln!(
+                    s,
+                    "  {}: the model's value is {what}; only the finite elements measure it \
+                     (run --refine fe)",
+                    c.output
+                )?;
+            }
+        }
         Ok(())
     }
 }

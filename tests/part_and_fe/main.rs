@@ -13,6 +13,7 @@ mod fe_exact;
 mod fe_fillet;
 mod fe_generic;
 mod fe_verify;
+mod first_mode;
 mod link_width;
 mod meshing;
 mod part;

@@ -34,11 +34,13 @@ pub enum BridgeOutput {
     NaturalFrequency,
     SettlingTime,
     StressBeamMax,
+    OutputFrequency,
+    FirstFrequency,
 }
 
 impl BridgeOutput {
     /// Every output, in the order of [`OUTPUTS`].
-    pub const ALL: [BridgeOutput; 24] = [
+    pub const ALL: [BridgeOutput; 26] = [
         BridgeOutput::Amplification,
         BridgeOutput::KIn,
         BridgeOutput::KOut,
@@ -63,6 +65,8 @@ impl BridgeOutput {
         BridgeOutput::NaturalFrequency,
         BridgeOutput::SettlingTime,
         BridgeOutput::StressBeamMax,
+        BridgeOutput::OutputFrequency,
+        BridgeOutput::FirstFrequency,
     ];
 
     /// Whether the output needs the masses and damping of [`BridgeSettings::dynamics`].
@@ -72,12 +76,14 @@ impl BridgeOutput {
             BridgeOutput::EquivalentMass
                 | BridgeOutput::NaturalFrequency
                 | BridgeOutput::SettlingTime
+                | BridgeOutput::OutputFrequency
+                | BridgeOutput::FirstFrequency
         )
     }
 }
 
 /// Names, dimensions and meanings of the outputs, indexed like [`BridgeOutput::ALL`].
-pub const OUTPUTS: [OutputInfo; 24] = [
+pub const OUTPUTS: [OutputInfo; 26] = [
     OutputInfo::new("amplification", Dimension::Ratio, "displacement amplification da = a21/a11 (Eq. 9)"),
     OutputInfo::new("k_in", Dimension::Stiffness, "input stiffness 1/a11 (Eq. 10)"),
     OutputInfo::new("k_out", Dimension::Stiffness, "output stiffness -1/a22 (Eq. 11)").shown_in("N/mm"),
@@ -99,9 +105,15 @@ pub const OUTPUTS: [OutputInfo; 24] = [
     OutputInfo::new("stress_node5", Dimension::Stress, "largest stress at node 5, the output-link end of hinge d (Eq. 17)"),
     OutputInfo::new("k_out_actuated", Dimension::Stiffness, "face-to-face output stiffness with the actuator holding the input links (k_out for a free input; see model::bridge::dynamics)").shown_in("N/mm"),
     OutputInfo::new("equivalent_mass", Dimension::Mass, "mass on the moving output face equivalent to the moving bridge and payload (Lagrange/Rayleigh, paper 001 Sec. 2.2)"),
-    OutputInfo::new("natural_frequency", Dimension::Frequency, "natural frequency along the output, sqrt(k_out_actuated / equivalent_mass) / 2 pi (paper 001 Eq. 12)"),
+    OutputInfo::new("natural_frequency", Dimension::Frequency, "the output mode's frequency, output_frequency (the name files used before it)"),
     OutputInfo::new("settling_time", Dimension::Time, "settling time into +-2 % after a step, for the damping ratio of [dynamics] (paper 001 Sec. 4.2)"),
     OutputInfo::new("stress_beam_max", Dimension::Stress, "largest beam stress |N|/(w t) + 6|M|/(w t^2) in the hinges, without a notch's stress concentration (stress_max for strips)"),
+    OutputInfo::new("output_frequency", Dimension::Frequency, "natural frequency of the output mode (along the output), sqrt(k_out_actuated / equivalent_mass) / 2 pi (paper 001 Eq. 12); by FE the lowest symmetric mode"),
+    // the sideways sway of the output block needs the bodies' rotational inertias, which
+    // [dynamics] does not give, and the whole bridge's motion where the quarter model has
+    // one quarter's: no closed form, so the model's value is the output mode's, which the
+    // first mode does not exceed, and the refinement's correction carries the sideways mode
+    OutputInfo::new("first_frequency", Dimension::Frequency, "lowest natural frequency of the part, of either symmetry (the output block's sideways sway, or the output mode), as the FE measures it").standing_in("output_frequency, the output mode's frequency, at or above the part's first mode"),
 ];
 
 impl Bridge {
@@ -112,9 +124,8 @@ impl Bridge {
         let s = &self.settings;
         let trig = g.trig();
         let needs_quarter = wanted.iter().any(|&k| match BridgeOutput::ALL[k] {
-            SpanX | SpanY | KOutActuated | EquivalentMass | NaturalFrequency | SettlingTime => {
-                false
-            }
+            SpanX | SpanY | KOutActuated | EquivalentMass | NaturalFrequency | SettlingTime
+            | OutputFrequency | FirstFrequency => false,
             StrokeIn => s.actuator.stiffness.is_some(),
             _ => true,
         });
@@ -300,7 +311,7 @@ impl<D: Scalar> Evaluation<'_, D> {
             A22 => self.quarter().a22(),
             KOutActuated => self.mode().stiffness,
             EquivalentMass => self.equivalent_mass(),
-            NaturalFrequency => self.natural_frequency(),
+            NaturalFrequency | OutputFrequency | FirstFrequency => self.natural_frequency(),
             SettlingTime => {
                 let scale = self
                     .s
