@@ -22,8 +22,10 @@
 //! 5. update each correction's slope by Broyden's secant rule from the ratio measured at
 //!    `x_n`, accepted or not (Broyden, Math. Comp. 19, 1965; so aggressive space mapping
 //!    does: Bandler et al., IEEE Trans. Microwave Theory Tech. 43(12), 1995);
-//! 6. stop when an accepted step changes every measured output by less than the tolerance
-//!    (relative) beyond the measurements' own error estimates, and the design meets every constraint as measured by its margin (the output's error estimate plus
+//! 6. stop when the surrogate promises less than the tolerance (of the objective) beyond a
+//!    centre that meets every constraint by its margin, or when an accepted step changes
+//!    every measured output by less than the tolerance (relative) beyond the
+//!    measurements' own error estimates, and the design meets every constraint as measured by its margin (the output's error estimate plus
 //!    the difference from the fidelity used to the next one up, [`Measurement::margins`]:
 //!    a measured value within its error of a limit may lie on either side of it); or when
 //!    the budget of measurements is spent.
@@ -332,6 +334,19 @@ pub fn refine(
             }
             break;
         }
+        if centre.feasible && predicted <= settings.tolerance {
+            // a measured design that meets every constraint by its margin, and the surrogate
+            // promises less than the tolerance (of the objective) beyond it: a measurement
+            // would not resolve the gain
+            it.note = Some(
+                "the surrogate promises less than the tolerance beyond a design that meets \
+                 every constraint"
+                    .into(),
+            );
+            r.iterations.push(it);
+            converged = true;
+            break;
+        }
         let check = match ctx.check(&x_new) {
             Ok(c) => c,
             Err(e) => {
@@ -355,7 +370,9 @@ pub fn refine(
         }
         let ratio = actual / predicted;
         it.actual = Some(actual);
-        it.accepted = ratio >= ACCEPT;
+        // never from a design that meets every constraint by its own margins to one that
+        // does not (the merit compares them with the centre's margins)
+        it.accepted = ratio >= ACCEPT && (check.feasible || !centre.feasible);
         if ctx.better(&check, &best) {
             best = check.clone();
         }
