@@ -22,8 +22,9 @@
 //! 5. update each correction's slope by Broyden's secant rule from the ratio measured at
 //!    `x_n`, accepted or not (Broyden, Math. Comp. 19, 1965; so aggressive space mapping
 //!    does: Bandler et al., IEEE Trans. Microwave Theory Tech. 43(12), 1995);
-//! 6. stop when the surrogate promises less than the tolerance (of the objective) beyond a
-//!    centre that meets every constraint by its margin, or when an accepted step changes
+//! 6. stop when the surrogate's optimum, inside the trust region, promises less than a
+//!    quarter of the tolerance (of the objective) beyond a centre that meets every constraint by its
+//!    margin, or when an accepted step changes
 //!    every measured output by less than the tolerance (relative) beyond the
 //!    measurements' own error estimates, and the design meets every constraint as measured by its margin (the output's error estimate plus
 //!    the difference from the fidelity used to the next one up, [`Measurement::margins`]:
@@ -334,13 +335,14 @@ pub fn refine(
             }
             break;
         }
-        if centre.feasible && predicted <= settings.tolerance {
-            // a measured design that meets every constraint by its margin, and the surrogate
-            // promises less than the tolerance (of the objective) beyond it: a measurement
-            // would not resolve the gain
+        if centre.feasible && predicted <= MARGIN * settings.tolerance && step < 0.99 * delta {
+            // a measured design that meets every constraint by its margin, and the surrogate's
+            // optimum, inside the trust region (not held by its bound), promises less than a
+            // quarter of the tolerance (of the objective) beyond it: a measurement would not
+            // resolve the gain
             it.note = Some(
-                "the surrogate promises less than the tolerance beyond a design that meets \
-                 every constraint"
+                "the surrogate promises less than a quarter of the tolerance beyond a design \
+                 that meets every constraint"
                     .into(),
             );
             r.iterations.push(it);

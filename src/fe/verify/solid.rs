@@ -228,7 +228,9 @@ pub(super) fn check(
         let value = o.estimate.value * ratios[2];
         let e = o.estimate;
         let accepted = |e: &Estimate| e.converging || e.oscillating;
-        let converging = accepted(&e) && accepted(&layered) && moved.is_some();
+        // converging where both parts extrapolate; within its spread where either turns
+        let known = accepted(&e) && accepted(&layered) && moved.is_some();
+        let converging = known && e.converging && layered.converging;
         let relative_error = match (e.relative_error, layered.relative_error, moved) {
             (Some(a), Some(b), Some(c)) => Some(a + b + c),
             _ => None,
@@ -244,7 +246,7 @@ pub(super) fn check(
                 relative_error,
                 order: layered.order,
                 converging,
-                oscillating: false,
+                oscillating: known && !converging,
             },
             location_mm: (setup.analysis.outputs[k].quantity == Quantity::PeakStress)
                 .then(|| [finest.0.peak_at[0] * 1e3, finest.0.peak_at[1] * 1e3]),
