@@ -98,7 +98,7 @@ pub enum Command {
         out: Option<PathBuf>,
     },
     /// Check one design on its part by finite elements: paper 004's load cases in plane
-    /// stress and plane strain, each output's discretization error estimated (verify.json,
+    /// stress, plane strain and 3D, each output's discretization error estimated (verify.json,
     /// stress.png, deformed.png, CalculiX decks part.inp and part3d.inp).
     #[command(after_help = EXIT_CODES)]
     Verify {
@@ -116,6 +116,10 @@ pub enum Command {
         /// about 1.6 GB): the meshes stop before one that would need more.
         #[arg(long)]
         max_dofs: Option<usize>,
+        /// Leave out the 3D check (the part's mesh extruded through its width): the two 2D
+        /// idealizations only, in about half the time.
+        #[arg(long)]
+        no_3d: bool,
     },
     /// One flexure hinge on its own: compliances, stiffnesses, rotation per moment and the
     /// rotation a stress limit allows, as JSON. Dimensions in mm, each kind its own.

@@ -68,9 +68,11 @@ fn run(command: Command) -> Result<(), Failure> {
             out,
             tolerance,
             max_dofs,
+            no_3d,
         } => {
             let (problem_loaded, x) = chosen_design(&problem, &design)?;
-            let settings = verify_settings(&problem, tolerance, max_dofs)?;
+            let mut settings = verify_settings(&problem, tolerance, max_dofs)?;
+            settings.solid = !no_3d;
             let dir = out.unwrap_or_else(|| problem_loaded.default_output_dir().join("verify"));
             check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
             run_verify(&problem_loaded, &x, &settings, &dir)

@@ -199,6 +199,25 @@ fn the_command_line_checks_a_design_and_a_runs_optimum() {
     assert!(amp["converging"].as_bool().unwrap());
     assert!(amp["relative_error"].as_f64().unwrap() < 0.005);
     assert!((amp["analytic"].as_f64().unwrap() - 12.86).abs() < 0.01);
+    // 10 mm over 0.4 mm hinges: the 3D column, and the line saying to read it
+    assert_eq!(json["read"], "3d");
+    let k_out = |f: &str| json["outputs"][f]["fe_k_out"]["value"].as_f64().unwrap();
+    assert!(k_out("plane_stress") < k_out("3d") && k_out("3d") < k_out("plane_strain"));
+    assert!(text.contains("FE 3D") && text.contains("read 3D"), "{text}");
+    // --no-3d: the two 2D idealizations only, and the reason said
+    let out = flexopt_ok(&[
+        "verify",
+        "problems/wei2017.toml",
+        "--optimum",
+        "results/wei2017/optimum.json",
+        "--out",
+        dir.to_str().unwrap(),
+        "--no-3d",
+    ]);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("verify.json")).unwrap()).unwrap();
+    assert!(json["outputs"].get("3d").is_none() && json["solid_solves"].is_null());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("no 3D check: left out"));
     std::fs::remove_dir_all(&dir).unwrap();
 
     // a model without a part, and a tolerance out of range: bad input

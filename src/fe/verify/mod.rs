@@ -501,7 +501,7 @@ pub fn verify(
             Err(why) => (None, Some(why)),
         }
     } else {
-        (None, None)
+        (None, Some("left out, as asked (--no-3d)".to_string()))
     };
     Ok(Verification {
         part,
