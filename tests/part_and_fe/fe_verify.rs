@@ -66,6 +66,36 @@ fn the_printed_design_converges_and_deviates_as_table_2_does() {
             );
         }
     }
+    // in 3D: every output within the tolerance, the stiffnesses by Richardson through the
+    // layers (the quadratic wedges' observed order 2 to 4); and a direct 3D solve of the
+    // second in-plane mesh at the same 4 layers lands on the 3D values within their stated
+    // error plus that mesh's own plane-strain error (which the 3D values do not carry)
+    let solid = &v.solid.as_ref().unwrap().outputs;
+    assert_eq!(solid.len(), 6);
+    let direct = v.solid_direct(1, 4).unwrap();
+    for o in solid {
+        let e = &o.estimate;
+        assert!(e.within(0.005), "3D {}: {e:?} {:?}", o.name, o.values);
+        if o.name.starts_with("fe_k_") {
+            let order = e.order.unwrap();
+            assert!(
+                e.converging && (2.0..=4.0).contains(&order),
+                "3D {}: {e:?}",
+                o.name
+            );
+        }
+        let strain = output(&v, 1, o.name);
+        let level_error = (strain.values[1] - strain.estimate.value).abs() / strain.estimate.value;
+        let (_, d) = direct.iter().find(|(n, _)| *n == o.name).unwrap();
+        let off = (d - e.value).abs() / e.value;
+        assert!(
+            off <= e.relative_error.unwrap() + level_error,
+            "3D {}: direct {d} against {} +- {:?}, level error {level_error}",
+            o.name,
+            e.value,
+            e.relative_error
+        );
+    }
     // at least four elements through every hinge's thickness on the first mesh: the
     // elements a line across its middle passes through
     let m = &v.meshes[0];
