@@ -314,6 +314,11 @@ fn the_dxf_reads_back_as_the_same_loops_and_the_svg_is_xml_at_true_scale() {
                 polylines.push(p.vertices.clone());
             }
             dxf::entities::EntityType::Line(_) => face_layers.push(e.common.layer.clone()),
+            // the plate's thickness, on a layer of its own
+            dxf::entities::EntityType::Text(t) => {
+                assert_eq!(e.common.layer, "PLATE");
+                assert_eq!(t.value, format!("plate thickness {} mm", part.width));
+            }
             other => panic!("unexpected entity {other:?}"),
         }
     }
