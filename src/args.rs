@@ -76,10 +76,8 @@ pub enum Command {
     Eval {
         #[arg(help = PROBLEM)]
         problem: PathBuf,
-        /// The design, `name=value` pairs in the problem file's units, comma-separated;
-        /// fixed variables may be left out.
-        #[arg(long)]
-        design: String,
+        #[command(flatten)]
+        design: DesignArgs,
         /// `table` or `json`; default: a table on a terminal, JSON when the output goes to
         /// a file or a pipe (what scripts read).
         #[arg(long, value_parser = ["table", "json"])]
@@ -186,6 +184,10 @@ pub enum Command {
         /// whatever the file's [refine] fidelity says.
         #[arg(long, value_parser = PossibleValuesParser::new(FIDELITIES.names()))]
         refine: Option<String>,
+        /// The most FE checks a refined optimum may take, in place of the file's
+        /// `[refine] max_fe` (2 to 200).
+        #[arg(long)]
+        max_fe: Option<i64>,
     },
     /// Trade-off front by the epsilon-constraint method: the limit of the problem's
     /// one-sided constraint on OUTPUT is stepped from A to B and the study run at each

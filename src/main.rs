@@ -33,7 +33,9 @@ fn main() -> ExitCode {
     match run(Cli::parse().command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
-            eprintln!("error: {}", f.message);
+            // exit 4: feasible designs, written, that did not converge: no error
+            let label = if f.code == 4 { "stopped" } else { "error" };
+            eprintln!("{label}: {}", f.message);
             ExitCode::from(f.code)
         }
     }
@@ -101,10 +103,21 @@ fn run(command: Command) -> Result<(), Failure> {
             study,
             verify,
             refine,
+            max_fe,
         } => {
             let (mut problem, options) = study_setup(&problem, &study)?;
             if let Some(r) = refine {
                 problem.refine.enabled = FIDELITIES.get(&r).unwrap_or(false);
+            }
+            if let Some(n) = max_fe {
+                let (lo, hi) = flexopt::problem::refine::MAX_FE;
+                if !(lo..=hi).contains(&n) {
+                    return Err(Failure::bad_input(format!(
+                        "{}: key `--max-fe`: must lie between {lo} and {hi}, got {n}",
+                        problem.file.display()
+                    )));
+                }
+                problem.refine.max_fe = n as usize;
             }
             if !problem.refine.enabled {
                 if let Some(e) = problem.stand_in_error("an unrefined run") {
@@ -147,13 +160,6 @@ fn output_dir(problem: &Problem, out: Option<PathBuf>) -> Result<PathBuf, Failur
     Ok(dir)
 }
 
-fn load_design(path: &Path, design: &str) -> Result<(Problem, Vec<f64>), Failure> {
-    let problem = load_problem(path)?;
-    let parsed = parse_design(&problem, design).map_err(Failure::bad_input)?;
-    warn(path, &parsed.warnings);
-    Ok((problem, parsed.x))
-}
-
 /// The design a sweep runs around: `--around` (partial: the rest from the default), or the
 /// default of [`default_design`].
 fn load_around(path: &Path, around: Option<&str>) -> Result<(Problem, Vec<f64>), Failure> {
@@ -175,14 +181,8 @@ fn warn(path: &Path, warnings: &[String]) {
     }
 }
 
-fn eval(path: &Path, design: &str, format: Option<&str>) -> Result<(), Failure> {
-    let (problem, x) = load_design(path, design)?;
-    if let Some(why) = problem.model().domain_error(&x) {
-        return Err(Failure::bad_input(format!(
-            "{}: key `--design`: outside the model's domain: {why}",
-            path.display()
-        )));
-    }
+fn eval(path: &Path, design: &DesignArgs, format: Option<&str>) -> Result<(), Failure> {
+    let (problem, x) = chosen_design(path, design)?;
     let report = DesignReport::new(&problem, &x);
     for name in report.non_finite_outputs() {
         eprintln!(

@@ -238,8 +238,9 @@ pub(crate) fn run_study(
         let what = if r.feasible {
             (
                 4,
-                "the refinement did not converge (raise refine.max_fe); refined.json holds \
-                 the best design that meets every constraint as measured",
+                "the refinement stopped at its budget of FE checks with a design that meets \
+                 every constraint as measured (refined.json), before it converged (raise \
+                 [refine] max_fe or --max-fe)",
             )
         } else {
             (

@@ -431,3 +431,41 @@ fn refine_keys_are_checked() {
     assert!(ok.refine.enabled);
     assert_eq!(ok.refine.idealization, Some(Fidelity::PlaneStress));
 }
+
+#[test]
+fn a_refinement_stopped_by_its_budget_with_a_feasible_design_says_so() {
+    // wei2017 converges in 7 FE checks and meets every constraint from the sixth: --max-fe 6
+    // stops it there, exit 4, no error
+    let dir = std::env::temp_dir().join(format!("flexopt-refine-budget-{}", std::process::id()));
+    let out = flexopt(&[
+        "run",
+        "problems/wei2017.toml",
+        "--refine",
+        "fe",
+        "--max-fe",
+        "6",
+        "--quiet",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(4), "{stderr}");
+    assert!(
+        stderr.starts_with("stopped: ") && !stderr.contains("error:"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains(
+            "stopped at its budget of FE checks with a design that meets every constraint"
+        ),
+        "{stderr}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("refined.json")).unwrap()).unwrap();
+    assert_eq!(
+        (&json["feasible"], &json["converged"]),
+        (&serde_json::json!(true), &serde_json::json!(false))
+    );
+    assert_eq!(json["measurements"], 6);
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -393,3 +393,52 @@ absolute = true
 starts = 4
 seed = 1
 "#;
+
+#[test]
+fn eval_takes_a_runs_optimum_and_run_takes_a_budget_of_fe_checks() {
+    // eval --optimum: the run's design_si as it is, every output as the run reported it
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string("results/wei2017/optimum.json").unwrap())
+            .unwrap();
+    let out = flexopt_ok(&[
+        "eval",
+        "problems/wei2017.toml",
+        "--optimum",
+        "results/wei2017/optimum.json",
+        "--format",
+        "json",
+    ]);
+    let json: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["design"], report["design"]);
+    for (name, v) in report["outputs"].as_object().unwrap() {
+        let (a, b) = (v.as_f64().unwrap(), json["outputs"][name].as_f64().unwrap());
+        assert!((a - b).abs() <= 1e-12 * a.abs(), "{name}: {a} against {b}");
+    }
+    // one design source, not two
+    let both = flexopt(&[
+        "eval",
+        "problems/wei2017.toml",
+        "--design",
+        OPTIMUM,
+        "--optimum",
+        "results/wei2017/optimum.json",
+    ]);
+    assert_eq!(both.status.code(), Some(2));
+    // run --max-fe out of its range names the key and the range, before any work
+    let out = flexopt(&[
+        "run",
+        "problems/wei2017.toml",
+        "--max-fe",
+        "1",
+        "--out",
+        "/nonexistent/x",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("wei2017.toml")
+            && stderr.contains("`--max-fe`")
+            && stderr.contains("between 2 and 200"),
+        "{stderr}"
+    );
+}
