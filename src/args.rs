@@ -137,6 +137,10 @@ pub enum Command {
         /// The stress limit, MPa (default: a third of the material's ultimate strength).
         #[arg(long)]
         stress_limit: Option<f64>,
+        /// `table` (each figure with its unit) or `json`; default: a table on a terminal,
+        /// JSON when the output goes to a file or a pipe.
+        #[arg(long, value_parser = ["table", "json"])]
+        format: Option<String>,
     },
     /// Curves of the outputs against one design variable (JSON and PNG).
     #[command(after_help = EXIT_CODES)]

@@ -63,7 +63,15 @@ fn run(command: Command) -> Result<(), Failure> {
             width,
             material,
             stress_limit,
-        } => hinge(&kind, &dimensions.given, width, &material, stress_limit),
+            format,
+        } => hinge(
+            &kind,
+            &dimensions.given,
+            width,
+            &material,
+            stress_limit,
+            format.as_deref(),
+        ),
         Command::Verify {
             problem,
             design,
@@ -251,13 +259,18 @@ fn hinge(
     width: f64,
     material: &str,
     stress_limit: Option<f64>,
+    format: Option<&str>,
 ) -> Result<(), Failure> {
     let report = calculator::from_options(kind, given, width, material, stress_limit)
         .map_err(Failure::bad_input)?;
     for c in report.fit_ranges.iter().filter(|c| !c.inside) {
         eprintln!("warning: {}", c.warning());
     }
-    print_json(&report)
+    if format.map_or(std::io::stdout().is_terminal(), |f| f == "table") {
+        emit(&flexopt::report::hinge::HingeTable(&report))
+    } else {
+        print_json(&report)
+    }
 }
 
 fn run_sweep(

@@ -8,6 +8,7 @@
 // reachable here for the writers
 pub use crate::problem::display;
 pub mod folder;
+pub mod hinge;
 pub mod pareto;
 pub mod part;
 pub mod plot;

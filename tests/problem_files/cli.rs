@@ -442,3 +442,60 @@ fn eval_takes_a_runs_optimum_and_run_takes_a_budget_of_fe_checks() {
         "{stderr}"
     );
 }
+
+#[test]
+fn hinge_prints_a_table_with_units_or_json() {
+    let args = [
+        "hinge", "--kind", "circular", "--r", "1", "--t", "0.4", "--width", "10",
+    ];
+    let json: Value =
+        serde_json::from_slice(&flexopt_ok(&[&args[..], &["--format", "json"]].concat()).stdout)
+            .unwrap();
+    let table = String::from_utf8(flexopt_ok(&[&args[..], &["--format", "table"]].concat()).stdout)
+        .unwrap();
+    // a row's value, read back, against the JSON's in the row's unit
+    let row = |label: &str, unit: &str| -> f64 {
+        let line = table
+            .lines()
+            .find(|l| l.trim_start().starts_with(label))
+            .unwrap_or_else(|| panic!("no row {label}: {table}"));
+        assert!(line.ends_with(unit), "{line}");
+        line[label.len() + 2..line.len() - unit.len()]
+            .trim()
+            .parse()
+            .unwrap()
+    };
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-4 * b.abs();
+    assert!(table.starts_with("circular hinge, r = 1 mm, t = 0.4 mm, 10 mm wide, al7075-t6"));
+    assert!(close(
+        row("k33 (rotational)", "N m/rad"),
+        json["stiffness"]["k33"].as_f64().unwrap()
+    ));
+    assert!(close(
+        row("k11 (axial)", "N/um"),
+        json["stiffness"]["k11"].as_f64().unwrap() * 1e-6
+    ));
+    assert!(close(
+        row("c33 (slope per moment)", "rad/(N m)"),
+        json["compliance"]["c33"].as_f64().unwrap()
+    ));
+    assert!(close(
+        row("stress limit", "MPa"),
+        json["stress_limit"].as_f64().unwrap() * 1e-6
+    ));
+    assert!(close(
+        row("largest rotation", "deg"),
+        json["max_rotation_deg"].as_f64().unwrap()
+    ));
+    assert!(close(
+        row("length", "mm"),
+        json["length_mm"].as_f64().unwrap()
+    ));
+    assert!(
+        table.contains("t/r = 0.4000 (fitted for .. 1): inside"),
+        "{table}"
+    );
+    // into a pipe without --format: JSON, what scripts read
+    let piped: Value = serde_json::from_slice(&flexopt_ok(&args).stdout).unwrap();
+    assert_eq!(piped["kind"], "circular");
+}
