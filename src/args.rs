@@ -65,7 +65,11 @@ pub enum Command {
     Completions { shell: clap_complete::Shell },
     /// List a model's parameters and outputs with their units and meaning.
     Outputs {
-        /// The model.
+        /// A problem file: its model's parameters as the file's sections make them (the
+        /// dimensions of its hinge kinds) and its outputs.
+        #[arg(conflicts_with = "model")]
+        problem: Option<PathBuf>,
+        /// The model, as `init` writes it (without a problem file).
         #[arg(long, default_value = MODELS[0].name, value_parser = models())]
         model: String,
     },

@@ -46,7 +46,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Init { model, file, force } => start_command::init(&model, file.as_deref(), force),
         Command::Schema => start_command::schema(),
         Command::Completions { shell } => start_command::completions(shell),
-        Command::Outputs { model } => start_command::outputs(&model),
+        Command::Outputs { problem, model } => start_command::outputs(&model, problem.as_deref()),
         Command::Eval {
             problem,
             design,

@@ -82,12 +82,21 @@ pub(crate) fn completions(shell: clap_complete::Shell) -> Result<(), Failure> {
 
 /// `flexopt outputs --model M`: the model's parameters and outputs, as its template
 /// configures it.
-pub(crate) fn outputs(model: &str) -> Result<(), Failure> {
-    let entry = find(MODELS, model)
-        .ok_or_else(|| Failure::bad_input(format!("unknown model \"{model}\"")))?;
-    let problem = Problem::parse(Path::new("template.toml"), &template(entry, "template"))
-        .map_err(|e| Failure::bad_input(format!("the {model} template does not read: {e}")))?;
+pub(crate) fn outputs(model: &str, file: Option<&Path>) -> Result<(), Failure> {
+    let problem = match file {
+        // the file's own model, its sections read: a circular hinge's parameters are r and
+        // t, a strip's l and t
+        Some(path) => Problem::load(path).map_err(Failure::bad_input)?,
+        None => {
+            let entry = find(MODELS, model)
+                .ok_or_else(|| Failure::bad_input(format!("unknown model \"{model}\"")))?;
+            Problem::parse(Path::new("template.toml"), &template(entry, "template")).map_err(
+                |e| Failure::bad_input(format!("the {model} template does not read: {e}")),
+            )?
+        }
+    };
     let m = problem.model();
+    let model = m.name();
     let mut text = format!("{model}: parameters (each a [[variables]] entry)\n");
     for p in m.parameters() {
         text += &format!(

@@ -499,3 +499,31 @@ fn hinge_prints_a_table_with_units_or_json() {
     let piped: Value = serde_json::from_slice(&flexopt_ok(&args).stdout).unwrap();
     assert_eq!(piped["kind"], "circular");
 }
+
+#[test]
+fn outputs_of_a_problem_file_list_its_own_hinge_kinds_parameters() {
+    let params = |args: &[&str]| -> Vec<String> {
+        let text = String::from_utf8(flexopt_ok(args).stdout).unwrap();
+        text.lines()
+            .skip(1)
+            .take_while(|l| l.starts_with("  "))
+            .map(|l| l.split_whitespace().next().unwrap().to_string())
+            .collect()
+    };
+    // bridge_circular.toml's hinges are circular notches: radius and least thickness
+    let circular = params(&["outputs", "problems/bridge_circular.toml"]);
+    assert_eq!(
+        circular,
+        ["r2", "delta2", "t2", "l3", "delta3", "r4", "delta4", "t4"]
+    );
+    // the model as `init` writes it: strips
+    let template = params(&["outputs", "--model", "bridge"]);
+    assert_eq!(
+        template,
+        ["l2", "delta2", "t2", "l3", "delta3", "l4", "delta4", "t4"]
+    );
+    // a file that does not read: its name and exit 2
+    let out = flexopt(&["outputs", "problems/none.toml"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("problems/none.toml"));
+}
