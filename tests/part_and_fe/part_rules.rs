@@ -34,10 +34,13 @@ fn random_settings(r: &mut ChaCha8Rng) -> PartSettings {
     }
 }
 
+/// The rules that model a check, and whether a problem the spec reports is the check's.
+type Check = (&'static [&'static str], fn(&str) -> bool);
+
 /// Each check the spec makes before building solids: the rules that model it (the check
 /// trips where the least of their margins is below `-TOLERANCE`) and how its message is
 /// told apart from the others.
-const CHECKS: [(&[&str], fn(&str) -> bool); 7] = [
+const CHECKS: [Check; 7] = [
     (&["link_thickness_b", "link_thickness_d"], |p| {
         p.starts_with("part.link_thickness (")
     }),
