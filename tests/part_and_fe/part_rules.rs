@@ -284,3 +284,38 @@ fn the_study_keeps_to_the_rules_and_names_the_binding_one_unless_told_not_to() {
     assert!(!out.join("part.dxf").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn eval_lists_each_rules_margin_and_marks_the_broken_one() {
+    let dir = std::env::temp_dir().join(format!("flexopt-rules-eval-{}", std::process::id()));
+    let file = low_output_blocks(&dir, "");
+    let design = "l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07,t4=0.4";
+    let out = flexopt(&[
+        "eval",
+        file.to_str().unwrap(),
+        "--format",
+        "table",
+        "--design",
+        design,
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = text.lines().filter(|l| l.contains("BROKEN")).collect();
+    // 2.5 mm - 2 (1.5 mm) cos(4.07 deg)
+    let margin = 2.5 - 3.0 * (4.07_f64).to_radians().cos();
+    assert_eq!(lines.len(), 1, "{text}");
+    let fields: Vec<&str> = lines[0].split_whitespace().collect();
+    assert_eq!(fields[0], "output_block_faces", "{text}");
+    assert!(
+        (fields[1].parse::<f64>().unwrap() - margin).abs() < 1e-5,
+        "{text}"
+    );
+    assert!(text.contains("feasible: NO"), "{text}");
+    assert_eq!(text.matches("  link_thickness_").count(), 2, "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
