@@ -205,39 +205,44 @@ fn table_1s_optimum_meets_every_rule_and_its_part_is_made() {
     assert!(flexopt::model::build_part(&model, &x).is_ok());
 }
 
-/// wei2017 with output blocks too low for the faces of hinges d at the angles of Table
-/// 1's optimum, `[part]` given `extra` too.
-fn low_output_blocks(dir: &std::path::Path, extra: &str) -> std::path::PathBuf {
+/// wei2017 with `part` as its `[part]` section, in a fresh `dir`; the file's path.
+fn with_part(dir: &std::path::Path, part: &str) -> std::path::PathBuf {
     let text = std::fs::read_to_string("problems/wei2017.toml")
         .unwrap()
-        .replace(
-            "[search]",
-            &format!("[part]\noutput_block_height = \"2.5 mm\"\n{extra}\n\n[search]"),
-        );
+        .replace("[search]", &format!("[part]\n{part}\n\n[search]"));
     std::fs::create_dir_all(dir).unwrap();
-    let file = dir.join("low.toml");
+    let file = dir.join("s.toml");
     std::fs::write(&file, text).unwrap();
     file
+}
+
+/// Output blocks too low for the faces of hinges d at the angles of Table 1's optimum.
+const LOW: &str = "output_block_height = \"2.5 mm\"";
+
+/// `flexopt run` of `file` into `out`, quiet, with `extra` options.
+fn run(file: &std::path::Path, out: &std::path::Path, extra: &[&str]) -> std::process::Output {
+    let mut args = vec!["run", file.to_str().unwrap(), "--quiet", "--out"];
+    args.push(out.to_str().unwrap());
+    args.extend(extra);
+    flexopt(&args)
+}
+
+/// The `optimum.json` in `out`.
+fn optimum(out: &std::path::Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("optimum.json")).unwrap()).unwrap()
 }
 
 #[test]
 fn the_study_keeps_to_the_rules_and_names_the_binding_one_unless_told_not_to() {
     let dir = std::env::temp_dir().join(format!("flexopt-rules-{}", std::process::id()));
-    let file = low_output_blocks(&dir, "");
     let out = dir.join("enforced");
-    let run = flexopt(&[
-        "run",
-        file.to_str().unwrap(),
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let text = String::from_utf8_lossy(&run.stdout);
+    let o = run(&with_part(&dir, LOW), &out, &[]);
+    let text = String::from_utf8_lossy(&o.stdout);
     assert_eq!(
-        run.status.code(),
+        o.status.code(),
         Some(0),
         "{}",
-        String::from_utf8_lossy(&run.stderr)
+        String::from_utf8_lossy(&o.stderr)
     );
     assert!(
         text.contains("active: ") && text.contains("part rule output_block_faces"),
@@ -246,8 +251,7 @@ fn the_study_keeps_to_the_rules_and_names_the_binding_one_unless_told_not_to() {
     for f in ["part.dxf", "part.svg", "part.json", "part.png"] {
         assert!(out.join(f).is_file(), "{f}");
     }
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("optimum.json")).unwrap()).unwrap();
+    let json = optimum(&out);
     let rules = json["part_rules"].as_array().unwrap();
     assert_eq!(rules.len(), 11);
     let active: Vec<&str> = rules
@@ -266,17 +270,14 @@ fn the_study_keeps_to_the_rules_and_names_the_binding_one_unless_told_not_to() {
     );
 
     // not enforced: today's study, whose optimum's part cannot be made
-    let file = low_output_blocks(&dir, "enforce = false");
     let out = dir.join("checked");
-    let run = flexopt(&[
-        "run",
-        file.to_str().unwrap(),
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let err = String::from_utf8_lossy(&run.stderr);
-    assert_eq!(run.status.code(), Some(5), "{err}");
+    let o = run(
+        &with_part(&dir, &format!("{LOW}\nenforce = false")),
+        &out,
+        &[],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(5), "{err}");
     assert!(
         err.contains("part.output_block_height (2.5 mm) does not hold the faces of hinges d"),
         "{err}"
@@ -288,16 +289,10 @@ fn the_study_keeps_to_the_rules_and_names_the_binding_one_unless_told_not_to() {
 #[test]
 fn eval_lists_each_rules_margin_and_marks_the_broken_one() {
     let dir = std::env::temp_dir().join(format!("flexopt-rules-eval-{}", std::process::id()));
-    let file = low_output_blocks(&dir, "");
+    let file = with_part(&dir, LOW);
     let design = "l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07,t4=0.4";
-    let out = flexopt(&[
-        "eval",
-        file.to_str().unwrap(),
-        "--format",
-        "table",
-        "--design",
-        design,
-    ]);
+    let file = file.to_str().unwrap();
+    let out = flexopt(&["eval", file, "--format", "table", "--design", design]);
     assert_eq!(
         out.status.code(),
         Some(0),
@@ -317,5 +312,27 @@ fn eval_lists_each_rules_margin_and_marks_the_broken_one() {
     );
     assert!(text.contains("feasible: NO"), "{text}");
     assert_eq!(text.matches("  link_thickness_").count(), 2, "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_study_no_start_of_which_meets_the_rules_exits_5_naming_the_part_size() {
+    let dir = std::env::temp_dir().join(format!("flexopt-rules-thin-{}", std::process::id()));
+    // links thinner than the thinnest hinge the bounds allow (0.4 mm): no design is made
+    let out = dir.join("out");
+    let o = run(
+        &with_part(&dir, "link_thickness = \"0.3 mm\""),
+        &out,
+        &["--starts", "8"],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(5), "{err}");
+    assert!(
+        err.contains("no start ended at a design whose part can be made")
+            && err.contains("part.link_thickness (0.3 mm) is thinner than the hinges"),
+        "{err}"
+    );
+    assert_eq!(optimum(&out)["feasible"], false);
+    assert!(!out.join("part.dxf").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
