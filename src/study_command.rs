@@ -130,9 +130,16 @@ pub(crate) fn run_study(
     for w in fit::warnings(problem, &checks) {
         eprintln!("warning: {}: {w}", problem.file.display());
     }
-    // the optimum's part, for a feasible optimum of a model that has one
-    let part = study
-        .any_feasible
+    // the optimum's part, for a feasible optimum of a model that has one; and the least
+    // violating design's where it breaks a rule of the part the study keeps to: then the
+    // part's sizes are what no start met, and its check names them (exit 5)
+    let rule_broken = || {
+        flexopt::problem::part_rules::enforced(problem).is_some()
+            && flexopt::problem::part_rules::checks(problem, study.reported_design())
+                .iter()
+                .any(|r| !r.met)
+    };
+    let part = (study.any_feasible || (!study.interrupted && rule_broken()))
         .then(|| problem.mechanism().part(study.reported_design()))
         .flatten();
     // the FE steps asked for and skipped are said, whatever the exit code says already
@@ -224,6 +231,13 @@ pub(crate) fn run_study(
                 problem.file.display()
             ),
         })
+    } else if let (false, Some(Err(e))) = (study.any_feasible, &part) {
+        Err(Failure::cannot_be_made(format!(
+            "{}: no start ended at a design whose part can be made with the [part] sizes; \
+             optimum.json holds the least violating one, whose part breaks the rules the \
+             study keeps to: {e}",
+            problem.file.display()
+        )))
     } else if let Some(Err(e)) = &part {
         Err(Failure::cannot_be_made(format!(
             "{}: the optimum gives no part that can be made with the [part] sizes: {e}; its \

@@ -9,6 +9,7 @@
 
 use std::sync::Arc;
 
+use super::part_rules::PartRule;
 use super::{Drawing, Model, Skeleton};
 use crate::part::analysis::FeCounterpart;
 use crate::part::{Part, PartError, PartSpec};
@@ -61,6 +62,25 @@ pub trait PartMaker: Send + Sync + std::fmt::Debug {
     /// measures what the model's output `output` computes, if anything does: what `flexopt
     /// verify` compares it with and `run --refine fe` corrects it by.
     fn fe_counterpart(&self, output: usize) -> Option<FeCounterpart>;
+
+    /// The part's manufacturability rules this model states as functions of the design
+    /// ([`super::part_rules`]); none by default, and then the part is only checked after the
+    /// study.
+    fn rules(&self) -> &[PartRule] {
+        &[]
+    }
+
+    /// Whether the study keeps to [`PartMaker::rules`] (`[part] enforce`, on by default).
+    fn enforces_rules(&self) -> bool {
+        !self.rules().is_empty()
+    }
+
+    /// Each rule's margin (m) at the design `x` (SI), into `out` (one per rule).
+    fn rule_margins(&self, _x: &[f64], _out: &mut [f64]) {}
+
+    /// As [`PartMaker::rule_margins`], with their exact gradients over every parameter,
+    /// row-major (`jacobian[i * x.len() + p]`).
+    fn rule_margins_with_gradient(&self, _x: &[f64], _out: &mut [f64], _jacobian: &mut [f64]) {}
 }
 
 /// A mechanism: its physics and the capabilities it has.

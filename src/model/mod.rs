@@ -14,6 +14,7 @@ pub mod fit;
 pub mod hinge;
 pub mod material;
 pub mod mechanism;
+pub mod part_rules;
 pub mod prr3;
 pub mod pss3;
 pub mod reference;

@@ -13,6 +13,7 @@ pub mod init;
 pub mod json_schema;
 pub mod nlp;
 pub mod optimum_file;
+pub mod part_rules;
 pub mod refine;
 pub mod schema;
 mod strength;

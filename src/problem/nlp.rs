@@ -12,14 +12,19 @@
 //! - The ranges where the model's fits hold ([`super::fit`]), unless the file says
 //!   otherwise: each ratio's bounds are rows of the same form, after the problem's own
 //!   constraints, counted as constraints `constraints.len() + j` (the `j`-th range).
+//! - The part's rules ([`crate::model::part_rules`]), where the model's part states them
+//!   and enforces them (`[part] enforce`, the default): one row `margin / SCALE >= 0` each,
+//!   after the ranges, counted as constraints `constraints.len() + ranges + i`.
 //!
 //! The model is asked for exactly the outputs the objective and constraints name, once
 //! each (the objective first), at the full parameter vector: the free variables in place
-//! among the fixed values; the ranges' ratios follow them among the values the rows read.
+//! among the fixed values; the ranges' ratios, then the rules' margins, follow them among
+//! the values the rows read.
 //! Gradients are the model's exact ones, through the chain rule of the scaling.
 
 use super::{Problem as DesignProblem, Sense};
 use crate::model::fit::FitLimit;
+use crate::model::mechanism::PartMaker;
 use crate::model::scalar::Jet;
 use crate::model::{Model, MAX_PARAMETERS, MAX_WANTED};
 use crate::optim::Problem;
@@ -30,6 +35,11 @@ pub const FEASIBILITY_TOLERANCE: f64 = 1e-8;
 
 // a design the study leaves on a range of fit's bound is inside it for the reports too
 const _: () = assert!(FEASIBILITY_TOLERANCE == crate::model::fit::TOLERANCE);
+
+// a design the study leaves on a part's rule passes the part's check of it
+const _: () = assert!(
+    crate::model::part_rules::TOLERANCE == FEASIBILITY_TOLERANCE * crate::model::part_rules::SCALE
+);
 
 /// Whether a solve ended at a design that meets every constraint: finite, within
 /// [`FEASIBILITY_TOLERANCE`] of each limit, and not a solve that failed or proved the
@@ -73,6 +83,9 @@ pub struct DesignNlp<'p> {
     wanted: Vec<usize>,
     /// The ranges of fit the study keeps to; their ratios follow the wanted outputs.
     fits: &'p [FitLimit],
+    /// The part whose rules the study keeps to, and how many rules it has.
+    part: Option<&'p dyn PartMaker>,
+    rules: usize,
     offset: Vec<f64>,
     range: Vec<f64>,
     zeros: Vec<f64>,
@@ -143,14 +156,25 @@ impl<'p> DesignNlp<'p> {
                 });
             }
         }
+        let part = super::part_rules::enforced(problem);
+        let rules = part.map_or(0, |p| p.rules().len());
+        for i in 0..rules {
+            rows.push(Row {
+                constraint: problem.constraints.len() + fits.len() + i,
+                value: wanted.len() + fits.len() + i,
+                sign: 1.0,
+                limit: 0.0,
+                scale: crate::model::part_rules::SCALE,
+            });
+        }
         let range: Vec<f64> = free.iter().map(|v| v.upper - v.lower).collect();
         let jacobian_factor = rows
             .iter()
             .flat_map(|r| range.iter().map(move |rj| r.sign * rj / r.scale))
             .collect();
         assert!(
-            wanted.len() + fits.len() <= MAX_WANTED,
-            "a problem names at most {MAX_WANTED} outputs and ranges of fit"
+            wanted.len() + fits.len() + rules <= MAX_WANTED,
+            "a problem names at most {MAX_WANTED} outputs, ranges of fit and part rules"
         );
         assert!(problem.variables.len() <= MAX_PARAMETERS);
         let free_index: Vec<usize> = free.iter().map(|v| v.parameter).collect();
@@ -162,6 +186,8 @@ impl<'p> DesignNlp<'p> {
             free: free_index,
             wanted,
             fits,
+            part,
+            rules,
             offset: free.iter().map(|v| v.lower).collect(),
             range,
             zeros: vec![0.0; free.len()],
@@ -209,20 +235,24 @@ impl<'p> DesignNlp<'p> {
     }
 
     /// The number of values the rows read: the wanted outputs, then the ratios of the
-    /// ranges of fit the study keeps to.
+    /// ranges of fit the study keeps to, then the margins of the part's rules it keeps to.
     pub fn values(&self) -> usize {
-        self.wanted.len() + self.fits.len()
+        self.wanted.len() + self.fits.len() + self.rules
     }
 
     /// The wanted outputs (SI) at the free variables `free` (SI, model order), then the
-    /// ranges' ratios: [`DesignNlp::values`] of them.
+    /// ranges' ratios, then the rules' margins: [`DesignNlp::values`] of them.
     pub fn outputs(&self, free: &[f64], out: &mut [f64]) {
         let mut x = [0.0; MAX_PARAMETERS];
         let x = self.fill(free, &mut x);
-        let (outputs, ratios) = out.split_at_mut(self.wanted.len());
+        let (outputs, rest) = out.split_at_mut(self.wanted.len());
+        let (ratios, margins) = rest.split_at_mut(self.fits.len());
         self.model.evaluate(x, &self.wanted, outputs);
         for (r, f) in ratios.iter_mut().zip(self.fits) {
             *r = f.value(x);
+        }
+        if let Some(part) = self.part {
+            part.rule_margins(x, margins);
         }
     }
 
@@ -233,8 +263,13 @@ impl<'p> DesignNlp<'p> {
         let x = self.fill(free, &mut x);
         let w = self.wanted.len();
         let np = x.len();
-        let (outputs, ratios) = out.split_at_mut(w);
-        let (model_jac, ratio_jac) = jacobian.split_at_mut(w * np);
+        let (outputs, rest) = out.split_at_mut(w);
+        let (ratios, margins) = rest.split_at_mut(self.fits.len());
+        let (model_jac, rest_jac) = jacobian.split_at_mut(w * np);
+        let (ratio_jac, margin_jac) = rest_jac.split_at_mut(self.fits.len() * np);
+        if let Some(part) = self.part {
+            part.rule_margins_with_gradient(x, margins, margin_jac);
+        }
         self.model
             .evaluate_with_gradient(x, &self.wanted, outputs, model_jac);
         for ((r, row), f) in ratios
@@ -363,9 +398,9 @@ impl Problem for DesignNlp<'_> {
         let x = self.unscale_into(u, &mut buf);
         let mut out = [0.0; MAX_WANTED];
         let out = &mut out[..self.values()];
-        // sized for the wei2017 problems (9 outputs of 8 parameters): a heap buffer per
-        // evaluation showed in the solver's profile
-        let (mut small, mut large) = ([0.0; 128], Vec::new());
+        // sized for the wei2017 problems (9 outputs and 11 part rules of 8 parameters): a
+        // heap buffer per evaluation showed in the solver's profile
+        let (mut small, mut large) = ([0.0; 256], Vec::new());
         let model_jac = if out.len() * np <= small.len() {
             &mut small[..out.len() * np]
         } else {

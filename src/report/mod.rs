@@ -207,8 +207,13 @@ pub struct DesignReport {
     /// Each range where the model's fits hold, at this design: the ratio, its value and
     /// whether it lies inside ([`crate::model::Model::fit_limits`]).
     pub fit_ranges: Vec<crate::model::fit::FitCheck>,
+    /// Each rule of the model's part at this design: its margin and whether it is active
+    /// ([`crate::problem::part_rules`]); none for a model without a part.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub part_rules: Vec<crate::problem::part_rules::RuleCheck>,
     /// Every constraint met and, where the file makes the ranges of fit constraints (the
-    /// default), every ratio inside its range.
+    /// default), every ratio inside its range, and where the part's rules are enforced (the
+    /// default), every rule met.
     pub feasible: bool,
     /// The model's drawing data: nodes, mode shapes.
     #[serde(flatten)]
@@ -267,6 +272,7 @@ impl DesignReport {
                 })
                 .collect(),
             fit_ranges: crate::problem::fit::checks(problem, x),
+            part_rules: crate::problem::part_rules::checks(problem, x),
             feasible: false,
             drawing: problem.depiction().drawing(x),
         };
@@ -290,7 +296,9 @@ impl DesignReport {
             || report.fit_ranges.iter().all(|c| c.inside);
         report.feasible = report.objective.is_some()
             && report.constraints.iter().all(|c| c.satisfied)
-            && fits_met;
+            && fits_met
+            && (crate::problem::part_rules::enforced(problem).is_none()
+                || report.part_rules.iter().all(|r| r.met));
         report
     }
 

@@ -79,11 +79,19 @@ impl Display for StudySummary<'_> {
         let report = super::DesignReport::new(problem, x);
         if !report.constraints.is_empty() {
             write!(s, "{}", super::table::ConstraintLines(&report.constraints))?;
-            let active: Vec<&str> = report
+            // the part's rules the optimum stands on are named beside the constraints
+            let active: Vec<String> = report
                 .constraints
                 .iter()
                 .filter(|c| c.active)
-                .map(|c| c.output.as_str())
+                .map(|c| c.output.clone())
+                .chain(
+                    report
+                        .part_rules
+                        .iter()
+                        .filter(|r| r.active)
+                        .map(|r| format!("part rule {} ({})", r.rule, r.description)),
+                )
                 .collect();
             writeln!(
                 s,

@@ -7,6 +7,7 @@ use std::fmt::{self, Display};
 use super::display::{human, output_unit, with_unit};
 use super::{ConstraintReport, DesignReport};
 use crate::model::fit::FitCheck;
+use crate::problem::part_rules::RuleCheck;
 use crate::problem::{Problem, Sense};
 
 /// `eval`'s table: the design, every output, the objective and each constraint.
@@ -61,6 +62,9 @@ impl Display for DesignTable<'_> {
         }
         if !r.fit_ranges.is_empty() {
             write!(s, "{}", FitLines(&r.fit_ranges))?;
+        }
+        if !r.part_rules.is_empty() {
+            write!(s, "{}", RuleLines(&r.part_rules))?;
         }
         writeln!(
             s,
@@ -146,6 +150,38 @@ impl Display for ConstraintLines<'_> {
                     c.output
                 )?;
             }
+        }
+        Ok(())
+    }
+}
+
+/// The part's rules, one aligned line each: the margin in mm, whether the design breaks
+/// the rule or stands on it, and what the rule asks.
+pub struct RuleLines<'a>(pub &'a [RuleCheck]);
+
+impl Display for RuleLines<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            s,
+            "  {:<22} {:>14} {:<7} asks",
+            "part rule", "margin mm", ""
+        )?;
+        for r in self.0 {
+            let state = if !r.met {
+                "BROKEN"
+            } else if r.active {
+                "active"
+            } else {
+                ""
+            };
+            writeln!(
+                s,
+                "  {:<22} {:>14} {:<7} {}",
+                r.rule,
+                human(r.margin_mm),
+                state,
+                r.description
+            )?;
         }
         Ok(())
     }

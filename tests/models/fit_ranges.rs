@@ -349,14 +349,17 @@ fn the_ranges_reach_the_solver_as_rows_with_exact_gradients() {
         )
         .unwrap();
         let nlp = DesignNlp::new(&p);
-        // no constraint in the file: every row is a bound of a range of hinge b's or d's
+        // no constraint in the file: every row is a bound of a range of hinge b's or d's,
+        // then the part's rules, whose rows' gradients are checked here too
+        let rules = p.mechanism().part_maker.as_ref().unwrap().rules().len();
+        assert_eq!(rules, 10, "{:?}", c.kind);
         let bounds: usize = c
             .kind
             .fit()
             .iter()
             .map(|f| f.range.lower.is_some() as usize + f.range.upper.is_some() as usize)
             .sum();
-        assert_eq!(nlp.constraint_count(), 2 * bounds, "{:?}", c.kind);
+        assert_eq!(nlp.constraint_count(), 2 * bounds + rules, "{:?}", c.kind);
         let n = nlp.dimension();
         let m = nlp.constraint_count();
         for _ in 0..20 {

@@ -18,5 +18,6 @@ mod first_mode;
 mod link_width;
 mod meshing;
 mod part;
+mod part_rules;
 mod refine;
 mod sets;

@@ -89,6 +89,9 @@ struct RawPart {
     output_block_width: Option<Measured<PositiveLength>>,
     output_block_height: Option<Measured<PositiveLength>>,
     min_slot: Option<Measured<NonNegativeLength>>,
+    /// Whether the study keeps to the part's rules (default true); false checks the part
+    /// only after the study.
+    enforce: Option<bool>,
 }
 
 /// The JSON Schema of each of the bridge's sections.
@@ -258,6 +261,7 @@ fn part_settings(
         min_slot: length(s, "min_slot", &p.min_slot, d.min_slot)?,
         actuator_length,
         actuator_height,
+        enforce: p.enforce.unwrap_or(d.enforce),
     })
 }
 

@@ -28,6 +28,7 @@ pub use quarter::QuarterBridge;
 use super::entry::ModelEntry;
 use super::hinge::HingeKind;
 use super::material::Material;
+use super::part_rules::PartRule;
 use super::scalar::Jet;
 use super::{unseed, Depiction, Drawing, Model, OutputInfo, ParameterInfo, PartMaker, Skeleton};
 use dynamics::DynamicsSettings;
@@ -74,12 +75,20 @@ pub struct Bridge {
     pub settings: BridgeSettings,
     #[serde(skip)]
     layout: Layout,
+    /// The part's rules ([`part::rules`]).
+    #[serde(skip)]
+    rules: Vec<PartRule>,
 }
 
 impl Bridge {
     pub fn new(settings: BridgeSettings) -> Self {
         let layout = Layout::new(settings.hinge_b, settings.hinge_d);
-        Bridge { settings, layout }
+        let rules = part::rules::rules(&settings.part);
+        Bridge {
+            settings,
+            layout,
+            rules,
+        }
     }
 
     /// Where the parts of a design sit among the parameters.
@@ -113,6 +122,18 @@ impl Bridge {
         };
         self.evaluate(&self.layout.seeded::<N>(x), wanted, y);
         unseed(y, out, jacobian);
+    }
+
+    /// Values and gradients of the part's rules at `x`, with `N` = the number of
+    /// parameters.
+    fn rule_gradients<const N: usize>(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
+        let mut y = [Jet::<N>::from(0.0); part::rules::MAX_RULES];
+        let y = &mut y[..self.rules.len()];
+        part::rules::margins(&self.settings.part, &self.layout, &self.layout.seeded(x), y);
+        unseed(y, out, jacobian);
+        // the values as `rule_margins` computes them, to the last digit: a dual number's
+        // quotient rounds otherwise
+        self.rule_margins(x, out);
     }
 }
 
@@ -250,5 +271,31 @@ impl PartMaker for Bridge {
 
     fn fe_counterpart(&self, output: usize) -> Option<crate::part::analysis::FeCounterpart> {
         part::fe_cases::counterpart(BridgeOutput::ALL[output])
+    }
+
+    fn rules(&self) -> &[PartRule] {
+        &self.rules
+    }
+
+    fn enforces_rules(&self) -> bool {
+        self.settings.part.enforce
+    }
+
+    fn rule_margins(&self, x: &[f64], out: &mut [f64]) {
+        part::rules::margins(
+            &self.settings.part,
+            &self.layout,
+            &self.layout.geometry(x),
+            out,
+        );
+    }
+
+    fn rule_margins_with_gradient(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
+        match x.len() {
+            8 => self.rule_gradients::<8>(x, out, jacobian),
+            9 => self.rule_gradients::<9>(x, out, jacobian),
+            10 => self.rule_gradients::<10>(x, out, jacobian),
+            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
+        }
     }
 }

@@ -186,7 +186,7 @@ impl HingeKind {
 
     /// The hinge's thickness where it meets the rigid bodies (m): the width of the faces
     /// its part's outline attaches to.
-    pub fn root_thickness(self, dims: &[f64]) -> f64 {
+    pub fn root_thickness<D: Scalar>(self, dims: &[D]) -> D {
         with_kind!(self, k => k.root_thickness(dims))
     }
 

@@ -39,10 +39,11 @@ use serde::Serialize;
 
 mod drawing;
 pub mod fe_cases;
+pub mod rules;
 
 use super::geometry::{Geometry, Layout};
 use super::BridgeSettings;
-use crate::model::hinge::HingeKind;
+use crate::model::part_rules::broken;
 use crate::part::{Actuation, Actuator, Face, HingeSite, PartSpec, Solid};
 use drawing::{annotations, deg, mm};
 
@@ -63,6 +64,8 @@ pub struct PartSettings {
     /// pocket between the blocks must hold it.
     pub actuator_length: Option<f64>,
     pub actuator_height: Option<f64>,
+    /// Whether the study keeps to the part's rules ([`rules`]): `[part] enforce`.
+    pub enforce: bool,
 }
 
 impl Default for PartSettings {
@@ -82,6 +85,7 @@ impl Default for PartSettings {
             min_slot: 0.4e-3,
             actuator_length: None,
             actuator_height: None,
+            enforce: true,
         }
     }
 }
@@ -216,15 +220,10 @@ pub fn spec(
     let g: Geometry<f64> = layout.geometry(x);
     let tb = layout.hinge_b.root_thickness(g.b.dims());
     let td = layout.hinge_d.root_thickness(g.d.dims());
-    // the part's fillets round a strip's roots; a notch meets its bodies smoothly
-    let fillet = |kind: HingeKind| {
-        if kind.has_sharp_roots() {
-            s.fillet_radius
-        } else {
-            0.0
-        }
-    };
-    let (rb, rd) = (fillet(layout.hinge_b), fillet(layout.hinge_d));
+    let (rb, rd) = (
+        rules::fillet(s, layout.hinge_b),
+        rules::fillet(s, layout.hinge_d),
+    );
     let q = Quarter::new(&g, s, [tb, td], [rb, rd]);
     let least = layout
         .hinge_b
@@ -277,7 +276,7 @@ pub fn spec(
     ];
     let pocket = -2.0 * a[0];
     if let Some(len) = s.actuator_length {
-        if pocket < len {
+        if broken(pocket - len) {
             problems.push(format!(
                 "the actuator's pocket between the input blocks is {} long, shorter than \
                  actuator.length ({})",
@@ -451,7 +450,7 @@ fn size_problems(s: &PartSettings, q: &Quarter, t: f64) -> Vec<String> {
         ("input_block_width", s.input_block_width),
         ("output_block_height", s.output_block_height),
     ] {
-        if v < t {
+        if broken(v - t) {
             problems.push(format!(
                 "part.{key} ({}) is thinner than the hinges ({}): a wall thinner than a \
                  hinge bends more than the hinge it carries",
@@ -461,7 +460,7 @@ fn size_problems(s: &PartSettings, q: &Quarter, t: f64) -> Vec<String> {
         }
     }
     let [a, _] = across(q.f[0], q.nb, q.hb);
-    if a[1] <= 0.0 {
+    if broken(a[1]) {
         problems.push(format!(
             "part.input_block_height ({}) leaves no room between the faces of the upper and \
              lower hinges b ({} wide each); make it at least {}",
@@ -471,7 +470,7 @@ fn size_problems(s: &PartSettings, q: &Quarter, t: f64) -> Vec<String> {
         ));
     }
     let face_height = 2.0 * q.hd * q.nd[1];
-    if s.output_block_height <= face_height {
+    if broken(s.output_block_height - face_height) {
         problems.push(format!(
             "part.output_block_height ({}) does not hold the faces of hinges d ({} wide, \
              tilted {}): make it more than {}",
@@ -486,14 +485,14 @@ fn size_problems(s: &PartSettings, q: &Quarter, t: f64) -> Vec<String> {
     let side = |y: f64| q.f[3][0] + (y - q.f[3][1]) / q.nd[1] * q.nd[0];
     // the slot between the block's two sides, where it is narrowest
     let gap = -2.0 * side(out_top).max(side(out_bottom));
-    if gap <= 0.0 {
+    if broken(gap) {
         problems.push(format!(
             "part.output_block_width ({}) is too narrow for the faces of hinges d tilted {}: \
              the block's sides, which continue them, cross",
             mm(s.output_block_width),
             deg(q.ud[1].atan2(q.ud[0]))
         ));
-    } else if gap <= s.min_slot {
+    } else if broken(gap - s.min_slot) {
         // the sides do not cross: the slot asked for is what does not fit
         problems.push(format!(
             "part.min_slot ({}) is wider than the slot between the sides of the output block \

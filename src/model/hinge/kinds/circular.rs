@@ -40,8 +40,8 @@ impl Kind for Circular {
         dims[1]
     }
 
-    fn root_thickness(&self, dims: &[f64]) -> f64 {
-        dims[1] + 2.0 * dims[0]
+    fn root_thickness<D: Scalar>(&self, dims: &[D]) -> D {
+        dims[1] + dims[0] * 2.0
     }
 
     fn area<D: Scalar>(&self, dims: &[D]) -> D {

@@ -58,8 +58,8 @@ impl Kind for CornerFilleted {
         dims[1]
     }
 
-    fn root_thickness(&self, dims: &[f64]) -> f64 {
-        dims[1] + 2.0 * dims[2]
+    fn root_thickness<D: Scalar>(&self, dims: &[D]) -> D {
+        dims[1] + dims[2] * 2.0
     }
 
     fn area<D: Scalar>(&self, dims: &[D]) -> D {

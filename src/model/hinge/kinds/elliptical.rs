@@ -56,8 +56,8 @@ impl Kind for Elliptical {
         dims[2]
     }
 
-    fn root_thickness(&self, dims: &[f64]) -> f64 {
-        dims[2] + 2.0 * dims[1]
+    fn root_thickness<D: Scalar>(&self, dims: &[D]) -> D {
+        dims[2] + dims[1] * 2.0
     }
 
     fn area<D: Scalar>(&self, dims: &[D]) -> D {

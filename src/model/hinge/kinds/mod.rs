@@ -63,7 +63,7 @@ pub trait Kind: Sized {
 
     /// The hinge's thickness where it meets the rigid bodies (m): the width of the faces
     /// its part's outline attaches to.
-    fn root_thickness(&self, dims: &[f64]) -> f64;
+    fn root_thickness<D: Scalar>(&self, dims: &[D]) -> D;
 
     /// The hinge's area in the plane of the mechanism (m^2), for its mass.
     fn area<D: Scalar>(&self, dims: &[D]) -> D;

@@ -37,7 +37,7 @@ impl Kind for Strip {
         dims[1]
     }
 
-    fn root_thickness(&self, dims: &[f64]) -> f64 {
+    fn root_thickness<D: Scalar>(&self, dims: &[D]) -> D {
         dims[1]
     }
 
