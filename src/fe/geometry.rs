@@ -293,6 +293,14 @@ impl Domain {
     }
 
     /// The size of the region: the longer side of its bounding box (m).
+    /// The least thickness of its thinnest hinge (m; infinite without hinges).
+    pub fn thinnest_hinge(&self) -> f64 {
+        self.hinges
+            .iter()
+            .map(|h| h.thickness)
+            .fold(f64::INFINITY, f64::min)
+    }
+
     pub fn size(&self) -> f64 {
         let mut bb = [
             f64::INFINITY,

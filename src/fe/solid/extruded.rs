@@ -73,16 +73,23 @@ pub struct SideFace {
     pub side: (usize, usize),
 }
 
+/// Which of `flat`'s nodes are corners of its triangles: the nodes that stand on the middle
+/// plane of a layer too (the midside nodes stand on its faces only).
+pub fn corners(flat: &Mesh<Tri6>) -> Vec<bool> {
+    let mut corner = vec![false; flat.nodes.len()];
+    for el in &flat.elements {
+        for &c in &el[..3] {
+            corner[c] = true;
+        }
+    }
+    corner
+}
+
 impl<'a> Extruded<'a> {
     pub fn new(flat: &'a Mesh<Tri6>, layers: Layers) -> Self {
         let n2 = flat.nodes.len();
         let planes = layers.planes();
-        let mut corner = vec![false; n2];
-        for el in &flat.elements {
-            for &c in &el[..3] {
-                corner[c] = true;
-            }
-        }
+        let corner = corners(flat);
         let mut index = vec![usize::MAX; planes * n2];
         let mut nodes = Vec::new();
         // plane by plane, so that the numbering follows the 2D one on each

@@ -226,11 +226,7 @@ impl Verification {
 
     /// The thinnest hinge's thickness (m).
     pub fn thinnest_hinge(&self) -> f64 {
-        Domain::of_part(&self.half)
-            .hinges
-            .iter()
-            .map(|h| h.thickness)
-            .fold(f64::INFINITY, f64::min)
+        self.setup.domain.thinnest_hinge()
     }
 
     /// A direct 3D solve of the mesh at `level` in `layers` graded layers (no ratio to

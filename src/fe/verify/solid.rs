@@ -137,13 +137,10 @@ pub const SOLID_LAYERS: usize = 4;
 /// The free degrees of freedom of `m` extruded in `layers` layers, about (every node's
 /// three).
 fn solid_dofs(m: &Mesh, layers: usize) -> usize {
-    let mut corner = vec![false; m.nodes.len()];
-    for el in &m.elements {
-        for &c in &el[..3] {
-            corner[c] = true;
-        }
-    }
-    let corners = corner.iter().filter(|&&c| c).count();
+    let corners = crate::fe::solid::extruded::corners(m)
+        .iter()
+        .filter(|&&c| c)
+        .count();
     3 * ((layers + 1) * m.nodes.len() + layers * corners)
 }
 
@@ -165,12 +162,7 @@ pub(super) fn check(
              {max_dofs} (--max-dofs)"
         )));
     }
-    let thinnest = setup
-        .domain
-        .hinges
-        .iter()
-        .map(|h| h.thickness)
-        .fold(f64::INFINITY, f64::min);
+    let thinnest = setup.domain.thinnest_hinge();
     let layers = |n: usize| Layers::graded(n, setup.width, thinnest);
     let timed = |level: usize, n: usize| -> Result<(SolidResult, SolidSolve), FeError> {
         let start = std::time::Instant::now();
