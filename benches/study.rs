@@ -12,6 +12,7 @@ use flexopt::optim::sqp::{self, SqpSettings};
 use flexopt::optim::Problem as _;
 use flexopt::problem::nlp::DesignNlp;
 use flexopt::problem::Problem;
+use flexopt::study::{self, StudyOptions};
 use rayon::prelude::*;
 
 #[path = "support/peer.rs"]
@@ -37,6 +38,13 @@ fn study_starts(problem: &Problem, nlp: &DesignNlp) -> Vec<Vec<f64>> {
     )
 }
 
+/// The problem each start is solved in: the study's first stage where the part keeps some
+/// of its rules for the end (its clearances, `flexopt::optim::staged`), which is what the
+/// solvers are compared on; [`rules`] times the whole study, both stages.
+fn relaxed(problem: &Problem) -> DesignNlp<'_> {
+    DesignNlp::first_stage(problem).unwrap_or_else(|| DesignNlp::new(problem))
+}
+
 /// The SQP settings of the problem file.
 fn sqp_settings(problem: &Problem) -> SqpSettings {
     SqpSettings {
@@ -48,7 +56,7 @@ fn sqp_settings(problem: &Problem) -> SqpSettings {
 
 fn bench(c: &mut Criterion) {
     let problem = Problem::load(Path::new("problems/wei2017.toml")).unwrap();
-    let nlp = DesignNlp::new(&problem);
+    let nlp = relaxed(&problem);
     let starts = study_starts(&problem, &nlp);
     let settings = sqp_settings(&problem);
     let pool = pool();
@@ -131,7 +139,7 @@ fn hinge_kinds(c: &mut Criterion) {
         ("circular", "problems/bridge_circular.toml"),
     ] {
         let problem = Problem::load(Path::new(file)).unwrap();
-        let nlp = DesignNlp::new(&problem);
+        let nlp = relaxed(&problem);
         let starts = study_starts(&problem, &nlp);
         let settings = sqp_settings(&problem);
         group.bench_function(name, |b| {
@@ -150,11 +158,38 @@ fn hinge_kinds(c: &mut Criterion) {
     group.finish();
 }
 
+/// The whole 300-start study of wei2017 (`flexopt::study::run`, two threads) with the
+/// part's rules enforced (the default: size rules from every start, clearances from each
+/// end that breaks one) and with `[part] enforce = false`; and the same for the
+/// least-stress variant, whose ends break the clearances most.
+fn rules(c: &mut Criterion) {
+    let mut group = c.benchmark_group("part_rules_300_starts");
+    group.sample_size(10);
+    for (name, file) in [
+        ("wei2017", "problems/wei2017.toml"),
+        ("min_stress", "problems/wei2017_min_stress.toml"),
+    ] {
+        let text = std::fs::read_to_string(file).unwrap();
+        let free = text.replace("[search]", "[part]\nenforce = false\n\n[search]");
+        for (rules, text) in [("enforced", text.clone()), ("not_enforced", free)] {
+            let problem = Problem::parse(Path::new(file), &text).unwrap();
+            let options = StudyOptions {
+                threads: 2,
+                ..StudyOptions::from_problem(&problem)
+            };
+            group.bench_function(format!("{name}_{rules}"), |b| {
+                b.iter(|| black_box(study::run(&problem, &options).runs.len()))
+            });
+        }
+    }
+    group.finish();
+}
+
 /// One local solve of each kind, the Nelder-Mead study, and the SQP study on one and two
 /// threads.
 fn pieces(c: &mut Criterion) {
     let problem = Problem::load(Path::new("problems/wei2017.toml")).unwrap();
-    let nlp = DesignNlp::new(&problem);
+    let nlp = relaxed(&problem);
     let starts = study_starts(&problem, &nlp);
     let sqp_settings = sqp_settings(&problem);
     let nm_settings = NelderMeadSettings {
@@ -200,5 +235,5 @@ fn pieces(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench, pieces, hinge_kinds);
+criterion_group!(benches, bench, pieces, hinge_kinds, rules);
 criterion_main!(benches);

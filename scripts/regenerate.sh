@@ -9,7 +9,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export RESULTS=${1:-results}
 cargo build --release --quiet
-for p in wei2017_dynamic bridge_stress bridge_circular prr3_frequency pss3_frequency ti_first_mode; do
+for p in wei2017_dynamic bridge_stress bridge_circular prr3_frequency pss3_frequency ti_first_mode \
+  wei2017_min_stress; do
   ./target/release/flexopt run "problems/$p.toml" --quiet --out "$RESULTS/$p" >/dev/null
 done
 # paper 004's problem as the README's main job runs it (so that running it leaves the

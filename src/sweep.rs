@@ -44,6 +44,10 @@ pub struct Sweep {
     pub limits: IndexMap<String, [Option<f64>; 2]>,
     /// Output -> its value at the base design (SI).
     pub at_around: IndexMap<String, Option<f64>>,
+    /// The part's rule -> its margin (mm) at each point, where the model's part states
+    /// rules ([`crate::model::part_rules`]): negative where the part breaks it.
+    #[serde(skip_serializing_if = "IndexMap::is_empty")]
+    pub part_rules: IndexMap<String, Vec<Option<f64>>>,
     /// Order of the outputs as the model lists them.
     #[serde(skip)]
     pub order: Vec<String>,
@@ -168,17 +172,28 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
         .collect();
     let mut curves = vec![Vec::with_capacity(values.len()); wanted.len()];
     let mut out = vec![0.0; wanted.len()];
+    let part = problem.mechanism().part_maker.as_deref();
+    let rules = part.map_or(&[][..], |p| p.rules());
+    let mut margins = vec![Vec::with_capacity(values.len()); rules.len()];
+    let mut m = vec![0.0; rules.len()];
     for &v in &values {
         x[var.parameter] = var.unit.to_si(v);
         if model.domain_error(&x).is_some() {
             // a hole in the domain between the ends (a singular configuration): a gap in
             // the curve, never a number
             out.fill(f64::NAN);
+            m.fill(f64::NAN);
         } else {
             model.evaluate(&x, &wanted, &mut out);
+            if let Some(part) = part {
+                part.rule_margins(&x, &mut m);
+            }
         }
         for (curve, &y) in curves.iter_mut().zip(&out) {
             curve.push(y.is_finite().then_some(y));
+        }
+        for (curve, &y) in margins.iter_mut().zip(&m) {
+            curve.push(y.is_finite().then_some(y * crate::part::MM));
         }
     }
     let infos = model.outputs();
@@ -236,6 +251,11 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
                     infos[k].dimension.si_unit().to_string(),
                 )
             })
+            .collect(),
+        part_rules: rules
+            .iter()
+            .zip(margins)
+            .map(|(r, c)| (r.name.to_string(), c))
             .collect(),
         order: wanted.iter().map(|&k| infos[k].name.to_string()).collect(),
     })

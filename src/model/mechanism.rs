@@ -70,12 +70,21 @@ pub trait PartMaker: Send + Sync + std::fmt::Debug {
         &[]
     }
 
+    /// How many of [`PartMaker::rules`], the first ones, the study keeps to from every start;
+    /// the others, which may be costly or kinked where the part is far from made (solids
+    /// overlapping), it adds once a start has ended, and continues from there
+    /// ([`crate::optim::staged`]). All of them by default.
+    fn first_rules(&self) -> usize {
+        self.rules().len()
+    }
+
     /// Whether the study keeps to [`PartMaker::rules`] (`[part] enforce`, on by default).
     fn enforces_rules(&self) -> bool {
         !self.rules().is_empty()
     }
 
-    /// Each rule's margin (m) at the design `x` (SI), into `out` (one per rule).
+    /// Each rule's margin (m) at the design `x` (SI), into `out`: the first `out.len()`
+    /// rules.
     fn rule_margins(&self, _x: &[f64], _out: &mut [f64]) {}
 
     /// As [`PartMaker::rule_margins`], with their exact gradients over every parameter,

@@ -9,6 +9,7 @@
 //! reaches a model only through a [`Mechanism`] and the [`registry`].
 
 pub mod bridge;
+pub mod clearance;
 pub mod entry;
 pub mod fit;
 pub mod hinge;
@@ -373,7 +374,7 @@ pub(crate) fn unseed<const N: usize>(y: &[Jet<N>], out: &mut [f64], jacobian: &m
 }
 
 /// Largest number of outputs one evaluation may ask for.
-pub const MAX_WANTED: usize = 32;
+pub const MAX_WANTED: usize = 128;
 
 /// Largest number of parameters a model may have.
 pub const MAX_PARAMETERS: usize = 16;

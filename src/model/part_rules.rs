@@ -13,6 +13,8 @@
 //! ([`crate::problem::nlp`]) keeps each margin, divided by [`SCALE`], within its
 //! feasibility tolerance of 0, so that a design the study accepts passes the check.
 
+use std::borrow::Cow;
+
 /// The length (m) a rule's row in the study is divided by: the row is the margin in units
 /// of 0.1 mm, so that the study's feasibility tolerance (relative 1e-8) is 1e-9 mm.
 pub const SCALE: f64 = 1e-4;
@@ -24,8 +26,8 @@ pub const TOLERANCE: f64 = 1e-12;
 /// One rule: its name (what reports call it) and what it asks, in words.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PartRule {
-    pub name: &'static str,
-    pub description: &'static str,
+    pub name: Cow<'static, str>,
+    pub description: Cow<'static, str>,
 }
 
 /// Whether a margin (m) breaks its rule, by the part's checks.

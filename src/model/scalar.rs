@@ -170,6 +170,16 @@ pub fn max<D: Scalar>(a: D, b: D) -> D {
     }
 }
 
+/// The smaller of two scalars, carrying the derivatives of the one chosen.
+#[inline]
+pub fn min<D: Scalar>(a: D, b: D) -> D {
+    if a.re() <= b.re() {
+        a
+    } else {
+        b
+    }
+}
+
 /// A first-order forward-mode dual number: a value and its gradient with respect to `N`
 /// independent variables.
 #[derive(Debug, Clone, Copy, PartialEq)]

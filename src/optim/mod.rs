@@ -11,5 +11,6 @@ pub mod problem;
 pub mod progress;
 pub mod qp;
 pub mod sqp;
+pub mod staged;
 
 pub use problem::{Problem, Solution, Status};

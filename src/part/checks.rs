@@ -12,7 +12,7 @@
 //!
 //! Each problem names both parties and the distance found.
 
-use geo::{Area, BooleanOps, Distance, Euclidean, MultiPolygon, Polygon};
+use geo::{Distance, Euclidean, Intersects, Polygon};
 
 use super::outline::polygon_mm as polygon;
 
@@ -20,14 +20,25 @@ use super::{HingeSite, PartSpec, MM};
 
 /// The band beside `h` (metres, counterclockwise): its root half thickness and `slot` to
 /// each side of its centre line, kept `1e-9` m short of the faces at both ends, where the
-/// bodies begin.
-pub fn keep_out(h: &HingeSite, slot: f64) -> Vec<[f64; 2]> {
+/// bodies begin. Against the two bodies the hinge joins, which meet it there through their
+/// faces, the band is `shortened` at both ends by its half width: a body may fold back
+/// beside its own face as far as its corner, no farther (both ends at the middle where the
+/// hinge is too short for that).
+pub fn keep_out(h: &HingeSite, slot: f64, shortened: bool) -> Vec<[f64; 2]> {
     let len = (h.end[0] - h.start[0]).hypot(h.end[1] - h.start[1]);
     let u = [(h.end[0] - h.start[0]) / len, (h.end[1] - h.start[1]) / len];
     let n = [-u[1], u[0]];
     let w = 0.5 * h.root + slot;
     let inset = 1e-9;
-    let (a, b) = (-h.fillet + inset, len + h.fillet - inset);
+    let (mut a, mut b) = (-h.fillet + inset, len + (h.fillet - inset));
+    if shortened {
+        let mid = 0.5 * (a + b);
+        (a, b) = if a + w <= b - w {
+            (a + w, b - w)
+        } else {
+            (mid, mid)
+        };
+    }
     let at = |s: f64, t: f64| {
         [
             h.start[0] + s * u[0] + t * n[0],
@@ -49,15 +60,25 @@ pub fn before_union(spec: &PartSpec) -> Vec<String> {
     let name = |k: usize| spec.solids[k].name.as_str();
     // pairs already named, so that one collision gives one message
     let mut named = std::collections::BTreeSet::new();
+    let joined = |i: usize, j: usize| {
+        spec.joints
+            .iter()
+            .any(|&(a, b)| (a, b) == (i, j) || (a, b) == (j, i))
+    };
     for h in &spec.hinges {
         let slot = h.fillet.max(spec.min_slot);
-        let band = polygon(&keep_out(h, slot));
+        let band = polygon(&keep_out(h, slot, false));
+        let shortened = polygon(&keep_out(h, slot, true));
         for (k, s) in solids.iter().enumerate() {
             if k == h.solid {
                 continue;
             }
-            let overlap: MultiPolygon<f64> = band.intersection(s);
-            if overlap.unsigned_area() > 1e-12 {
+            let band = if joined(k, h.solid) {
+                &shortened
+            } else {
+                &band
+            };
+            if band.intersects(s) {
                 named.insert((k.min(h.solid), k.max(h.solid)));
                 let gap = Euclidean.distance(&solids[h.solid], s);
                 problems.push(format!(
@@ -71,11 +92,6 @@ pub fn before_union(spec: &PartSpec) -> Vec<String> {
             }
         }
     }
-    let joined = |i: usize, j: usize| {
-        spec.joints
-            .iter()
-            .any(|&(a, b)| (a, b) == (i, j) || (a, b) == (j, i))
-    };
     let slot = spec.min_slot * MM;
     for i in 0..solids.len() {
         for j in i + 1..solids.len() {
@@ -105,8 +121,7 @@ pub fn before_union(spec: &PartSpec) -> Vec<String> {
         let (hl, hh) = (0.5 * a.length - 1e-9, 0.5 * height);
         let body = polygon(&[[-hl, -hh], [hl, -hh], [hl, hh], [-hl, hh]]);
         for (k, s) in solids.iter().enumerate() {
-            let overlap: MultiPolygon<f64> = body.intersection(s);
-            if overlap.unsigned_area() > 1e-12 {
+            if body.intersects(s) {
                 problems.push(format!(
                     "the actuator ({} long, {} high) overlaps {}",
                     short_mm(a.length * MM),

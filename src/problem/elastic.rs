@@ -219,7 +219,8 @@ mod tests {
     #[test]
     fn gradients_match_differences() {
         let problem = DesignProblem::load("problems/wei2017.toml".as_ref()).unwrap();
-        let nlp = DesignNlp::new(&problem);
+        // without the part's clearances, whose kinks central differences may straddle
+        let nlp = DesignNlp::first_stage(&problem).unwrap();
         let k = problem.constraints.len();
         assert!(k >= 4, "{k}");
         let mut treatment = vec![Treatment::Elastic; k];

@@ -15,9 +15,9 @@
 //! of the box (`t_scaled = t / scale`), unbounded, and starts at the largest part of each
 //! start design, so every start is feasible for the new rows.
 
+use super::nlp::with_scratch;
 use super::nlp::DesignNlp;
 use super::{Problem as DesignProblem, Sense};
-use crate::model::MAX_WANTED;
 use crate::optim::Problem;
 
 /// The parts of the problem's objective when it is a maximum to be minimized (as stated:
@@ -103,16 +103,16 @@ impl Problem for Epigraph<'_, '_> {
 
     fn evaluate(&self, v: &[f64], c: &mut [f64]) -> f64 {
         let n = self.nlp.dimension();
-        let mut out = [0.0; MAX_WANTED];
-        let out = &mut out[..self.nlp.values()];
-        // one model evaluation: the design rows from it, then one row per part
-        self.nlp.outputs(&self.nlp.unscale(&v[..n]), out);
-        self.nlp.constraint_values(out, &mut c[..self.rows()]);
-        let t = v[n];
-        for (ci, &s) in c[self.rows()..].iter_mut().zip(&self.slots) {
-            *ci = t - out[s] / self.scale;
-        }
-        t * self.scale
+        with_scratch(self.nlp.values(), 0, |out, _| {
+            // one model evaluation: the design rows from it, then one row per part
+            self.nlp.outputs(&self.nlp.unscale(&v[..n]), out);
+            self.nlp.constraint_values(out, &mut c[..self.rows()]);
+            let t = v[n];
+            for (ci, &s) in c[self.rows()..].iter_mut().zip(&self.slots) {
+                *ci = t - out[s] / self.scale;
+            }
+            t * self.scale
+        })
     }
 
     fn evaluate_with_gradient(
@@ -125,33 +125,33 @@ impl Problem for Epigraph<'_, '_> {
         let n = self.nlp.dimension();
         let stride = n + 1;
         let np = self.nlp.parameter_count();
-        let mut out = [0.0; MAX_WANTED];
-        let out = &mut out[..self.nlp.values()];
-        let mut model_jac = vec![0.0; out.len() * np];
-        self.nlp
-            .outputs_with_gradient(&self.nlp.unscale(&v[..n]), out, &mut model_jac);
-        let m = self.rows();
-        let (design_rows, part_rows) = jacobian.split_at_mut(m * stride);
-        self.nlp
-            .rows_from(out, &model_jac, &mut c[..m], design_rows, stride);
-        for row in design_rows.chunks_exact_mut(stride) {
-            row[n] = 0.0;
-        }
-        let (free, range) = self.nlp.free_and_range();
-        let t = v[n];
-        for ((ci, row), &s) in c[m..]
-            .iter_mut()
-            .zip(part_rows.chunks_exact_mut(stride))
-            .zip(&self.slots)
-        {
-            *ci = t - out[s] / self.scale;
-            for ((o, &p), r) in row.iter_mut().zip(free).zip(range) {
-                *o = -model_jac[s * np + p] * r / self.scale;
+        let values = self.nlp.values();
+        with_scratch(values, values * np, |out, model_jac| {
+            self.nlp
+                .outputs_with_gradient(&self.nlp.unscale(&v[..n]), out, model_jac);
+            let m = self.rows();
+            let (design_rows, part_rows) = jacobian.split_at_mut(m * stride);
+            self.nlp
+                .rows_from(out, model_jac, &mut c[..m], design_rows, stride);
+            for row in design_rows.chunks_exact_mut(stride) {
+                row[n] = 0.0;
             }
-            row[n] = 1.0;
-        }
-        gradient[..n].fill(0.0);
-        gradient[n] = self.scale;
-        t * self.scale
+            let (free, range) = self.nlp.free_and_range();
+            let t = v[n];
+            for ((ci, row), &s) in c[m..]
+                .iter_mut()
+                .zip(part_rows.chunks_exact_mut(stride))
+                .zip(&self.slots)
+            {
+                *ci = t - out[s] / self.scale;
+                for ((o, &p), r) in row.iter_mut().zip(free).zip(range) {
+                    *o = -model_jac[s * np + p] * r / self.scale;
+                }
+                row[n] = 1.0;
+            }
+            gradient[..n].fill(0.0);
+            gradient[n] = self.scale;
+            t * self.scale
+        })
     }
 }

@@ -97,7 +97,22 @@ pub struct DesignNlp<'p> {
 }
 
 impl<'p> DesignNlp<'p> {
+    /// The study's problem: every constraint, range of fit and part rule it keeps to.
     pub fn new(problem: &'p DesignProblem) -> Self {
+        Self::with_rules(problem, usize::MAX)
+    }
+
+    /// The problem a start is solved in first where the part keeps some of its rules for
+    /// the end ([`crate::model::PartMaker::first_rules`]): [`DesignNlp::new`]'s but for
+    /// those. `None` where the part has no such rules.
+    pub fn first_stage(problem: &'p DesignProblem) -> Option<Self> {
+        let part = super::part_rules::enforced(problem)?;
+        (part.first_rules() < part.rules().len())
+            .then(|| Self::with_rules(problem, part.first_rules()))
+    }
+
+    /// The problem with the first `limit` of the part's rules (all, where fewer).
+    fn with_rules(problem: &'p DesignProblem, limit: usize) -> Self {
         let free: Vec<_> = problem.free_variables().collect();
         let model = problem.model();
         let mut rows = Vec::new();
@@ -157,7 +172,7 @@ impl<'p> DesignNlp<'p> {
             }
         }
         let part = super::part_rules::enforced(problem);
-        let rules = part.map_or(0, |p| p.rules().len());
+        let rules = part.map_or(0, |p| p.rules().len()).min(limit);
         for i in 0..rules {
             rows.push(Row {
                 constraint: problem.constraints.len() + fits.len() + i,
@@ -321,10 +336,10 @@ impl<'p> DesignNlp<'p> {
         if super::epigraph::parts(self.problem).is_none() {
             return self.stated_objective(solver_objective);
         }
-        let mut out = [0.0; MAX_WANTED];
-        let out = &mut out[..self.values()];
-        self.outputs(&self.unscale(u), out);
-        out[0]
+        with_scratch(self.values(), 0, |out, _| {
+            self.outputs(&self.unscale(u), out);
+            out[0]
+        })
     }
 
     /// The mirror image of a scaled design by the model's own map ([`Model::mirror`]), if
@@ -377,12 +392,12 @@ impl Problem for DesignNlp<'_> {
     fn evaluate(&self, u: &[f64], c: &mut [f64]) -> f64 {
         let mut buf = [0.0; MAX_PARAMETERS];
         let x = self.unscale_into(u, &mut buf);
-        let mut out = [0.0; MAX_WANTED];
-        let out = &mut out[..self.values()];
-        self.outputs(x, out);
-        self.constraint_values(out, c);
-        let o = &self.problem.objective;
-        merit(o.sense, o.absolute, out[0])
+        with_scratch(self.values(), 0, |out, _| {
+            self.outputs(x, out);
+            self.constraint_values(out, c);
+            let o = &self.problem.objective;
+            merit(o.sense, o.absolute, out[0])
+        })
     }
 
     fn evaluate_with_gradient(
@@ -396,35 +411,59 @@ impl Problem for DesignNlp<'_> {
         let np = self.base.len();
         let mut buf = [0.0; MAX_PARAMETERS];
         let x = self.unscale_into(u, &mut buf);
-        let mut out = [0.0; MAX_WANTED];
-        let out = &mut out[..self.values()];
-        // sized for the wei2017 problems (9 outputs and 11 part rules of 8 parameters): a
-        // heap buffer per evaluation showed in the solver's profile
-        let (mut small, mut large) = ([0.0; 256], Vec::new());
-        let model_jac = if out.len() * np <= small.len() {
-            &mut small[..out.len() * np]
-        } else {
-            large.resize(out.len() * np, 0.0);
-            &mut large[..]
-        };
-        self.outputs_with_gradient(x, out, model_jac);
-        let f = out[0];
-        let o = &self.problem.objective;
-        // d merit / d value: -1 or +1, times sign(value) for an absolute value
-        let mut df = if o.sense == Sense::Maximize {
-            -1.0
-        } else {
-            1.0
-        };
-        if o.absolute && f < 0.0 {
-            df = -df;
-        }
-        for ((gj, rj), &p) in gradient.iter_mut().zip(&self.range).zip(&self.free) {
-            *gj = model_jac[p] * (df * rj);
-        }
-        self.rows_from(out, model_jac, c, jacobian, n);
-        merit(o.sense, o.absolute, f)
+        with_scratch(self.values(), self.values() * np, |out, model_jac| {
+            self.outputs_with_gradient(x, out, model_jac);
+            let f = out[0];
+            let o = &self.problem.objective;
+            // d merit / d value: -1 or +1, times sign(value) for an absolute value
+            let mut df = if o.sense == Sense::Maximize {
+                -1.0
+            } else {
+                1.0
+            };
+            if o.absolute && f < 0.0 {
+                df = -df;
+            }
+            for ((gj, rj), &p) in gradient.iter_mut().zip(&self.range).zip(&self.free) {
+                *gj = model_jac[p] * (df * rj);
+            }
+            self.rows_from(out, model_jac, c, jacobian, n);
+            merit(o.sense, o.absolute, f)
+        })
     }
+}
+
+/// Runs `f` on zeroed scratch for one evaluation: `values` outputs and a Jacobian of
+/// `jacobian` entries. Kept per thread and grown to the largest asked for, as a study
+/// evaluates its problem tens of thousands of times: a stack buffer sized for the most
+/// rows a problem may have (the part's rules among them) cost more to zero than a small
+/// problem's evaluation, and a heap buffer per evaluation showed in the solver's profile.
+pub(crate) fn with_scratch<R>(
+    values: usize,
+    jacobian: usize,
+    f: impl FnOnce(&mut [f64], &mut [f64]) -> R,
+) -> R {
+    thread_local! {
+        static SCRATCH: std::cell::RefCell<Vec<f64>> = const { std::cell::RefCell::new(Vec::new()) };
+    }
+    let len = values + jacobian;
+    SCRATCH.with(|cell| match cell.try_borrow_mut() {
+        Ok(mut v) => {
+            if v.len() < len {
+                v.resize(len, 0.0);
+            }
+            let used = &mut v[..len];
+            used.fill(0.0);
+            let (out, jac) = used.split_at_mut(values);
+            f(out, jac)
+        }
+        // an evaluation within an evaluation: scratch of its own
+        Err(_) => {
+            let mut v = vec![0.0; len];
+            let (out, jac) = v.split_at_mut(values);
+            f(out, jac)
+        }
+    })
 }
 
 impl DesignNlp<'_> {

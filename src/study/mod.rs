@@ -12,7 +12,8 @@ use crate::optim::multistart::{self, Sampling as StartSampling};
 use crate::optim::nelder_mead::{self, NelderMeadSettings};
 use crate::optim::progress::Progress;
 use crate::optim::sqp::{self, SqpSettings};
-use crate::optim::{Problem as _, Solution, Status};
+use crate::optim::staged;
+use crate::optim::{Problem as OptimProblem, Solution, Status};
 use crate::problem::epigraph::Epigraph;
 use crate::problem::nlp::{feasible_end, DesignNlp, FEASIBILITY_TOLERANCE};
 use crate::problem::{Problem, Sampling, Sense, Solver};
@@ -192,6 +193,16 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
         .then(|| Progress::new("local solves", options.starts, &label));
     let progress = progress.as_ref();
     let begin = Instant::now();
+    // the part's rules it keeps for the end of each start, if any (crate::optim::staged)
+    let first = DesignNlp::first_stage(problem);
+    let staged =
+        |whole: &dyn OptimProblem,
+         first: Option<&dyn OptimProblem>,
+         x0: &[f64],
+         solve: &dyn Fn(&dyn OptimProblem, &[f64]) -> Solution| match first {
+            Some(first) => staged::solve(first, whole, x0, FEASIBILITY_TOLERANCE, solve),
+            None => solve(whole, x0),
+        };
     let solutions = match options.solver {
         Solver::Sqp => {
             let settings = SqpSettings {
@@ -199,15 +210,17 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
                 max_iterations,
                 ..SqpSettings::default()
             };
+            let sqp = |p: &dyn OptimProblem, x0: &[f64]| sqp::solve(p, x0, &settings);
             // a minimized maximum: its kinks removed by the epigraph form, whose extra
             // variable is dropped again below
             match Epigraph::new(&nlp) {
                 Some(ep) => {
+                    let ep_first = first.as_ref().and_then(Epigraph::new);
                     let starts: Vec<Vec<f64>> = starts.iter().map(|u| ep.start(u)).collect();
                     multistart::run_until(
                         &ep,
                         &starts,
-                        |p, x0| sqp::solve(p, x0, &settings),
+                        |p, x0| staged(p, ep_first.as_ref().map(|e| e as _), x0, &sqp),
                         options.threads,
                         progress,
                         &options.stop,
@@ -224,7 +237,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
                 None => multistart::run_until(
                     &nlp,
                     &starts,
-                    |p, x0| sqp::solve(p, x0, &settings),
+                    |p, x0| staged(p, first.as_ref().map(|f| f as _), x0, &sqp),
                     options.threads,
                     progress,
                     &options.stop,
@@ -237,10 +250,11 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
                 max_iterations: max_iterations.min(60),
                 ..NelderMeadSettings::default()
             };
+            let nm = |p: &dyn OptimProblem, x0: &[f64]| nelder_mead::solve(p, x0, &settings);
             multistart::run_until(
                 &nlp,
                 &starts,
-                |p, x0| nelder_mead::solve(p, x0, &settings),
+                |p, x0| staged(p, first.as_ref().map(|f| f as _), x0, &nm),
                 options.threads,
                 progress,
                 &options.stop,

@@ -348,10 +348,12 @@ fn the_ranges_reach_the_solver_as_rows_with_exact_gradients() {
             &bridge_problem(c.kind, &stiff_bounds(c.kind), &c.inside, ""),
         )
         .unwrap();
-        let nlp = DesignNlp::new(&p);
-        // no constraint in the file: every row is a bound of a range of hinge b's or d's,
-        // then the part's rules, whose rows' gradients are checked here too
-        let rules = p.mechanism().part_maker.as_ref().unwrap().rules().len();
+        // the study's first stage: no constraint in the file, so every row is a bound of a
+        // range of hinge b's or d's, then the part's size rules, whose rows' gradients are
+        // checked here too (the clearances, kept for each start's end, are checked with
+        // their kinks in tests/part_and_fe/part_rules.rs)
+        let nlp = DesignNlp::first_stage(&p).unwrap();
+        let rules = p.mechanism().part_maker.as_ref().unwrap().first_rules();
         assert_eq!(rules, 10, "{:?}", c.kind);
         let bounds: usize = c
             .kind

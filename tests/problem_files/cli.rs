@@ -95,6 +95,18 @@ fn sweep_writes_json_and_png_with_the_curve() {
     let expect = report.outputs["amplification"].unwrap();
     assert_eq!(values[28].as_f64(), Some(4.0));
     assert!((da[28].as_f64().unwrap() / expect - 1.0).abs() < 1e-14);
+    // each rule of the part beside the outputs, its margin (mm) at every point as eval gives
+    let rules = json["part_rules"].as_object().unwrap();
+    assert_eq!(rules.len(), report.part_rules.len());
+    for r in &report.part_rules {
+        let curve = rules[&r.rule].as_array().unwrap();
+        assert_eq!(curve.len(), 41);
+        assert!(
+            (curve[28].as_f64().unwrap() - r.margin_mm).abs() <= 1e-12,
+            "{}",
+            r.rule
+        );
+    }
     let png = std::fs::read(dir.join("delta3.png")).unwrap();
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
     assert!(!dir.join(".delta3.partial.png").exists());
@@ -388,6 +400,10 @@ value = 0.4
 [objective]
 maximize = "amplification"
 absolute = true
+
+# the part checked on the optimum only: the study's own rules would keep it from the sliver
+[part]
+enforce = false
 
 [search]
 starts = 4

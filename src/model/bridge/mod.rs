@@ -128,7 +128,7 @@ impl Bridge {
     /// parameters.
     fn rule_gradients<const N: usize>(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
         let mut y = [Jet::<N>::from(0.0); part::rules::MAX_RULES];
-        let y = &mut y[..self.rules.len()];
+        let y = &mut y[..out.len()];
         part::rules::margins(&self.settings.part, &self.layout, &self.layout.seeded(x), y);
         unseed(y, out, jacobian);
         // the values as `rule_margins` computes them, to the last digit: a dual number's
@@ -279,6 +279,10 @@ impl PartMaker for Bridge {
 
     fn enforces_rules(&self) -> bool {
         self.settings.part.enforce
+    }
+
+    fn first_rules(&self) -> usize {
+        part::rules::first_rules(&self.settings.part)
     }
 
     fn rule_margins(&self, x: &[f64], out: &mut [f64]) {

@@ -37,6 +37,7 @@
 
 use serde::Serialize;
 
+pub mod clearances;
 mod drawing;
 pub mod fe_cases;
 pub mod rules;
@@ -44,6 +45,7 @@ pub mod rules;
 use super::geometry::{Geometry, Layout};
 use super::BridgeSettings;
 use crate::model::part_rules::broken;
+use crate::model::scalar::{max, Scalar};
 use crate::part::{Actuation, Actuator, Face, HingeSite, PartSpec, Solid};
 use drawing::{annotations, deg, mm};
 
@@ -90,13 +92,13 @@ impl Default for PartSettings {
     }
 }
 
-type P = [f64; 2];
+type P<D = f64> = [D; 2];
 
-fn add(a: P, b: P) -> P {
+fn add<D: Scalar>(a: P<D>, b: P<D>) -> P<D> {
     [a[0] + b[0], a[1] + b[1]]
 }
 
-fn scale(a: P, k: f64) -> P {
+fn scale<D: Scalar>(a: P<D>, k: D) -> P<D> {
     [a[0] * k, a[1] * k]
 }
 
@@ -147,40 +149,42 @@ fn on_edges(mut polygon: Vec<P>, points: &[P]) -> Vec<P> {
 }
 
 /// The upper left quarter placed in the part: its nodes, the faces at the hinges' ends, the
-/// hinges' directions and normals, and the half widths of the faces.
-struct Quarter {
-    n: [P; 4],
+/// hinges' directions and normals, and the half widths of the faces. Over [`Scalar`], so
+/// that the part's rules ([`clearances`]) place the solids as [`spec`] does.
+struct Quarter<D = f64> {
+    n: [P<D>; 4],
     /// Centres of the faces: input block, link (b end), link (d end), output block.
-    f: [P; 4],
-    nb: P,
-    ud: P,
-    nd: P,
-    hb: f64,
-    hd: f64,
+    f: [P<D>; 4],
+    nb: P<D>,
+    ud: P<D>,
+    nd: P<D>,
+    hb: D,
+    hd: D,
 }
 
-impl Quarter {
+impl<D: Scalar> Quarter<D> {
     /// `tb`, `td`: the hinges' root thicknesses; `rb`, `rd`: their root fillets (a
     /// strip's; a notch meets its bodies smoothly and has none).
-    fn new(g: &Geometry<f64>, s: &PartSettings, [tb, td]: [f64; 2], [rb, rd]: [f64; 2]) -> Self {
+    fn new(g: &Geometry<D>, s: &PartSettings, [tb, td]: [D; 2], [rb, rd]: [f64; 2]) -> Self {
         let t = g.trig();
         let (ub, ud) = ([t.c[0], t.s[0]], [t.c[2], t.s[2]]);
         let (nb, nd) = ([-ub[1], ub[0]], [-ud[1], ud[0]]);
-        let hb = (0.5 * s.link_thickness).max(0.5 * tb + rb);
-        let hd = (0.5 * s.link_thickness).max(0.5 * td + rd);
+        let half = D::from(0.5 * s.link_thickness);
+        let hb = max(half, tb * 0.5 + rb);
+        let hd = max(half, td * 0.5 + rd);
         let nodes = g.nodes();
         // hinge d's face on the output block's side, hinge b's face centre `hb` below the
         // input block's top
         let offset = [
-            -0.5 * s.output_block_width - (nodes[3][0] + rd * ud[0]),
-            0.5 * s.input_block_height - hb + rb * ub[1],
+            D::from(-0.5 * s.output_block_width) - (nodes[3][0] + ud[0] * rd),
+            D::from(0.5 * s.input_block_height) - hb + ub[1] * rb,
         ];
         let n = nodes.map(|p| add(p, offset));
         let f = [
-            add(n[0], scale(ub, -rb)),
-            add(n[1], scale(ub, rb)),
-            add(n[2], scale(ud, -rd)),
-            add(n[3], scale(ud, rd)),
+            add(n[0], scale(ub, D::from(-rb))),
+            add(n[1], scale(ub, D::from(rb))),
+            add(n[2], scale(ud, D::from(-rd))),
+            add(n[3], scale(ud, D::from(rd))),
         ];
         Quarter {
             n,
@@ -195,14 +199,14 @@ impl Quarter {
 }
 
 /// The two ends of a face of half width `half` centred at `c`, across direction `dir`.
-fn across(c: P, dir: P, half: f64) -> [P; 2] {
+fn across<D: Scalar>(c: P<D>, dir: P<D>, half: D) -> [P<D>; 2] {
     [add(c, scale(dir, -half)), add(c, scale(dir, half))]
 }
 
 /// A rectangle from `a` to `b`, `half` to each side along `dir`, counterclockwise when
 /// `dir` is the left normal of `a -> b`.
-fn band(a: P, b: P, dir: P, half: f64) -> Vec<P> {
-    vec![
+fn band<D: Scalar>(a: P<D>, b: P<D>, dir: P<D>, half: D) -> [P<D>; 4] {
+    [
         add(a, scale(dir, -half)),
         add(b, scale(dir, -half)),
         add(b, scale(dir, half)),
@@ -234,8 +238,8 @@ pub fn spec(
 
     // each hinge's solid runs from face to face; its corners are vertices of the bodies'
     // faces too, the very same numbers, so that the union joins them exactly
-    let hinge_b = band(f2, f3, q.nb, 0.5 * tb);
-    let hinge_d = band(f4, f5, q.nd, 0.5 * td);
+    let hinge_b = band(f2, f3, q.nb, 0.5 * tb).to_vec();
+    let hinge_d = band(f4, f5, q.nd, 0.5 * td).to_vec();
     let [l3a, l3b] = across(f3, q.nb, q.hb);
     let [l4a, l4b] = across(f4, q.nd, q.hd);
     let link = on_edges(

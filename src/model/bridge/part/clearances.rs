@@ -1,0 +1,606 @@
+//! The bridge part's clearance rules ([`crate::model::part_rules`]): the checks a part's
+//! solids get once placed ([`crate::part::checks`]: keep-out bands beside the hinges,
+//! slots between solids not joined, the actuator's room) and the middle link's width
+//! ([`crate::part::widths`]), each the least of [`crate::model::clearance`]'s clearances
+//! over the pairs of solids it concerns, as functions of the design.
+//!
+//! The solids are placed as [`super::spec`] places them, over [`Scalar`]: the blocks, and
+//! each quarter's hinges b and d and middle link c, mirrored into the four quarters. Every
+//! one is convex but the input blocks, each cut into three convex pieces at the heights of
+//! the pushed face's ends (above it, beside it, below it). The part is symmetric about both
+//! axes, so each rule looks at one pair of every set of mirror images.
+//!
+//! - `hinge_b_keep_out`, `hinge_d_keep_out`: no solid reaches into the keep-out band beside
+//!   the upper left quarter's hinge (its root half thickness plus the narrowest slot or the
+//!   fillet, whichever is wider, to each side), the clearance of band and solid. The two
+//!   bodies the hinge joins meet the band at its ends, through their faces: against them the
+//!   band is shortened at both ends by its half width, so that a body may fold back only as
+//!   far as its own corner beside its face.
+//! - `slots`: solids not joined at least `part.min_slot` apart.
+//! - `link_width`: the middle link's two sides, from one face to the other, at least as far
+//!   apart as the thickest hinge it carries is thick, so that a disc that wide travels from
+//!   hinge to hinge inside it (the disc the width check rolls through every body).
+//! - `actuator_clear`: the actuator's body, where its length and height are given, clear of
+//!   every solid but the faces it pushes (whose room is the pocket's rule).
+//!
+//! A clearance more than [`CAP`] beyond its rule is not worked out: the rule reads
+//! [`CAP`] there, continuously, as no pair is nearer than that, and the study's search
+//! looks only at the pieces whose bounding circles come within it.
+
+use std::sync::OnceLock;
+
+use super::{across, band, rules::fillet, PartSettings, Quarter, P};
+use crate::model::bridge::{Geometry, Layout};
+use crate::model::clearance::{clearance_below, reach, Feature, Solid, ANY_ORDER, IN_ORDER};
+use crate::model::part_rules::PartRule;
+use crate::model::scalar::{max, min, Scalar};
+
+/// The margin (m) a clearance rule reads when every pair is farther than this beyond it.
+pub const CAP: f64 = 1e-3;
+
+/// How far the keep-out bands stop short of the faces at the hinge's ends (m), as the
+/// part's check has them ([`crate::part::checks::keep_out`]).
+pub const FACE_INSET: f64 = 1e-9;
+
+/// A pair of shapes a rule keeps apart, and by how much: the narrowest slot, or only not
+/// to overlap.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Term {
+    a: usize,
+    b: usize,
+    slot: bool,
+}
+
+/// One rule: the solids it concerns (`a` the actuator for its rules) and its terms, the
+/// least of whose margins it reads. Two solids not joined are kept a slot apart and out of
+/// each other's keep-out bands by one rule, not three: where they face each other along a
+/// hinge, the band's margin and the slot's are the same number, and two rules with the same
+/// value and gradient would leave the study's subproblems degenerate.
+#[derive(Debug, Clone, PartialEq)]
+struct Row {
+    a: usize,
+    b: usize,
+    terms: Vec<Term>,
+}
+
+/// The solids' names in rules: short, and as the part's messages call them.
+const SHORT: [&str; SOLIDS] = [
+    "input_left",
+    "input_right",
+    "output_upper",
+    "output_lower",
+    "b_ul",
+    "c_ul",
+    "d_ul",
+    "b_ur",
+    "c_ur",
+    "d_ur",
+    "b_ll",
+    "c_ll",
+    "d_ll",
+    "b_lr",
+    "c_lr",
+    "d_lr",
+];
+
+fn long(k: usize) -> String {
+    const BLOCKS: [&str; 4] = [
+        "the left input block",
+        "the right input block",
+        "the upper output block",
+        "the lower output block",
+    ];
+    const QUARTERS: [&str; 4] = ["upper left", "upper right", "lower left", "lower right"];
+    const PARTS: [&str; 3] = ["hinge b", "the middle link c", "hinge d"];
+    if k == INPUT_UPPER {
+        BLOCKS[0].to_string()
+    } else if k < 4 {
+        BLOCKS[k].to_string()
+    } else {
+        format!("{} ({})", PARTS[(k - 4) % 3], QUARTERS[(k - 4) / 3])
+    }
+}
+
+/// The mirror image that takes the quarter of solid `h` (a hinge or link) to the upper
+/// left one, applied to solid `k`.
+fn from_quarter_of(h: usize, k: usize) -> usize {
+    match (h - 4) / 3 {
+        0 => k,
+        1 => mirrored(k, true),
+        2 => mirrored(k, false),
+        _ => mirrored(mirrored(k, true), false),
+    }
+}
+
+/// The rules in their order: one for each set of mirror images of pairs of solids that
+/// are joined or that come near, then the actuator's where it has a body
+/// (`with_actuator`).
+fn rows(with_actuator: bool) -> &'static [Row] {
+    static ALL: OnceLock<Vec<Row>> = OnceLock::new();
+    let all = ALL.get_or_init(|| {
+        let mut all = Vec::new();
+        for &(i, j) in pair_orbits() {
+            let mut terms = Vec::new();
+            if !joined(i, j) {
+                terms.push(Term {
+                    a: i,
+                    b: j,
+                    slot: true,
+                });
+            }
+            // the keep-out band of each hinge of the pair, seen from the upper left quarter
+            for (h, k) in [(i, j), (j, i)] {
+                if h < 4 || (h - 4) % 3 == 1 {
+                    continue;
+                }
+                let band = match (from_quarter_of(h, h), joined(h, k)) {
+                    (4, false) => BAND_B,
+                    (4, true) => BAND_B_JOINED,
+                    (_, false) => BAND_D,
+                    (_, true) => BAND_D_JOINED,
+                };
+                terms.push(Term {
+                    a: band,
+                    b: from_quarter_of(h, k),
+                    slot: false,
+                });
+            }
+            if !terms.is_empty() {
+                all.push(Row { a: i, b: j, terms });
+            }
+        }
+        all.extend(ACTUATOR_PAIRS.iter().map(|&(a, b)| Row {
+            a,
+            b,
+            terms: vec![Term { a, b, slot: false }],
+        }));
+        all
+    });
+    if with_actuator {
+        all
+    } else {
+        &all[..all.len() - ACTUATOR_PAIRS.len()]
+    }
+}
+
+/// Whether a part with `s` has the actuator's rules: its length and height given.
+fn with_actuator(s: &PartSettings) -> bool {
+    s.actuator_length.is_some() && s.actuator_height.is_some()
+}
+
+/// The clearance rules of a part with `s`, in the order of [`margins`]: a rule for each
+/// of [`rows`], then the link's width.
+pub fn rules(s: &PartSettings) -> Vec<PartRule> {
+    let mut out: Vec<PartRule> = rows(with_actuator(s))
+        .iter()
+        .map(|r| {
+            let (name, description) = if r.a == ACTUATOR {
+                (
+                    format!("actuator/{}", short(r.b)),
+                    format!("the actuator clear of {}", long(r.b)),
+                )
+            } else if joined(r.a, r.b) {
+                (
+                    format!("behind_face/{}/{}", SHORT[r.a], SHORT[r.b]),
+                    format!(
+                        "{} and {} kept to their sides of the face that joins them",
+                        long(r.a),
+                        long(r.b)
+                    ),
+                )
+            } else {
+                (
+                    format!("clear/{}/{}", SHORT[r.a], SHORT[r.b]),
+                    format!(
+                        "{} and {} at least part.min_slot apart, and clear of each other's \
+                         hinges by part.min_slot or the fillet",
+                        long(r.a),
+                        long(r.b)
+                    ),
+                )
+            };
+            PartRule {
+                name: name.into(),
+                description: description.into(),
+            }
+        })
+        .collect();
+    out.push(PartRule {
+        name: "link_width".into(),
+        description: "the middle link as wide as the thickest hinge it carries".into(),
+    });
+    out
+}
+
+fn short(k: usize) -> &'static str {
+    if k == INPUT_UPPER {
+        "input_left"
+    } else {
+        SHORT[k]
+    }
+}
+
+/// The most rules [`rules`] gives: at most 40 sets of mirror images of the 120 pairs of
+/// solids, the actuator's 5 and the link's width.
+pub const MAX_RULES: usize = 40 + ACTUATOR_PAIRS.len() + 1;
+
+/// How many rules [`rules`] gives.
+pub fn count(s: &PartSettings) -> usize {
+    rows(with_actuator(s)).len() + 1
+}
+
+/// A convex piece of a solid: four corners.
+type Piece<D> = [P<D>; 4];
+
+/// The solids in [`super::spec`]'s order: the left and right input blocks, the upper and
+/// lower output blocks, then hinge b, link c and hinge d of the upper left, upper right,
+/// lower left and lower right quarters.
+const SOLIDS: usize = 16;
+/// The shapes the rules compare beyond the solids.
+const BAND_B: usize = 16;
+const BAND_B_JOINED: usize = 17;
+const BAND_D: usize = 18;
+const BAND_D_JOINED: usize = 19;
+const ACTUATOR: usize = 20;
+const INPUT_UPPER: usize = 21;
+
+/// Each shape's pieces: `(first, count)` in [`pieces`]'s array.
+const RANGES: [(usize, usize); 22] = [
+    (0, 3),
+    (3, 3),
+    (6, 1),
+    (7, 1),
+    (8, 1),
+    (9, 1),
+    (10, 1),
+    (11, 1),
+    (12, 1),
+    (13, 1),
+    (14, 1),
+    (15, 1),
+    (16, 1),
+    (17, 1),
+    (18, 1),
+    (19, 1),
+    (20, 1),
+    (21, 1),
+    (22, 1),
+    (23, 1),
+    (24, 1),
+    // the left input block's piece above the pushed face
+    (0, 1),
+];
+const PIECES: usize = 25;
+
+fn mirror_x<D: Scalar>(p: P<D>) -> P<D> {
+    [-p[0], p[1]]
+}
+
+fn mirror_y<D: Scalar>(p: P<D>) -> P<D> {
+    [p[0], -p[1]]
+}
+
+/// The keep-out band beside the hinge from `start` to `end` with root thickness `root` and
+/// fillet `r`: `slot` beyond its root half thickness to each side, from `from` to `to`
+/// along it (m, from `start`).
+fn keep_out<D: Scalar>(start: P<D>, end: P<D>, root: D, slot: f64, [from, to]: [D; 2]) -> Piece<D> {
+    let d = [end[0] - start[0], end[1] - start[1]];
+    let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    let u = [d[0] / len, d[1] / len];
+    let n = [-u[1], u[0]];
+    let w = root * 0.5 + slot;
+    let at = |s: D, t: D| {
+        [
+            start[0] + u[0] * s + n[0] * t,
+            start[1] + u[1] * s + n[1] * t,
+        ]
+    };
+    [at(from, -w), at(to, -w), at(to, w), at(from, w)]
+}
+
+/// The ends of a keep-out band along its hinge of length `len` with fillet `r`: the whole
+/// band's, and, shortened by its half width `w`, the one the joined bodies are held to
+/// (both ends at the middle where the hinge is too short for that).
+fn band_ends<D: Scalar>(len: D, r: f64, w: D) -> [[D; 2]; 2] {
+    let whole = [D::from(-r + FACE_INSET), len + (r - FACE_INSET)];
+    let mid = (whole[0] + whole[1]) * 0.5;
+    let from = whole[0] + w;
+    let to = whole[1] - w;
+    let joined = if from.re() <= to.re() {
+        [from, to]
+    } else {
+        [mid, mid]
+    };
+    [whole, joined]
+}
+
+/// Every piece of the part's solids and of the shapes the rules compare them with, at the
+/// design `g`, in [`RANGES`]' order.
+fn pieces<D: Scalar>(s: &PartSettings, layout: &Layout, g: &Geometry<D>) -> [Piece<D>; PIECES] {
+    let tb = layout.hinge_b.root_thickness(g.b.dims());
+    let td = layout.hinge_d.root_thickness(g.d.dims());
+    let (rb, rd) = (fillet(s, layout.hinge_b), fillet(s, layout.hinge_d));
+    let q = Quarter::new(g, s, [tb, td], [rb, rd]);
+    let [f2, f3, f4, f5] = q.f;
+    let hinge_b = band(f2, f3, q.nb, tb * 0.5);
+    let hinge_d = band(f4, f5, q.nd, td * 0.5);
+    let [l3a, l3b] = across(f3, q.nb, q.hb);
+    let [l4a, l4b] = across(f4, q.nd, q.hd);
+    let link = [l3a, l3b, l4a, l4b];
+    let [a, b] = across(f2, q.nb, q.hb);
+    let in_h = D::from(0.5 * s.input_block_height);
+    let in_far = f2[0] - s.input_block_width;
+    let upper = [[in_far, a[1]], a, b, [in_far, in_h]];
+    let middle = [[in_far, -a[1]], [a[0], -a[1]], a, [in_far, a[1]]];
+    let lower = upper.map(mirror_y);
+    let out_bottom = f5[1] - q.hd * q.nd[1];
+    let out_top = out_bottom + s.output_block_height;
+    let side = |y: D| f5[0] + (y - f5[1]) / q.nd[1] * q.nd[0];
+    let output = [
+        [side(out_bottom), out_bottom],
+        [-side(out_bottom), out_bottom],
+        [-side(out_top), out_top],
+        [side(out_top), out_top],
+    ];
+    let slot_b = rb.max(s.min_slot);
+    let slot_d = rd.max(s.min_slot);
+    let length = |p: P<D>, q: P<D>| {
+        let d = [q[0] - p[0], q[1] - p[1]];
+        (d[0] * d[0] + d[1] * d[1]).sqrt()
+    };
+    let [whole_b, joined_b] = band_ends(length(q.n[0], q.n[1]), rb, tb * 0.5 + slot_b);
+    let [whole_d, joined_d] = band_ends(length(q.n[2], q.n[3]), rd, td * 0.5 + slot_d);
+    let (hl, hh) = (
+        0.5 * s.actuator_length.unwrap_or(0.0) - FACE_INSET,
+        0.5 * s.actuator_height.unwrap_or(0.0),
+    );
+    let actuator = [[-hl, -hh], [hl, -hh], [hl, hh], [-hl, hh]].map(|p| p.map(D::from));
+    let zero = [D::from(0.0); 2];
+    let mut out = [[zero; 4]; PIECES];
+    out[..3].copy_from_slice(&[upper, middle, lower]);
+    for k in 0..3 {
+        out[3 + k] = out[k].map(mirror_x);
+    }
+    out[6] = output;
+    out[7] = output.map(mirror_y);
+    let quarter = [hinge_b, link, hinge_d];
+    for (k, m) in [(|p| p) as fn(P<D>) -> P<D>, mirror_x, mirror_y, |p| {
+        mirror_x(mirror_y(p))
+    }]
+    .into_iter()
+    .enumerate()
+    {
+        for (i, piece) in quarter.iter().enumerate() {
+            out[8 + 3 * k + i] = piece.map(m);
+        }
+    }
+    out[20] = keep_out(q.n[0], q.n[1], tb, slot_b, whole_b);
+    out[21] = keep_out(q.n[0], q.n[1], tb, slot_b, joined_b);
+    out[22] = keep_out(q.n[2], q.n[3], td, slot_d, whole_d);
+    out[23] = keep_out(q.n[2], q.n[3], td, slot_d, joined_d);
+    out[24] = actuator;
+    out
+}
+
+/// A solid's mirror image about the x axis (`mirror_x`: x negated) and the y axis.
+fn mirrored(i: usize, about_y_axis: bool) -> usize {
+    if i < 4 {
+        let swap = if about_y_axis {
+            [1, 0, 2, 3]
+        } else {
+            [0, 1, 3, 2]
+        };
+        return swap[i];
+    }
+    let (k, m) = ((i - 4) / 3, (i - 4) % 3);
+    let swap = if about_y_axis {
+        [1, 0, 3, 2]
+    } else {
+        [2, 3, 0, 1]
+    };
+    4 + 3 * swap[k] + m
+}
+
+/// Whether two solids are joined (a hinge and the body it ends in), as the part joins them.
+fn joined(i: usize, j: usize) -> bool {
+    (0..4).any(|k| {
+        let first = 4 + 3 * k;
+        let (input, output) = (k % 2, 2 + k / 2);
+        [
+            (first, input),
+            (first, first + 1),
+            (first + 1, first + 2),
+            (first + 2, output),
+        ]
+        .iter()
+        .any(|&(a, b)| (a, b) == (i, j) || (a, b) == (j, i))
+    })
+}
+
+/// One pair of every set of mirror images of the pairs of solids.
+fn pair_orbits() -> &'static [(usize, usize)] {
+    static PAIRS: OnceLock<Vec<(usize, usize)>> = OnceLock::new();
+    PAIRS.get_or_init(|| {
+        let mut pairs = Vec::new();
+        for i in 0..SOLIDS {
+            for j in i + 1..SOLIDS {
+                let images = [
+                    (i, j),
+                    (mirrored(i, true), mirrored(j, true)),
+                    (mirrored(i, false), mirrored(j, false)),
+                    (
+                        mirrored(mirrored(i, true), false),
+                        mirrored(mirrored(j, true), false),
+                    ),
+                ];
+                let first = images.iter().map(|&(a, b)| (a.min(b), a.max(b))).min();
+                if first == Some((i, j)) {
+                    pairs.push((i, j));
+                }
+            }
+        }
+        pairs
+    })
+}
+
+/// The actuator against the upper left quarter's solids, the upper output block and the
+/// left input block's piece above the face it pushes: by symmetry, every other.
+const ACTUATOR_PAIRS: [(usize, usize); 5] = [
+    (ACTUATOR, INPUT_UPPER),
+    (ACTUATOR, 2),
+    (ACTUATOR, 4),
+    (ACTUATOR, 5),
+    (ACTUATOR, 6),
+];
+
+/// A piece's bounding circle: the mean of its corners and the farthest corner's distance.
+fn circle(p: &Piece<f64>) -> (P, f64) {
+    let c = [
+        0.25 * (p[0][0] + p[1][0] + p[2][0] + p[3][0]),
+        0.25 * (p[0][1] + p[1][1] + p[2][1] + p[3][1]),
+    ];
+    let r2 = p
+        .iter()
+        .map(|q| (q[0] - c[0]).powi(2) + (q[1] - c[1]).powi(2))
+        .fold(0.0, f64::max);
+    (c, r2.sqrt())
+}
+
+/// The piece of the middle link of the upper left quarter: its corners, two on each face,
+/// are not in order around it where the link folds.
+const LINK: usize = 9;
+
+/// The clearance of `pair`'s shapes (the least over their pieces) less the slot it
+/// asks, or [`CAP`] where that is more: found on the real parts, then the nearest pieces
+/// over `D`.
+fn margin<D: Scalar>(
+    exact: &[Piece<D>; PIECES],
+    real: &[Piece<f64>; PIECES],
+    circles: &[(P, f64); PIECES],
+    pair: Term,
+    slot: f64,
+) -> D {
+    let need = if pair.slot { slot } else { 0.0 };
+    let solid = |k: usize| Solid {
+        corners: &real[k],
+        sides: if k == LINK { &ANY_ORDER } else { &IN_ORDER },
+    };
+    let mut best: Option<(usize, usize, Feature)> = None;
+    let mut least = CAP;
+    let (ra, rb) = (RANGES[pair.a], RANGES[pair.b]);
+    for pa in ra.0..ra.0 + ra.1 {
+        for pb in rb.0..rb.0 + rb.1 {
+            // the bounding circles' gap, a lower bound of the clearance
+            let ((ca, sa), (cb, sb)) = (circles[pa], circles[pb]);
+            let reach = least + need + sa + sb;
+            if (ca[0] - cb[0]).powi(2) + (ca[1] - cb[1]).powi(2) >= reach * reach {
+                continue;
+            }
+            if let Some((c, f)) = clearance_below(solid(pa), solid(pb), least + need) {
+                if c - need < least {
+                    least = c - need;
+                    best = Some((pa, pb, f));
+                }
+            }
+        }
+    }
+    match best {
+        Some((pa, pb, f)) => f.value(&exact[pa], &exact[pb]) - need,
+        None => D::from(CAP),
+    }
+}
+
+/// Each clearance rule's margin (m) at the design `g`, in the order of [`rules`], into
+/// `out` ([`count`] of them).
+pub fn margins<D: Scalar>(s: &PartSettings, layout: &Layout, g: &Geometry<D>, out: &mut [D]) {
+    let exact = pieces(s, layout, g);
+    let real = exact.map(|p| p.map(|q| q.map(|v| v.re())));
+    let circles = real.each_ref().map(circle);
+    let rows = rows(with_actuator(s));
+    for (o, row) in out.iter_mut().zip(rows) {
+        *o = row
+            .terms
+            .iter()
+            .map(|&t| margin(&exact, &real, &circles, t, s.min_slot))
+            .reduce(min)
+            .expect("a rule has a term");
+    }
+    out[rows.len()] = link_width(s, layout, g, &exact[LINK], &real[LINK]);
+}
+
+/// The middle link's width rule: a disc as wide as the thickest hinge the link carries
+/// travels inside it from hinge to hinge, meeting, at each, the round of the hinge's root
+/// width and fillets about the middle of its end (the face's centre), as the width check
+/// has it; the lesser of the two ends' [`reach`] margins.
+fn link_width<D: Scalar>(
+    s: &PartSettings,
+    layout: &Layout,
+    g: &Geometry<D>,
+    link: &Piece<D>,
+    real: &Piece<f64>,
+) -> D {
+    let thickest = max(
+        layout.hinge_b.least_thickness(g.b.dims()),
+        layout.hinge_d.least_thickness(g.d.dims()),
+    );
+    let radius = thickest * 0.5;
+    // the faces' centres: the middles of the link's two ends
+    let centre = |a: P<D>, b: P<D>| [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5];
+    let ends = [
+        (
+            centre(link[0], link[1]),
+            layout.hinge_b.root_thickness(g.b.dims()),
+            fillet(s, layout.hinge_b),
+        ),
+        (
+            centre(link[2], link[3]),
+            layout.hinge_d.root_thickness(g.d.dims()),
+            fillet(s, layout.hinge_d),
+        ),
+    ];
+    let margins = ends.map(|(target, root, r)| {
+        let allowance = radius + root * 0.5 + r;
+        let (_, at) = reach(real, radius.re(), target.map(|v| v.re()), allowance.re());
+        at.value(link, radius, target, allowance)
+    });
+    min(margins[0], margins[1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mirror_images_of_every_pair_are_looked_at_once() {
+        // 16 solids, 120 pairs: every pair is a mirror image of exactly one pair looked at
+        let pairs = pair_orbits();
+        let mut covered = std::collections::BTreeSet::new();
+        for &(i, j) in pairs {
+            for (a, b) in [
+                (i, j),
+                (mirrored(i, true), mirrored(j, true)),
+                (mirrored(i, false), mirrored(j, false)),
+                (
+                    mirrored(mirrored(i, true), false),
+                    mirrored(mirrored(j, true), false),
+                ),
+            ] {
+                covered.insert((a.min(b), a.max(b)));
+            }
+        }
+        assert_eq!(covered.len(), 120);
+        let joined_pairs = (0..SOLIDS)
+            .flat_map(|i| (i + 1..SOLIDS).map(move |j| (i, j)))
+            .filter(|&(i, j)| joined(i, j))
+            .count();
+        assert_eq!(joined_pairs, 16);
+        assert!(rows(true).len() < MAX_RULES, "{}", rows(true).len());
+        // every hinge's band is looked at against every other solid, once
+        let bands = rows(true)
+            .iter()
+            .flat_map(|r| &r.terms)
+            .filter(|t| t.a >= BAND_B && t.a <= BAND_D_JOINED)
+            .count();
+        assert!(bands >= 15, "{bands}");
+    }
+}
