@@ -30,6 +30,7 @@ use super::hinge::HingeKind;
 use super::material::Material;
 use super::part_rules::PartRule;
 use super::scalar::Jet;
+use super::mechanism::ModulusScaling;
 use super::{unseed, Depiction, Drawing, Model, OutputInfo, ParameterInfo, PartMaker, Skeleton};
 use dynamics::DynamicsSettings;
 
@@ -122,6 +123,22 @@ impl Bridge {
         };
         self.evaluate(&self.layout.seeded::<N>(x), wanted, y);
         unseed(y, out, jacobian);
+    }
+
+    /// Values and gradients of the outputs `wanted` at `x` and the moduli `modulus` times
+    /// the nominal ones, with `N` = the number of parameters plus one, the modulus last.
+    fn scaled_gradients<const N: usize>(
+        &self,
+        x: &[f64],
+        modulus: f64,
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        let mut y = vec![Jet::<N>::from(0.0); wanted.len()];
+        let m = Jet::variable(modulus, N - 1);
+        self.evaluate_with_modulus(&self.layout.seeded::<N>(x), Some(m), wanted, &mut y);
+        unseed(&y, out, jacobian);
     }
 
     /// Values and gradients of the part's rules at `x`, with `N` = the number of
@@ -221,6 +238,28 @@ impl Model for Bridge {
 
     fn fit_limits(&self) -> &[super::fit::FitLimit] {
         self.layout.fit_limits()
+    }
+}
+
+impl ModulusScaling for Bridge {
+    fn evaluate_scaled(&self, x: &[f64], modulus: f64, wanted: &[usize], out: &mut [f64]) {
+        self.evaluate_with_modulus(&self.layout.geometry(x), Some(modulus), wanted, out);
+    }
+
+    fn evaluate_scaled_with_gradient(
+        &self,
+        x: &[f64],
+        modulus: f64,
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        match x.len() {
+            8 => self.scaled_gradients::<9>(x, modulus, wanted, out, jacobian),
+            9 => self.scaled_gradients::<10>(x, modulus, wanted, out, jacobian),
+            10 => self.scaled_gradients::<11>(x, modulus, wanted, out, jacobian),
+            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
+        }
     }
 }
 
