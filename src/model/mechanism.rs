@@ -103,6 +103,18 @@ pub trait ModulusScaling: Send + Sync + std::fmt::Debug {
         out: &mut [f64],
         jacobian: &mut [f64],
     );
+
+    /// As [`ModulusScaling::evaluate_scaled_with_gradient`] at the nominal moduli, and each
+    /// output's Hessian over the same inputs into `hessian` (`m` blocks of `(n + 1)^2`,
+    /// row-major): the gradient of an output's first-order spread needs them.
+    fn evaluate_with_hessian(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    );
 }
 
 #[derive(Debug, Clone)]

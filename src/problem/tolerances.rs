@@ -260,17 +260,20 @@ pub fn normal_cdf(x: f64) -> f64 {
     0.5 * libm::erfc(-x / std::f64::consts::SQRT_2)
 }
 
-/// The standard normal quantile of `p` (0 < p < 1): Newton's method on [`normal_cdf`] from
-/// a logistic first guess, to rounding.
+/// The standard normal quantile of `p` (0 < p < 1): bisection of [`normal_cdf`], which
+/// is monotone, down to adjacent floating-point numbers.
 pub fn normal_quantile(p: f64) -> f64 {
-    let mut x = (p / (1.0 - p)).ln() / 1.702;
-    for _ in 0..100 {
-        let density = (-0.5 * x * x).exp() / (2.0 * std::f64::consts::PI).sqrt();
-        let step = (normal_cdf(x) - p) / density;
-        x -= step;
-        if step.abs() <= 1e-15 * x.abs().max(1.0) {
+    let (mut lo, mut hi) = (-40.0, 40.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
             break;
         }
+        if normal_cdf(mid) < p {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
     }
-    x
+    0.5 * (lo + hi)
 }

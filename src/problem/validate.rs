@@ -137,6 +137,22 @@ impl Validator<'_, '_> {
         let search = self.search(&raw.search, limits(&constraints))?;
         let tolerances =
             super::tolerances::tolerances(self, &mechanism, &variables, &raw.tolerances)?;
+        if search.robust.is_some() {
+            let path = [k("search"), k("robust")];
+            if mechanism.modulus.is_none() {
+                return Err(self.err(
+                    &path,
+                    format!(
+                        "the {} model gives no second derivatives under tolerances: a robust \
+                         study needs them",
+                        entry.name
+                    ),
+                ));
+            }
+            if tolerances.is_empty() {
+                return Err(self.err(&path, "a robust study needs a [tolerances] section"));
+            }
+        }
         Ok(Problem {
             file: self.loc.file().to_path_buf(),
             name,

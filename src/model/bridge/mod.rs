@@ -141,6 +141,38 @@ impl Bridge {
         unseed(&y, out, jacobian);
     }
 
+    /// Values, gradients and Hessians of the outputs `wanted` at `x` and the nominal moduli,
+    /// with `N` = the number of parameters plus one, the modulus last: num-dual's
+    /// second-order numbers through the same generic code.
+    fn hessians<const N: usize>(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    ) {
+        use nalgebra::{Const, U1};
+        use num_dual::Dual2SVec64;
+        let seeded: Vec<Dual2SVec64<N>> = (0..N)
+            .map(|i| Dual2SVec64::from_re(if i + 1 < N { x[i] } else { 1.0 }).derivative(i))
+            .collect();
+        let mut y = vec![Dual2SVec64::<N>::from(0.0); wanted.len()];
+        let modulus = seeded[N - 1];
+        self.evaluate_with_modulus(&self.layout.geometry(&seeded[..N - 1]), Some(modulus), wanted, &mut y);
+        for (i, yi) in y.into_iter().enumerate() {
+            out[i] = yi.re;
+            let g = yi.v1.unwrap_generic(U1, Const::<N>);
+            let h = yi.v2.unwrap_generic(Const::<N>, Const::<N>);
+            for j in 0..N {
+                jacobian[i * N + j] = g[j];
+                for l in 0..N {
+                    hessian[(i * N + j) * N + l] = h[(j, l)];
+                }
+            }
+        }
+    }
+
     /// Values and gradients of the part's rules at `x`, with `N` = the number of
     /// parameters.
     fn rule_gradients<const N: usize>(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
@@ -258,6 +290,22 @@ impl ModulusScaling for Bridge {
             8 => self.scaled_gradients::<9>(x, modulus, wanted, out, jacobian),
             9 => self.scaled_gradients::<10>(x, modulus, wanted, out, jacobian),
             10 => self.scaled_gradients::<11>(x, modulus, wanted, out, jacobian),
+            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
+        }
+    }
+
+    fn evaluate_with_hessian(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    ) {
+        match x.len() {
+            8 => self.hessians::<9>(x, wanted, out, jacobian, hessian),
+            9 => self.hessians::<10>(x, wanted, out, jacobian, hessian),
+            10 => self.hessians::<11>(x, wanted, out, jacobian, hessian),
             n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
         }
     }
