@@ -5,7 +5,10 @@ use std::path::Path;
 
 use crate::failure::{emit, Failure};
 use flexopt::problem::Problem;
-use flexopt::report::tolerance::{write_tolerance_set, ToleranceReport, ToleranceTable};
+use flexopt::report::tolerance::{
+    write_robust, write_tolerance_set, RobustTable, ToleranceReport, ToleranceTable,
+};
+use flexopt::study::{Study, StudyOptions};
 use flexopt::tolerance::{analyze, monte_carlo::Settings};
 
 /// The most samples a run may ask for: ten million rows of outputs are a few hundred MB.
@@ -48,4 +51,36 @@ pub fn run(problem: &Problem, x: &[f64], settings: Settings, dir: &Path) -> Resu
         write_tolerance_set(dir, &report, &analysis, problem).map_err(Failure::write_failed)?;
     emit(&ToleranceTable(&report))?;
     emit(&flexopt::report::summary::Wrote(&files))
+}
+
+/// The samples of the yields a robust run reports: 100,000 give a yield of 0.99 to about
+/// +-0.0006 (95 %), in a fraction of a second on wei2017.
+pub const ROBUST_SAMPLES: usize = 100_000;
+
+/// A robust run's optimum beside the nominal study's: shown, and written as `robust.json`.
+pub fn compare_robust(
+    problem: &Problem,
+    options: &StudyOptions,
+    study: &Study,
+    dir: &Path,
+) -> Result<(), Failure> {
+    if options.progress {
+        eprintln!("running the nominal study and the Monte Carlo yields beside the robust one...");
+    }
+    let settings = Settings {
+        samples: ROBUST_SAMPLES,
+        seed: options.seed,
+        threads: options.threads,
+    };
+    let comparison = flexopt::tolerance::robust::compare(
+        problem,
+        options,
+        study.reported_design(),
+        study.reported_objective(),
+        settings,
+    )
+    .map_err(|e| Failure::bad_input(format!("{}: key `tolerances`: {e}", problem.file.display())))?;
+    emit(&RobustTable(&comparison, problem))?;
+    let files = write_robust(dir, &comparison).map_err(Failure::write_failed)?;
+    emit(&flexopt::report::summary::Wrote(&files[..1]))
 }

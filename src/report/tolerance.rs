@@ -16,6 +16,7 @@ use crate::problem::display::{human, output_unit, significant};
 use crate::problem::tolerances::{Distribution, Input, Origin, Tolerance};
 use crate::problem::Problem;
 use crate::tolerance::monte_carlo::{Spread, CONFIDENCE};
+use crate::tolerance::robust::{Comparison, Side};
 use crate::tolerance::{normal_within, Analysis};
 
 /// One tolerance as the report shows it.
@@ -344,5 +345,59 @@ impl Display for ToleranceTable<'_> {
             pc(r.yield_interval[0]),
             pc(r.yield_interval[1]),
         )
+    }
+}
+
+/// Writes `robust.json` into `dir`, added to the run's set; returns its path.
+pub fn write_robust(dir: &Path, comparison: &Comparison) -> Result<Vec<PathBuf>, WriteError> {
+    let set = OutputSet::begin(dir)?;
+    set.write(|set| write_json(&set.path("robust.json"), comparison))?;
+    set.commit_added(&["robust.json"])
+}
+
+/// The nominal and the robust optimum side by side.
+pub struct RobustTable<'a>(pub &'a Comparison, pub &'a Problem);
+
+impl Display for RobustTable<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (c, p) = (self.0, self.1);
+        let target = c
+            .target_yield
+            .map_or(String::new(), |y| format!(" for a yield of {}", pc(y)));
+        writeln!(
+            s,
+            "robust study: every constraint kept {} first-order standard deviations inside \
+             its limits{target}; yields by {} Monte Carlo samples",
+            significant(c.k_sigma, 4),
+            c.samples
+        )?;
+        let sides = [("nominal", c.nominal.as_ref()), ("robust", Some(&c.robust))];
+        writeln!(s, "  {:<22} {:>16} {:>16}", "", "nominal", "robust")?;
+        let cell = |f: &dyn Fn(&Side) -> String, side: Option<&Side>| side.map_or("-".into(), f);
+        writeln!(
+            s,
+            "  {:<22} {:>16} {:>16}",
+            p.objective.output,
+            cell(&|x| human(x.objective), sides[0].1),
+            cell(&|x| human(x.objective), sides[1].1)
+        )?;
+        writeln!(
+            s,
+            "  {:<22} {:>16} {:>16}",
+            "yield (Monte Carlo)",
+            cell(&|x| pc(x.yield_fraction), sides[0].1),
+            cell(&|x| pc(x.yield_fraction), sides[1].1)
+        )?;
+        for k in c.robust.margins_in_sigma.keys() {
+            let m = |x: &Side| format!("{} sigma", significant(x.margins_in_sigma[k], 3));
+            writeln!(
+                s,
+                "  {:<22} {:>16} {:>16}",
+                format!("margin of {k}"),
+                cell(&m, sides[0].1),
+                cell(&m, sides[1].1)
+            )?;
+        }
+        Ok(())
     }
 }

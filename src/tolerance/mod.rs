@@ -10,6 +10,7 @@
 //! inputs' bands, is the worst case of the linearized output.
 
 pub mod monte_carlo;
+pub mod robust;
 
 use serde::Serialize;
 
