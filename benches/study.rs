@@ -239,7 +239,12 @@ fn tolerance_ratios() {
             black_box(study::run(&robust, &options));
         }));
         seconds[2].push(time(&|| {
-            black_box(analyze(&nominal, &x, settings).unwrap().monte_carlo.yield_fraction);
+            black_box(
+                analyze(&nominal, &x, settings)
+                    .unwrap()
+                    .monte_carlo
+                    .yield_fraction,
+            );
         }));
     }
     let median = |v: &[f64]| {

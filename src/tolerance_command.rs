@@ -41,10 +41,7 @@ pub fn settings(
 
 pub fn run(problem: &Problem, x: &[f64], settings: Settings, dir: &Path) -> Result<(), Failure> {
     let analysis = analyze(problem, x, settings).map_err(|e| {
-        Failure::bad_input(format!(
-            "{}: key `tolerances`: {e}",
-            problem.file.display()
-        ))
+        Failure::bad_input(format!("{}: key `tolerances`: {e}", problem.file.display()))
     })?;
     let report = ToleranceReport::new(problem, x, &analysis);
     let files =
@@ -79,7 +76,9 @@ pub fn compare_robust(
         study.reported_objective(),
         settings,
     )
-    .map_err(|e| Failure::bad_input(format!("{}: key `tolerances`: {e}", problem.file.display())))?;
+    .map_err(|e| {
+        Failure::bad_input(format!("{}: key `tolerances`: {e}", problem.file.display()))
+    })?;
     emit(&RobustTable(&comparison, problem))?;
     let files = write_robust(dir, &comparison).map_err(Failure::write_failed)?;
     emit(&flexopt::report::summary::Wrote(&files[..1]))

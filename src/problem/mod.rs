@@ -16,8 +16,8 @@ pub mod optimum_file;
 pub mod part_rules;
 pub mod refine;
 pub mod schema;
-pub mod tolerances;
 mod strength;
+pub mod tolerances;
 mod validate;
 
 // the vocabulary of the file, kept reachable where it was read before it moved below the

@@ -30,9 +30,9 @@
 //! the values the rows read.
 //! Gradients are the model's exact ones, through the chain rule of the scaling.
 
+use super::tolerances::Input;
 use super::{Problem as DesignProblem, Sense};
 use crate::model::fit::FitLimit;
-use super::tolerances::Input;
 use crate::model::mechanism::{ModulusScaling, PartMaker};
 use crate::model::scalar::Jet;
 use crate::model::{Model, MAX_PARAMETERS, MAX_WANTED};
@@ -196,7 +196,10 @@ impl<'p> DesignNlp<'p> {
         let spreads = spreads(problem);
         if spreads.is_some() {
             let first = wanted.len() + fits.len() + rules;
-            for r in rows.iter_mut().filter(|r| r.constraint < problem.constraints.len()) {
+            for r in rows
+                .iter_mut()
+                .filter(|r| r.constraint < problem.constraints.len())
+            {
                 r.spread = Some(first + r.value);
             }
         }

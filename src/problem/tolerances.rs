@@ -225,14 +225,24 @@ pub(crate) fn tolerances(
                 _ => continue,
             };
             if !raw.contains_key(&v.name) {
-                out.push(default(v.name.clone(), Input::Parameter(v.parameter), band, {
-                    v.unit.from_si(band)
-                }, &v.unit.name));
+                out.push(default(
+                    v.name.clone(),
+                    Input::Parameter(v.parameter),
+                    band,
+                    v.unit.from_si(band),
+                    &v.unit.name,
+                ));
             }
         }
         if has_modulus && !raw.contains_key(YOUNGS_MODULUS) {
             let band = DEFAULTS.youngs_modulus;
-            out.push(default(YOUNGS_MODULUS.into(), Input::Modulus, band, band, "1"));
+            out.push(default(
+                YOUNGS_MODULUS.into(),
+                Input::Modulus,
+                band,
+                band,
+                "1",
+            ));
         }
     }
     // in the model's order of inputs, the modulus last, whatever the file's order

@@ -200,7 +200,12 @@ pub fn write_tolerance_set(
                 .step_by(m)
                 .map(|&v| unit.from_si(v))
                 .collect();
-            histogram(&set.path(name), &report.problem, &report.outputs[j], &values)?;
+            histogram(
+                &set.path(name),
+                &report.problem,
+                &report.outputs[j],
+                &values,
+            )?;
         }
         Ok(())
     })?;
@@ -262,7 +267,10 @@ fn histogram(png: &Path, problem: &str, o: &OutputLine, values: &[f64]) -> Resul
             .draw()?;
         chart.draw_series(counts.iter().enumerate().map(|(b, &c)| {
             let left = lo + width * b as f64;
-            Rectangle::new([(left, 0.0), (left + width, c as f64)], BLUE.mix(0.5).filled())
+            Rectangle::new(
+                [(left, 0.0), (left + width, c as f64)],
+                BLUE.mix(0.5).filled(),
+            )
         }))?;
         for &l in &near {
             chart.draw_series(DashedLineSeries::new(

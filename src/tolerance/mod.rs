@@ -35,10 +35,7 @@ impl<'a> Outputs<'a> {
                 wanted.push(c.index);
             }
         }
-        let modulus = problem
-            .tolerances
-            .iter()
-            .any(|t| t.input == Input::Modulus);
+        let modulus = problem.tolerances.iter().any(|t| t.input == Input::Modulus);
         Outputs {
             problem,
             wanted,

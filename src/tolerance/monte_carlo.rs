@@ -135,7 +135,13 @@ fn summarize(outputs: &Outputs, values: Vec<f64>, settings: Settings) -> MonteCa
     let constraints = &outputs.problem.constraints;
     let columns: Vec<usize> = constraints
         .iter()
-        .map(|c| outputs.wanted.iter().position(|&w| w == c.index).unwrap_or(0))
+        .map(|c| {
+            outputs
+                .wanted
+                .iter()
+                .position(|&w| w == c.index)
+                .unwrap_or(0)
+        })
         .collect();
     let meets = |row: &[f64], k: usize| {
         let (c, y) = (&constraints[k], row[columns[k]]);
@@ -158,7 +164,8 @@ fn summarize(outputs: &Outputs, values: Vec<f64>, settings: Settings) -> MonteCa
         .map(|j| {
             let mut column: Vec<f64> = values.iter().skip(j).step_by(m).copied().collect();
             let mean = column.iter().sum::<f64>() / n as f64;
-            let var = column.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1).max(1) as f64;
+            let var =
+                column.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1).max(1) as f64;
             column.sort_by(f64::total_cmp);
             Spread {
                 mean,

@@ -82,8 +82,16 @@ fn side(problem: &Problem, x: &[f64], objective: f64, settings: Settings) -> Res
         .constraints
         .iter()
         .map(|c| {
-            let j = a.outputs.wanted.iter().position(|&w| w == c.index).unwrap_or(0);
-            (c.output.clone(), margin_in_sigma(&a.first_order[j], c.lower, c.upper))
+            let j = a
+                .outputs
+                .wanted
+                .iter()
+                .position(|&w| w == c.index)
+                .unwrap_or(0);
+            (
+                c.output.clone(),
+                margin_in_sigma(&a.first_order[j], c.lower, c.upper),
+            )
         })
         .collect();
     Ok(Side {

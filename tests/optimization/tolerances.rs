@@ -35,7 +35,7 @@ fn settings(samples: usize, threads: usize) -> Settings {
     }
 }
 
-fn output<'a>(a: &'a Analysis, p: &Problem, name: &str) -> usize {
+fn output(a: &Analysis, p: &Problem, name: &str) -> usize {
     let index = p.model().output_index(name).unwrap();
     a.outputs.wanted.iter().position(|&w| w == index).unwrap()
 }
@@ -45,7 +45,10 @@ fn output<'a>(a: &'a Analysis, p: &Problem, name: &str) -> usize {
 /// error (the standard error of a sample standard deviation is `sigma / sqrt(2 N)`).
 #[test]
 fn first_order_spread_of_a_linear_output_matches_monte_carlo() {
-    let p = wei2017_with("", "[tolerances]\nl3 = { plus_minus = 0.02, distribution = \"uniform\" }");
+    let p = wei2017_with(
+        "",
+        "[tolerances]\nl3 = { plus_minus = 0.02, distribution = \"uniform\" }",
+    );
     let x = wei2017_optimum(&p);
     let n = 200_000;
     let a = analyze(&p, &x, settings(n, 0)).unwrap();
@@ -60,9 +63,16 @@ fn first_order_spread_of_a_linear_output_matches_monte_carlo() {
             mc.std,
             f.std
         );
-        assert!((mc.mean - f.nominal).abs() < 5.0 * se_mean, "{name}: mean {}", mc.mean);
+        assert!(
+            (mc.mean - f.nominal).abs() < 5.0 * se_mean,
+            "{name}: mean {}",
+            mc.mean
+        );
         // a linear output never leaves its worst case
-        assert!(mc.min >= f.worst_case[0] && mc.max <= f.worst_case[1], "{name}");
+        assert!(
+            mc.min >= f.worst_case[0] && mc.max <= f.worst_case[1],
+            "{name}"
+        );
     }
 }
 
@@ -87,7 +97,11 @@ fn monte_carlo_is_identical_on_one_and_two_threads() {
     let one = analyze(&p, &x, settings(20_000, 1)).unwrap().monte_carlo;
     let two = analyze(&p, &x, settings(20_000, 2)).unwrap().monte_carlo;
     assert_eq!(one.values.len(), 20_000 * 6);
-    assert!(one.values.iter().zip(&two.values).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert!(one
+        .values
+        .iter()
+        .zip(&two.values)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
     assert_eq!(one.yield_fraction.to_bits(), two.yield_fraction.to_bits());
 }
 
@@ -100,7 +114,12 @@ fn wei2017_first_order_agrees_with_monte_carlo() {
     let a = analyze(&p, &x, settings(100_000, 0)).unwrap();
     for (j, (f, mc)) in a.first_order.iter().zip(&a.monte_carlo.outputs).enumerate() {
         let rel = (mc.std / f.std - 1.0).abs();
-        assert!(rel < 0.01, "output {j}: std {} by Monte Carlo, {} to first order", mc.std, f.std);
+        assert!(
+            rel < 0.01,
+            "output {j}: std {} by Monte Carlo, {} to first order",
+            mc.std,
+            f.std
+        );
     }
 }
 
@@ -115,7 +134,11 @@ fn the_nominal_optimum_of_wei2017_yields_few_parts() {
     assert!(mc.yield_interval[0] <= mc.yield_fraction && mc.yield_fraction <= mc.yield_interval[1]);
     // each active limit alone fails about half of the parts
     for k in [0, 3, 4] {
-        assert!((mc.constraint_yields[k] - 0.5).abs() < 0.02, "{k}: {}", mc.constraint_yields[k]);
+        assert!(
+            (mc.constraint_yields[k] - 0.5).abs() < 0.02,
+            "{k}: {}",
+            mc.constraint_yields[k]
+        );
     }
 }
 
@@ -126,10 +149,18 @@ fn the_robust_optimum_of_wei2017_meets_its_yield() {
     assert!(s.any_feasible);
     let x = s.reported_design().to_vec();
     let mc = analyze(&p, &x, settings(100_000, 0)).unwrap().monte_carlo;
-    assert!(mc.yield_interval[0] >= 0.99, "yield {} {:?}", mc.yield_fraction, mc.yield_interval);
+    assert!(
+        mc.yield_interval[0] >= 0.99,
+        "yield {} {:?}",
+        mc.yield_fraction,
+        mc.yield_interval
+    );
     // the price: a few per cent of amplification (12.90 nominal)
     let objective = s.reported_objective();
-    assert!(objective > 12.2 && objective < 12.8979, "amplification {objective}");
+    assert!(
+        objective > 12.2 && objective < 12.8979,
+        "amplification {objective}"
+    );
 }
 
 /// The robust rows' Jacobian (second derivatives of the model through num-dual) against

@@ -44,7 +44,10 @@ fn tolerance_writes_its_set_and_the_nominal_yield() {
     ])
     .stdout;
     let text = String::from_utf8(stdout).unwrap();
-    assert!(text.contains("yield: ") && text.contains("Wilson"), "{text}");
+    assert!(
+        text.contains("yield: ") && text.contains("Wilson"),
+        "{text}"
+    );
     let json: Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("tolerance.json")).unwrap())
             .unwrap();
@@ -60,9 +63,15 @@ fn tolerance_writes_its_set_and_the_nominal_yield() {
         .collect();
     assert_eq!(names, ["l2", "t2", "l3", "l4", "t4", "youngs_modulus"]);
     for name in ["span_x", "span_y", "stress_max", "k_in", "k_out"] {
-        assert!(out.join(format!("histogram_{name}.png")).is_file(), "{name}");
+        assert!(
+            out.join(format!("histogram_{name}.png")).is_file(),
+            "{name}"
+        );
     }
-    assert!(!out.join("histogram_amplification.png").exists(), "no limits, no histogram");
+    assert!(
+        !out.join("histogram_amplification.png").exists(),
+        "no limits, no histogram"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -83,8 +92,14 @@ fn tolerance_refuses_a_sample_out_of_the_domain_and_writes_nothing() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("wei2017.toml") && err.contains("key `tolerances`"), "{err}");
-    assert!(err.contains("leaves the model's domain") && err.contains("t2 = -"), "{err}");
+    assert!(
+        err.contains("wei2017.toml") && err.contains("key `tolerances`"),
+        "{err}"
+    );
+    assert!(
+        err.contains("leaves the model's domain") && err.contains("t2 = -"),
+        "{err}"
+    );
     assert!(!out.join("tolerance.json").exists(), "nothing written");
     assert!(!out.join("histogram_k_in.png").exists(), "nothing written");
     let _ = std::fs::remove_dir_all(&dir);
@@ -93,8 +108,16 @@ fn tolerance_refuses_a_sample_out_of_the_domain_and_writes_nothing() {
 #[test]
 fn tolerance_refuses_bad_tolerances_naming_the_key() {
     for (tolerance, key, words) in [
-        ("t2 = { plus_minus = -0.005 }", "tolerances.t2.plus_minus", "must be positive"),
-        ("t9 = { sigma = 0.01 }", "tolerances.t9", "no design variable"),
+        (
+            "t2 = { plus_minus = -0.005 }",
+            "tolerances.t2.plus_minus",
+            "must be positive",
+        ),
+        (
+            "t9 = { sigma = 0.01 }",
+            "tolerances.t9",
+            "no design variable",
+        ),
     ] {
         let dir = scratch("bad");
         let file = wei2017_with(&dir, tolerance);
@@ -109,7 +132,10 @@ fn tolerance_refuses_bad_tolerances_naming_the_key() {
         ]);
         assert_eq!(o.status.code(), Some(2), "{tolerance}");
         let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains(&format!("key `{key}`")) && err.contains(words), "{err}");
+        assert!(
+            err.contains(&format!("key `{key}`")) && err.contains(words),
+            "{err}"
+        );
         assert!(!out.join("tolerance.json").exists());
         let _ = std::fs::remove_dir_all(&dir);
     }
@@ -127,5 +153,8 @@ fn tolerance_refuses_too_few_samples() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("key `--samples`") && err.contains("got 1"), "{err}");
+    assert!(
+        err.contains("key `--samples`") && err.contains("got 1"),
+        "{err}"
+    );
 }

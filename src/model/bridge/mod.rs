@@ -28,9 +28,9 @@ pub use quarter::QuarterBridge;
 use super::entry::ModelEntry;
 use super::hinge::HingeKind;
 use super::material::Material;
+use super::mechanism::ModulusScaling;
 use super::part_rules::PartRule;
 use super::scalar::Jet;
-use super::mechanism::ModulusScaling;
 use super::{unseed, Depiction, Drawing, Model, OutputInfo, ParameterInfo, PartMaker, Skeleton};
 use dynamics::DynamicsSettings;
 
@@ -159,7 +159,12 @@ impl Bridge {
             .collect();
         let mut y = vec![Dual2SVec64::<N>::from(0.0); wanted.len()];
         let modulus = seeded[N - 1];
-        self.evaluate_with_modulus(&self.layout.geometry(&seeded[..N - 1]), Some(modulus), wanted, &mut y);
+        self.evaluate_with_modulus(
+            &self.layout.geometry(&seeded[..N - 1]),
+            Some(modulus),
+            wanted,
+            &mut y,
+        );
         for (i, yi) in y.into_iter().enumerate() {
             out[i] = yi.re;
             let g = yi.v1.unwrap_generic(U1, Const::<N>);
