@@ -162,6 +162,13 @@ pub fn analyze<'a>(
         );
     }
     let outputs = Outputs::new(problem);
+    if outputs.modulus && problem.mechanism.modulus.is_none() {
+        return Err(format!(
+            "the {} model cannot vary its material's modulus (a refined model's corrections \
+             hold at the nominal one): remove the tolerance on youngs_modulus",
+            problem.model().name()
+        ));
+    }
     let first_order = first_order(&outputs, &problem.tolerances, x);
     let monte_carlo = monte_carlo::run(&outputs, &problem.tolerances, x, settings)?;
     Ok(Analysis {

@@ -75,10 +75,11 @@ fn tolerance_writes_its_set_and_the_nominal_yield() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-#[test]
-fn tolerance_refuses_a_sample_out_of_the_domain_and_writes_nothing() {
-    let dir = scratch("domain");
-    let file = wei2017_with(&dir, "t2 = { plus_minus = 1.5 }");
+/// `flexopt tolerance` on wei2017 with `tolerance` in its `[tolerances]`, which must fail
+/// with exit 2 and write nothing: its standard error.
+fn refused(name: &str, tolerance: &str) -> String {
+    let dir = scratch(name);
+    let file = wei2017_with(&dir, tolerance);
     let out = dir.join("out");
     let o = flexopt(&[
         "tolerance",
@@ -90,8 +91,16 @@ fn tolerance_refuses_a_sample_out_of_the_domain_and_writes_nothing() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(o.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{tolerance}");
+    assert!(!out.join("tolerance.json").exists(), "nothing written");
+    assert!(!out.join("histogram_k_in.png").exists(), "nothing written");
+    let _ = std::fs::remove_dir_all(&dir);
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn tolerance_refuses_a_sample_out_of_the_domain_and_writes_nothing() {
+    let err = refused("domain", "t2 = { plus_minus = 1.5 }");
     assert!(
         err.contains("wei2017.toml") && err.contains("key `tolerances`"),
         "{err}"
@@ -100,9 +109,6 @@ fn tolerance_refuses_a_sample_out_of_the_domain_and_writes_nothing() {
         err.contains("leaves the model's domain") && err.contains("t2 = -"),
         "{err}"
     );
-    assert!(!out.join("tolerance.json").exists(), "nothing written");
-    assert!(!out.join("histogram_k_in.png").exists(), "nothing written");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -119,25 +125,11 @@ fn tolerance_refuses_bad_tolerances_naming_the_key() {
             "no design variable",
         ),
     ] {
-        let dir = scratch("bad");
-        let file = wei2017_with(&dir, tolerance);
-        let out = dir.join("out");
-        let o = flexopt(&[
-            "tolerance",
-            file.to_str().unwrap(),
-            "--design",
-            OPTIMUM,
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        assert_eq!(o.status.code(), Some(2), "{tolerance}");
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = refused("bad", tolerance);
         assert!(
             err.contains(&format!("key `{key}`")) && err.contains(words),
             "{err}"
         );
-        assert!(!out.join("tolerance.json").exists());
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }
 

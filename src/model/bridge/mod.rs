@@ -34,6 +34,19 @@ use super::scalar::Jet;
 use super::{unseed, Depiction, Drawing, Model, OutputInfo, ParameterInfo, PartMaker, Skeleton};
 use dynamics::DynamicsSettings;
 
+/// `self.method::<N>(args)` with `N` the design's parameter count (8 to 10: two strips have
+/// 8, notches up to 10) plus `plus`: one gradient size per count.
+macro_rules! per_count {
+    ($len:expr, $self:ident . $method:ident :: <+ $plus:literal> ($($arg:expr),*)) => {
+        match $len {
+            8 => $self.$method::<{ 8 + $plus }>($($arg),*),
+            9 => $self.$method::<{ 9 + $plus }>($($arg),*),
+            10 => $self.$method::<{ 10 + $plus }>($($arg),*),
+            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
+        }
+    };
+}
+
 /// How a problem file selects the bridge (`model = "bridge"`).
 pub const ENTRY: ModelEntry = ModelEntry {
     name: "bridge",
@@ -250,13 +263,7 @@ impl Model for Bridge {
         out: &mut [f64],
         jacobian: &mut [f64],
     ) {
-        // one gradient size per parameter count: two strips have 8, notches up to 10
-        match x.len() {
-            8 => self.gradients::<8>(x, wanted, out, jacobian),
-            9 => self.gradients::<9>(x, wanted, out, jacobian),
-            10 => self.gradients::<10>(x, wanted, out, jacobian),
-            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
-        }
+        per_count!(x.len(), self.gradients::<+0>(x, wanted, out, jacobian))
     }
 
     fn material(&self) -> Option<&Material> {
@@ -291,12 +298,7 @@ impl ModulusScaling for Bridge {
         out: &mut [f64],
         jacobian: &mut [f64],
     ) {
-        match x.len() {
-            8 => self.scaled_gradients::<9>(x, modulus, wanted, out, jacobian),
-            9 => self.scaled_gradients::<10>(x, modulus, wanted, out, jacobian),
-            10 => self.scaled_gradients::<11>(x, modulus, wanted, out, jacobian),
-            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
-        }
+        per_count!(x.len(), self.scaled_gradients::<+1>(x, modulus, wanted, out, jacobian))
     }
 
     fn evaluate_with_hessian(
@@ -307,12 +309,7 @@ impl ModulusScaling for Bridge {
         jacobian: &mut [f64],
         hessian: &mut [f64],
     ) {
-        match x.len() {
-            8 => self.hessians::<9>(x, wanted, out, jacobian, hessian),
-            9 => self.hessians::<10>(x, wanted, out, jacobian, hessian),
-            10 => self.hessians::<11>(x, wanted, out, jacobian, hessian),
-            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
-        }
+        per_count!(x.len(), self.hessians::<+1>(x, wanted, out, jacobian, hessian))
     }
 }
 
@@ -383,11 +380,6 @@ impl PartMaker for Bridge {
     }
 
     fn rule_margins_with_gradient(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
-        match x.len() {
-            8 => self.rule_gradients::<8>(x, out, jacobian),
-            9 => self.rule_gradients::<9>(x, out, jacobian),
-            10 => self.rule_gradients::<10>(x, out, jacobian),
-            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
-        }
+        per_count!(x.len(), self.rule_gradients::<+0>(x, out, jacobian))
     }
 }
