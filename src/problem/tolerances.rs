@@ -118,12 +118,13 @@ pub struct Defaults {
     pub youngs_modulus: f64,
 }
 
-/// Wire EDM's usual accuracy is +-5 um on a fine cut and +-10 um on a rough one (makers'
-/// catalogues, e.g. GF Machining Solutions' and Sodick's, state +-2 to +-5 um for skim cuts;
-/// the issue that asked for tolerances quotes +-5 um on a 0.4 mm hinge and +-10 um on
-/// lengths). Young's modulus is stated without a tolerance by the handbooks; the grades of
-/// one alloy differ by 2 to 3 % (e.g. 7075-T6 at 71.0 to 72.0 GPa, MatWeb and ASM), so
-/// +-3 % covers a bar of unknown heat.
+/// Wire EDM holds +-0.005 mm on a fine finish (four to six passes) and +-0.01 mm on a
+/// standard one (shops' published tables, e.g. mecvil.com's "Wire EDM: tolerances,
+/// materials and industrial applications" and tongrencnc.com's on multi-pass cutting, which
+/// gives +-0.003 to 0.005 mm after skim passes): the hinges take the fine finish, the other
+/// lengths the standard one. Young's modulus comes without a tolerance in the handbooks; its
+/// figures for one alloy differ by one to three per cent (7075-T6: 72 GPa in paper 004,
+/// 71.7 GPa in MatWeb), so +-3 % covers a bar of unknown heat.
 pub const DEFAULTS: Defaults = Defaults {
     thickness: 5e-6,
     length: 10e-6,
