@@ -5,7 +5,7 @@
 use std::hint::black_box;
 use std::path::Path;
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, Criterion};
 use flexopt::optim::multistart::{self, Sampling};
 use flexopt::optim::nelder_mead::{self, NelderMeadSettings};
 use flexopt::optim::sqp::{self, SqpSettings};
@@ -235,5 +235,90 @@ fn pieces(c: &mut Criterion) {
     group.finish();
 }
 
+/// Medians of this many alternating runs for the tolerance figures.
+const TOLERANCE_REPEATS: usize = 5;
+
+/// The tolerance analysis and the robust study of wei2017 against the nominal 300-start
+/// study, alternating, on the file's threads (every core): `flexopt tolerance` with 100,000
+/// Monte Carlo samples (first order and Monte Carlo, no files), and the robust study for
+/// `yield = 0.99`, each as a ratio to the nominal study's median. Writes
+/// `results/bench/tolerance.json` and `results/bench/tolerance.txt`.
+fn tolerance_ratios() {
+    use flexopt::study::{self, StudyOptions};
+    use flexopt::tolerance::{analyze, monte_carlo::Settings};
+    use std::time::Instant;
+    let nominal = Problem::load(Path::new("problems/wei2017.toml")).unwrap();
+    let mut robust = nominal.clone();
+    robust.search.robust = Some(flexopt::problem::Robust {
+        k_sigma: flexopt::problem::tolerances::normal_quantile(1.0 - 0.01 / 7.0),
+        target_yield: Some(0.99),
+    });
+    let options = StudyOptions::from_problem(&nominal);
+    let x = study::run(&nominal, &options).reported_design().to_vec();
+    let settings = Settings {
+        samples: 100_000,
+        seed: nominal.search.seed,
+        threads: nominal.search.threads,
+    };
+    let time = |f: &dyn Fn()| {
+        let t = Instant::now();
+        f();
+        t.elapsed().as_secs_f64()
+    };
+    let mut seconds = [Vec::new(), Vec::new(), Vec::new()];
+    for _ in 0..TOLERANCE_REPEATS {
+        seconds[0].push(time(&|| {
+            black_box(study::run(&nominal, &options));
+        }));
+        seconds[1].push(time(&|| {
+            black_box(study::run(&robust, &options));
+        }));
+        seconds[2].push(time(&|| {
+            black_box(
+                analyze(&nominal, &x, settings)
+                    .unwrap()
+                    .monte_carlo
+                    .yield_fraction,
+            );
+        }));
+    }
+    let median = |v: &[f64]| {
+        let mut s = v.to_vec();
+        s.sort_by(f64::total_cmp);
+        s[s.len() / 2]
+    };
+    let [study_s, robust_s, tolerance_s] = [0, 1, 2].map(|i| median(&seconds[i]));
+    let text = format!(
+        "wei2017 on {} threads, medians of {TOLERANCE_REPEATS}, alternating\n\
+         nominal study (300 starts)        {:>9.4} s\n\
+         robust study (yield = 0.99)       {:>9.4} s   {:>6.2} x the nominal study\n\
+         tolerance, 100,000 samples        {:>9.4} s   {:>6.2} x the nominal study\n",
+        rayon::current_num_threads(),
+        study_s,
+        robust_s,
+        robust_s / study_s,
+        tolerance_s,
+        tolerance_s / study_s,
+    );
+    print!("{text}");
+    std::fs::create_dir_all("results/bench").unwrap();
+    let json = serde_json::json!({
+        "repeats": TOLERANCE_REPEATS,
+        "nominal_study_seconds": seconds[0],
+        "robust_study_seconds": seconds[1],
+        "tolerance_100000_seconds": seconds[2],
+        "robust_over_nominal": robust_s / study_s,
+        "tolerance_over_nominal": tolerance_s / study_s,
+    });
+    flexopt::report::write_json(Path::new("results/bench/tolerance.json"), &json).unwrap();
+    flexopt::report::write_atomic(Path::new("results/bench/tolerance.txt"), text.as_bytes())
+        .unwrap();
+}
+
 criterion_group!(benches, bench, pieces, hinge_kinds, rules);
-criterion_main!(benches);
+
+fn main() {
+    tolerance_ratios();
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+}

@@ -219,6 +219,31 @@ pub enum Command {
         #[command(flatten)]
         study: StudyArgs,
     },
+    /// One design under the tolerances of the file's [tolerances] (and wire EDM's defaults
+    /// for a model with a part): each output's spread to first order from the exact
+    /// gradients and by Monte Carlo, the yield with its confidence interval, and which
+    /// tolerance drives which output (tolerance.json, histogram_<output>.png per
+    /// constrained output, a table).
+    #[command(after_help = EXIT_CODES)]
+    Tolerance {
+        #[arg(help = PROBLEM)]
+        problem: PathBuf,
+        #[command(flatten)]
+        design: DesignArgs,
+        /// Monte Carlo samples (2 to 10000000).
+        #[arg(long, default_value_t = 100_000)]
+        samples: usize,
+        /// Random seed (default: the problem file's search.seed); sample i draws from its
+        /// own stream, so the thread count changes nothing.
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Worker threads, 0 for every core (default: the problem file's search.threads).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Folder to write into (default: results/<problem name>/tolerance).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 /// Where a command takes its one design from.

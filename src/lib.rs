@@ -22,4 +22,5 @@ pub mod refine;
 pub mod report;
 pub mod study;
 pub mod sweep;
+pub mod tolerance;
 pub mod vocab;

@@ -10,6 +10,7 @@ mod args;
 mod failure;
 mod start_command;
 mod study_command;
+mod tolerance_command;
 mod verify_command;
 use args::{Cli, Command, DesignArgs};
 use failure::{emit, print_json, Failure};
@@ -134,6 +135,20 @@ fn run(command: Command) -> Result<(), Failure> {
             }
             let dir = output_dir(&problem, study.out)?;
             run_study(&problem, &options, &dir, verify)
+        }
+        Command::Tolerance {
+            problem,
+            design,
+            samples,
+            seed,
+            threads,
+            out,
+        } => {
+            let (problem_loaded, x) = chosen_design(&problem, &design)?;
+            let settings = tolerance_command::settings(&problem_loaded, samples, seed, threads)?;
+            let dir = out.unwrap_or_else(|| problem_loaded.default_output_dir().join("tolerance"));
+            check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
+            tolerance_command::run(&problem_loaded, &x, settings, &dir)
         }
         Command::Pareto {
             problem,

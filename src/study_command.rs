@@ -213,6 +213,9 @@ pub(crate) fn run_study(
         Some(Err(e)) => return Err(e),
         None => {}
     }
+    if problem.search.robust.is_some() && study.any_feasible && !study.interrupted {
+        crate::tolerance_command::compare_robust(problem, options, &study, dir)?;
+    }
     if study.interrupted {
         Err(Failure::interrupted(format!(
             "{}: interrupted: {} of {} starts finished; the files written hold those \

@@ -93,11 +93,46 @@ pub trait PartMaker: Send + Sync + std::fmt::Debug {
 }
 
 /// A mechanism: its physics and the capabilities it has.
+/// The physics with the material's stiffness as one more input: the outputs at a design
+/// whose material has Young's and shear moduli `modulus` times the nominal ones (Poisson's
+/// ratio kept), for a tolerance on `E` ([`crate::problem::tolerances`]). A model gives it
+/// where every output that depends on the material does so through its stiffness alone.
+pub trait ModulusScaling: Send + Sync + std::fmt::Debug {
+    /// As [`Model::evaluate`], at the moduli `modulus` times the nominal ones.
+    fn evaluate_scaled(&self, x: &[f64], modulus: f64, wanted: &[usize], out: &mut [f64]);
+
+    /// As [`Model::evaluate_with_gradient`], at the moduli `modulus` times the nominal
+    /// ones; `jacobian` has one column more than the parameters, the last the derivative
+    /// by `modulus`.
+    fn evaluate_scaled_with_gradient(
+        &self,
+        x: &[f64],
+        modulus: f64,
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    );
+
+    /// As [`ModulusScaling::evaluate_scaled_with_gradient`] at the nominal moduli, and each
+    /// output's Hessian over the same inputs into `hessian` (`m` blocks of `(n + 1)^2`,
+    /// row-major): the gradient of an output's first-order spread needs them.
+    fn evaluate_with_hessian(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    );
+}
+
 #[derive(Debug, Clone)]
 pub struct Mechanism {
     pub physics: Arc<dyn Model>,
     pub depiction: Option<Arc<dyn Depiction>>,
     pub part_maker: Option<Arc<dyn PartMaker>>,
+    /// The physics with the material's moduli as an input, where the model has it.
+    pub modulus: Option<Arc<dyn ModulusScaling>>,
 }
 
 /// The depiction of a mechanism without one: every default.
@@ -113,6 +148,7 @@ impl Mechanism {
             physics,
             depiction: None,
             part_maker: None,
+            modulus: None,
         }
     }
 
@@ -123,6 +159,7 @@ impl Mechanism {
             physics: model.clone(),
             depiction: Some(model.clone()),
             part_maker: Some(model),
+            modulus: None,
         }
     }
 
@@ -133,15 +170,26 @@ impl Mechanism {
             physics: model.clone(),
             depiction: Some(model),
             part_maker: None,
+            modulus: None,
         }
     }
 
     /// The same mechanism with other physics (the same parameters and outputs): its
-    /// pictures and part are the wrapped mechanism's.
+    /// pictures and part are the wrapped mechanism's; the evaluation at other moduli was
+    /// the old physics', so it goes.
     pub fn with_physics(&self, physics: Arc<dyn Model>) -> Self {
         Mechanism {
             physics,
+            modulus: None,
             ..self.clone()
+        }
+    }
+
+    /// The same mechanism, evaluated at other moduli by `modulus`.
+    pub fn with_modulus_scaling(self, modulus: Arc<dyn ModulusScaling>) -> Self {
+        Mechanism {
+            modulus: Some(modulus),
+            ..self
         }
     }
 

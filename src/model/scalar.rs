@@ -4,7 +4,8 @@
 //! dual number it gives values and exact gradients from the same code. [`Scalar`] asks
 //! only for the operations the models use, and is implemented for
 //!
-//! - `f64`, and num-dual's `Dual64` and `DualSVec64<N>`, and
+//! - `f64`, and num-dual's `Dual64` and `DualSVec64<N>`, and its second-order
+//!   `Dual2SVec64<N>` (the Hessians a robust study's spreads need), and
 //! - [`Jet<N>`], a first-order forward-mode number with a plain `[f64; N]` gradient.
 //!
 //! Why a type of our own beside num-dual: num-dual keeps each gradient as an
@@ -114,7 +115,7 @@ macro_rules! num_dual_scalar {
     )*};
 }
 
-num_dual_scalar!(num_dual::Dual64; num_dual::DualSVec64<N>, const N);
+num_dual_scalar!(num_dual::Dual64; num_dual::DualSVec64<N>, const N; num_dual::Dual2SVec64<N>, const N);
 
 /// `sin` and `cos` of `x`: for `|x| <= pi/4`, where every angle of Table 1's bounds lies,
 /// by the minimax polynomial kernels of fdlibm (no argument reduction needed, error within

@@ -65,6 +65,11 @@ pub fn json_schema() -> Value {
     properties.insert("search".into(), g.subschema_for::<RawSearch>().to_value());
     properties.insert("zones".into(), g.subschema_for::<RawZones>().to_value());
     properties.insert("refine".into(), g.subschema_for::<RawRefine>().to_value());
+    properties.insert(
+        "tolerances".into(),
+        json!({"type": "object", "additionalProperties":
+            g.subschema_for::<super::tolerances::RawTolerance>()}),
+    );
     let mut per_model = Vec::new();
     for m in MODELS {
         let sections = (m.schema)(&mut g);

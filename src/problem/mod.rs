@@ -17,6 +17,7 @@ pub mod part_rules;
 pub mod refine;
 pub mod schema;
 mod strength;
+pub mod tolerances;
 mod validate;
 
 // the vocabulary of the file, kept reachable where it was read before it moved below the
@@ -138,6 +139,19 @@ pub struct SearchSettings {
     pub threads: usize,
     /// Designs outside the model's ranges of fit: constraints, warnings or neither.
     pub fit_ranges: FitRanges,
+    /// `robust`: each constraint kept this many first-order standard deviations inside its
+    /// limits ([`tolerances`]); `None` for the nominal study.
+    pub robust: Option<Robust>,
+}
+
+/// A robust study's margins: `k_sigma` standard deviations on every limit, given or made
+/// from a target yield.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Robust {
+    pub k_sigma: f64,
+    /// The yield the file asked for, where it asked for one.
+    #[serde(rename = "yield", skip_serializing_if = "Option::is_none")]
+    pub target_yield: Option<f64>,
 }
 
 /// How optima are merged and sorted into zones.
@@ -169,6 +183,8 @@ pub struct Problem {
     pub zones: ZoneSettings,
     /// `[refine]`: the FE refinement of `run`'s optimum.
     pub refine: refine::RefineSettings,
+    /// `[tolerances]`, with the process's defaults: what a made part's inputs scatter by.
+    pub tolerances: Vec<tolerances::Tolerance>,
     /// The file's content as data, hashed ([`fingerprint`]): reports record it, so that a
     /// design read back from one can tell whether the file changed since.
     pub fingerprint: u64,

@@ -16,15 +16,24 @@
 //!   and enforces them (`[part] enforce`, the default): one row `margin / SCALE >= 0` each,
 //!   after the ranges, counted as constraints `constraints.len() + ranges + i`.
 //!
+//! - A robust study (`[search] robust`): each row of a problem constraint keeps `k` times
+//!   its output's first-order standard deviation under the tolerances
+//!   ([`super::tolerances`]) inside its limit, `sign * (value - limit) - k sigma >= 0`
+//!   (scaled alike): the first-order second-moment method (Parkinson, Sorensen and
+//!   Pourhassan, J. Mech. Des. 115 (1993) 74-80). The spreads follow the rules' margins
+//!   among the values, one per wanted output; their gradients come from the model's exact
+//!   second derivatives ([`crate::model::mechanism::ModulusScaling::evaluate_with_hessian`]).
+//!
 //! The model is asked for exactly the outputs the objective and constraints name, once
 //! each (the objective first), at the full parameter vector: the free variables in place
 //! among the fixed values; the ranges' ratios, then the rules' margins, follow them among
 //! the values the rows read.
 //! Gradients are the model's exact ones, through the chain rule of the scaling.
 
+use super::tolerances::Input;
 use super::{Problem as DesignProblem, Sense};
 use crate::model::fit::FitLimit;
-use crate::model::mechanism::PartMaker;
+use crate::model::mechanism::{ModulusScaling, PartMaker};
 use crate::model::scalar::Jet;
 use crate::model::{Model, MAX_PARAMETERS, MAX_WANTED};
 use crate::optim::Problem;
@@ -67,6 +76,17 @@ struct Row {
     sign: f64,
     limit: f64,
     scale: f64,
+    /// The slot of the output's spread among the values, in a robust study.
+    spread: Option<usize>,
+}
+
+/// What a robust study needs to know of the tolerances.
+struct Spreads<'p> {
+    /// Standard deviations of margin each constraint keeps.
+    k: f64,
+    model: &'p dyn ModulusScaling,
+    /// The standard deviation of each input: the parameters, then the modulus's factor.
+    sigma: Vec<f64>,
 }
 
 /// The design problem in the solvers' form.
@@ -86,6 +106,8 @@ pub struct DesignNlp<'p> {
     /// The part whose rules the study keeps to, and how many rules it has.
     part: Option<&'p dyn PartMaker>,
     rules: usize,
+    /// Present in a robust study.
+    spreads: Option<Spreads<'p>>,
     offset: Vec<f64>,
     range: Vec<f64>,
     zeros: Vec<f64>,
@@ -138,6 +160,7 @@ impl<'p> DesignNlp<'p> {
                     sign: 1.0,
                     limit: lo,
                     scale: scale(lo),
+                    spread: None,
                 });
             }
             if let Some(hi) = c.upper {
@@ -152,6 +175,7 @@ impl<'p> DesignNlp<'p> {
                         sign: -1.0,
                         limit: hi,
                         scale: scale(hi),
+                        spread: None,
                     });
                 }
             }
@@ -168,6 +192,7 @@ impl<'p> DesignNlp<'p> {
                     sign,
                     limit,
                     scale: limit.abs(),
+                    spread: None,
                 });
             }
         }
@@ -180,15 +205,27 @@ impl<'p> DesignNlp<'p> {
                 sign: 1.0,
                 limit: 0.0,
                 scale: crate::model::part_rules::SCALE,
+                spread: None,
             });
+        }
+        let spreads = spreads(problem);
+        if spreads.is_some() {
+            let first = wanted.len() + fits.len() + rules;
+            for r in rows
+                .iter_mut()
+                .filter(|r| r.constraint < problem.constraints.len())
+            {
+                r.spread = Some(first + r.value);
+            }
         }
         let range: Vec<f64> = free.iter().map(|v| v.upper - v.lower).collect();
         let jacobian_factor = rows
             .iter()
             .flat_map(|r| range.iter().map(move |rj| r.sign * rj / r.scale))
             .collect();
+        let spread_count = if spreads.is_some() { wanted.len() } else { 0 };
         assert!(
-            wanted.len() + fits.len() + rules <= MAX_WANTED,
+            wanted.len() + fits.len() + rules + spread_count <= MAX_WANTED,
             "a problem names at most {MAX_WANTED} outputs, ranges of fit and part rules"
         );
         assert!(problem.variables.len() <= MAX_PARAMETERS);
@@ -203,6 +240,7 @@ impl<'p> DesignNlp<'p> {
             fits,
             part,
             rules,
+            spreads,
             offset: free.iter().map(|v| v.lower).collect(),
             range,
             zeros: vec![0.0; free.len()],
@@ -252,7 +290,12 @@ impl<'p> DesignNlp<'p> {
     /// The number of values the rows read: the wanted outputs, then the ratios of the
     /// ranges of fit the study keeps to, then the margins of the part's rules it keeps to.
     pub fn values(&self) -> usize {
-        self.wanted.len() + self.fits.len() + self.rules
+        let spreads = if self.spreads.is_some() {
+            self.wanted.len()
+        } else {
+            0
+        };
+        self.wanted.len() + self.fits.len() + self.rules + spreads
     }
 
     /// The wanted outputs (SI) at the free variables `free` (SI, model order), then the
@@ -261,13 +304,29 @@ impl<'p> DesignNlp<'p> {
         let mut x = [0.0; MAX_PARAMETERS];
         let x = self.fill(free, &mut x);
         let (outputs, rest) = out.split_at_mut(self.wanted.len());
-        let (ratios, margins) = rest.split_at_mut(self.fits.len());
+        let (ratios, rest) = rest.split_at_mut(self.fits.len());
+        let (margins, spreads) = rest.split_at_mut(self.rules);
         self.model.evaluate(x, &self.wanted, outputs);
         for (r, f) in ratios.iter_mut().zip(self.fits) {
             *r = f.value(x);
         }
         if let Some(part) = self.part {
             part.rule_margins(x, margins);
+        }
+        if let Some(s) = &self.spreads {
+            let (w, n) = (self.wanted.len(), s.sigma.len());
+            let mut values = vec![0.0; w];
+            let mut jacobian = vec![0.0; w * n];
+            s.model
+                .evaluate_scaled_with_gradient(x, 1.0, &self.wanted, &mut values, &mut jacobian);
+            for (spread, row) in spreads.iter_mut().zip(jacobian.chunks_exact(n)) {
+                *spread = row
+                    .iter()
+                    .zip(&s.sigma)
+                    .map(|(d, sj)| (d * sj).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+            }
         }
     }
 
@@ -279,9 +338,14 @@ impl<'p> DesignNlp<'p> {
         let w = self.wanted.len();
         let np = x.len();
         let (outputs, rest) = out.split_at_mut(w);
-        let (ratios, margins) = rest.split_at_mut(self.fits.len());
+        let (ratios, rest) = rest.split_at_mut(self.fits.len());
+        let (margins, spreads) = rest.split_at_mut(self.rules);
         let (model_jac, rest_jac) = jacobian.split_at_mut(w * np);
-        let (ratio_jac, margin_jac) = rest_jac.split_at_mut(self.fits.len() * np);
+        let (ratio_jac, rest_jac) = rest_jac.split_at_mut(self.fits.len() * np);
+        let (margin_jac, spread_jac) = rest_jac.split_at_mut(self.rules * np);
+        if let Some(s) = &self.spreads {
+            s.spreads_with_gradient(x, &self.wanted, spreads, spread_jac);
+        }
         if let Some(part) = self.part {
             part.rule_margins_with_gradient(x, margins, margin_jac);
         }
@@ -366,8 +430,10 @@ impl<'p> DesignNlp<'p> {
 
     /// The constraint rows from the wanted outputs `values`.
     pub(crate) fn constraint_values(&self, values: &[f64], c: &mut [f64]) {
+        let k = self.spreads.as_ref().map_or(0.0, |s| s.k);
         for (ci, r) in c.iter_mut().zip(&self.rows) {
-            *ci = r.sign * (values[r.value] - r.limit) / r.scale;
+            let margin = r.spread.map_or(0.0, |slot| k * values[slot]);
+            *ci = (r.sign * (values[r.value] - r.limit) - margin) / r.scale;
         }
     }
 }
@@ -487,6 +553,14 @@ impl DesignNlp<'_> {
             for ((o, &p), f) in row.iter_mut().zip(&self.free).zip(factor) {
                 *o = grad[p] * f;
             }
+            if let (Some(slot), Some(s)) = (r.spread, &self.spreads) {
+                // the row is sign * (value - limit) - k sigma over its scale; the factor
+                // carries the sign
+                let spread = &model_jac[slot * np..(slot + 1) * np];
+                for ((o, &p), f) in row.iter_mut().zip(&self.free).zip(factor) {
+                    *o -= r.sign * s.k * spread[p] * f;
+                }
+            }
         }
     }
 
@@ -511,6 +585,68 @@ impl DesignNlp<'_> {
     /// Number of model parameters.
     pub(crate) fn parameter_count(&self) -> usize {
         self.base.len()
+    }
+}
+
+/// A robust study's spreads, where `problem` asks for one and its model gives second
+/// derivatives (the problem file's validation refuses a robust study otherwise).
+fn spreads(problem: &DesignProblem) -> Option<Spreads<'_>> {
+    let robust = problem.search.robust?;
+    let model = problem.mechanism.modulus.as_deref()?;
+    let n = problem.variables.len();
+    let mut sigma = vec![0.0; n + 1];
+    for t in &problem.tolerances {
+        match t.input {
+            Input::Parameter(i) => sigma[i] = t.sigma,
+            Input::Modulus => sigma[n] = t.sigma,
+        }
+    }
+    Some(Spreads {
+        k: robust.k_sigma,
+        model,
+        sigma,
+    })
+}
+
+impl Spreads<'_> {
+    /// The first-order standard deviation of each wanted output at `x` into `spreads`, and
+    /// its gradient over the parameters into `jacobian` (rows of `x.len()`):
+    /// `d sigma / dx_p = sum_j (dy/dp_j) s_j^2 (d^2 y / dp_j dx_p) / sigma`.
+    fn spreads_with_gradient(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        spreads: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        let (w, n, np) = (wanted.len(), self.sigma.len(), x.len());
+        let mut values = vec![0.0; w];
+        let mut gradient = vec![0.0; w * n];
+        let mut hessian = vec![0.0; w * n * n];
+        self.model
+            .evaluate_with_hessian(x, wanted, &mut values, &mut gradient, &mut hessian);
+        for i in 0..w {
+            let g = &gradient[i * n..(i + 1) * n];
+            let h = &hessian[i * n * n..(i + 1) * n * n];
+            let sigma = g
+                .iter()
+                .zip(&self.sigma)
+                .map(|(d, s)| (d * s).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            spreads[i] = sigma;
+            let row = &mut jacobian[i * np..(i + 1) * np];
+            for (p, o) in row.iter_mut().enumerate() {
+                *o = if sigma > 0.0 {
+                    (0..n)
+                        .map(|j| g[j] * self.sigma[j].powi(2) * h[j * n + p])
+                        .sum::<f64>()
+                        / sigma
+                } else {
+                    0.0
+                };
+            }
+        }
     }
 }
 

@@ -20,6 +20,7 @@ pub const COMMON_KEYS: &[&str] = &[
     "search",
     "zones",
     "refine",
+    "tolerances",
 ];
 
 /// The common part of a problem file; the model reads its own sections.
@@ -38,6 +39,8 @@ pub struct RawProblem {
     #[serde(default)]
     pub zones: RawZones,
     pub refine: Option<super::refine::RawRefine>,
+    #[serde(default)]
+    pub tolerances: IndexMap<String, super::tolerances::RawTolerance>,
     /// The other top-level keys, in file order: the model's sections, checked against
     /// the model's list before it reads them.
     #[serde(flatten)]
@@ -102,7 +105,29 @@ pub struct RawSearch {
     #[schemars(extend("minimum" = THREADS.0, "maximum" = THREADS.1))]
     pub threads: Option<i64>,
     pub fit_ranges: Option<super::FitRanges>,
+    pub robust: Option<RawRobust>,
 }
+
+/// `[search] robust`: a yield to reach, or the standard deviations of margin each
+/// constraint keeps; one of the two.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(extend("oneOf" = [
+    {"required": ["yield"], "not": {"required": ["k_sigma"]}},
+    {"required": ["k_sigma"], "not": {"required": ["yield"]}},
+]))]
+pub struct RawRobust {
+    #[serde(rename = "yield")]
+    #[schemars(rename = "yield", extend("exclusiveMinimum" = ROBUST_YIELD.0, "exclusiveMaximum" = ROBUST_YIELD.1))]
+    pub target_yield: Option<Number>,
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = K_SIGMA_MAX))]
+    pub k_sigma: Option<Number>,
+}
+
+/// A robust study's yield lies strictly between these.
+pub const ROBUST_YIELD: (f64, f64) = (0.5, 1.0);
+/// More than 8 standard deviations of margin is a yield of 1 - 1e-15: rounding.
+pub const K_SIGMA_MAX: f64 = 8.0;
 
 /// The ranges of `[search]`'s keys (`--starts` and `--threads` take the same).
 pub const STARTS: (i64, i64) = (1, 1_000_000);

@@ -24,6 +24,14 @@ pub(crate) fn positive_only(dimension: Dimension) -> bool {
     )
 }
 
+/// The number of limits of `constraints`: a range counts twice.
+fn limits(constraints: &[Constraint]) -> usize {
+    constraints
+        .iter()
+        .map(|c| usize::from(c.lower.is_some()) + usize::from(c.upper.is_some()))
+        .sum()
+}
+
 /// Whether `name` (trimmed) may name a problem and its results folder: letters, digits,
 /// `-`, `_` and `.`, not starting with `.` (no `.`, `..` or hidden folder); the schema's
 /// [`NAME_PATTERN`] says the same.
@@ -126,6 +134,25 @@ impl Validator<'_, '_> {
                 ));
             }
         }
+        let search = self.search(&raw.search, limits(&constraints))?;
+        let tolerances =
+            super::tolerances::tolerances(self, &mechanism, &variables, &raw.tolerances)?;
+        if search.robust.is_some() {
+            let path = [k("search"), k("robust")];
+            if mechanism.modulus.is_none() {
+                return Err(self.err(
+                    &path,
+                    format!(
+                        "the {} model gives no second derivatives under tolerances: a robust \
+                         study needs them",
+                        entry.name
+                    ),
+                ));
+            }
+            if tolerances.is_empty() {
+                return Err(self.err(&path, "a robust study needs a [tolerances] section"));
+            }
+        }
         Ok(Problem {
             file: self.loc.file().to_path_buf(),
             name,
@@ -134,9 +161,10 @@ impl Validator<'_, '_> {
             variables,
             objective,
             constraints,
-            search: self.search(&raw.search)?,
+            search,
             zones: self.zones(&raw.zones)?,
             refine: super::refine::settings(self, raw.refine.as_ref())?,
+            tolerances,
             fingerprint: super::fingerprint(self.text),
         })
     }
@@ -371,7 +399,7 @@ impl Validator<'_, '_> {
         }
     }
 
-    fn search(&self, s: &schema::RawSearch) -> Res<SearchSettings> {
+    fn search(&self, s: &schema::RawSearch, limits: usize) -> Res<SearchSettings> {
         let path = |key: &str| [k("search"), k(key)];
         let count =
             |key: &str, v: Option<i64>, default: usize, (min, max): (i64, i64)| -> Res<usize> {
@@ -424,7 +452,63 @@ impl Validator<'_, '_> {
             max_iterations: count("max_iterations", s.max_iterations, 500, MAX_ITERATIONS)?,
             threads: count("threads", s.threads, 0, THREADS)?,
             fit_ranges: s.fit_ranges.unwrap_or_default(),
+            robust: s
+                .robust
+                .as_ref()
+                .map(|r| self.robust(r, limits))
+                .transpose()?,
         })
+    }
+
+    /// `[search] robust`: a yield becomes a margin in standard deviations by Bonferroni's
+    /// inequality over the problem's `limits` (each limit then fails at most
+    /// `(1 - yield) / limits` of the parts, all together at most `1 - yield`).
+    fn robust(&self, r: &schema::RawRobust, limits: usize) -> Res<super::Robust> {
+        let path = |key: &str| [k("search"), k("robust"), k(key)];
+        match (r.target_yield, r.k_sigma) {
+            (Some(y), None) => {
+                let y = self.finite(&path("yield"), y)?;
+                let (lo, hi) = schema::ROBUST_YIELD;
+                if !(y > lo && y < hi) {
+                    return Err(self.err(
+                        &path("yield"),
+                        format!("must lie strictly between {lo} and {hi}, got {y}"),
+                    ));
+                }
+                if limits == 0 {
+                    return Err(self.err(
+                        &path("yield"),
+                        "the problem has no constraint: a yield needs limits to meet",
+                    ));
+                }
+                let per_limit = 1.0 - (1.0 - y) / limits as f64;
+                Ok(super::Robust {
+                    k_sigma: super::tolerances::normal_quantile(per_limit),
+                    target_yield: Some(y),
+                })
+            }
+            (None, Some(n)) => {
+                let v = self.finite(&path("k_sigma"), n)?;
+                if !(v > 0.0 && v <= schema::K_SIGMA_MAX) {
+                    return Err(self.err(
+                        &path("k_sigma"),
+                        format!(
+                            "must be positive and at most {}, got {v}",
+                            schema::K_SIGMA_MAX
+                        ),
+                    ));
+                }
+                Ok(super::Robust {
+                    k_sigma: v,
+                    target_yield: None,
+                })
+            }
+            _ => Err(self.err(
+                &[k("search"), k("robust")],
+                "give one of `yield` (a fraction of parts, e.g. 0.99) and `k_sigma` (standard \
+                 deviations of margin, e.g. 3)",
+            )),
+        }
     }
 
     fn zones(&self, z: &schema::RawZones) -> Res<ZoneSettings> {

@@ -18,6 +18,7 @@ mod study_plots;
 pub mod summary;
 pub mod sweep;
 pub mod table;
+pub mod tolerance;
 pub mod verify;
 
 use indexmap::IndexMap;

@@ -10,3 +10,4 @@ mod hock_schittkowski;
 mod honest_results;
 mod solver_robustness;
 mod study;
+mod tolerances;

@@ -15,3 +15,4 @@ mod problem_fuzz;
 mod rejected;
 mod sets;
 mod stdout;
+mod tolerance_cli;

@@ -193,7 +193,8 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
             .transpose()?,
         part,
     };
-    Ok(Mechanism::complete(Bridge::new(settings)))
+    let bridge = Bridge::new(settings);
+    Ok(Mechanism::complete(bridge.clone()).with_modulus_scaling(std::sync::Arc::new(bridge)))
 }
 
 fn hinge_kind(s: &Sections, path: &[Segment], kind: &str) -> Res<HingeKind> {

@@ -28,10 +28,24 @@ pub use quarter::QuarterBridge;
 use super::entry::ModelEntry;
 use super::hinge::HingeKind;
 use super::material::Material;
+use super::mechanism::ModulusScaling;
 use super::part_rules::PartRule;
 use super::scalar::Jet;
 use super::{unseed, Depiction, Drawing, Model, OutputInfo, ParameterInfo, PartMaker, Skeleton};
 use dynamics::DynamicsSettings;
+
+/// `self.method::<N>(args)` with `N` the design's parameter count (8 to 10: two strips have
+/// 8, notches up to 10) plus `plus`: one gradient size per count.
+macro_rules! per_count {
+    ($len:expr, $self:ident . $method:ident :: <+ $plus:literal> ($($arg:expr),*)) => {
+        match $len {
+            8 => $self.$method::<{ 8 + $plus }>($($arg),*),
+            9 => $self.$method::<{ 9 + $plus }>($($arg),*),
+            10 => $self.$method::<{ 10 + $plus }>($($arg),*),
+            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
+        }
+    };
+}
 
 /// How a problem file selects the bridge (`model = "bridge"`).
 pub const ENTRY: ModelEntry = ModelEntry {
@@ -124,6 +138,59 @@ impl Bridge {
         unseed(y, out, jacobian);
     }
 
+    /// Values and gradients of the outputs `wanted` at `x` and the moduli `modulus` times
+    /// the nominal ones, with `N` = the number of parameters plus one, the modulus last.
+    fn scaled_gradients<const N: usize>(
+        &self,
+        x: &[f64],
+        modulus: f64,
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        let mut y = vec![Jet::<N>::from(0.0); wanted.len()];
+        let m = Jet::variable(modulus, N - 1);
+        self.evaluate_with_modulus(&self.layout.seeded::<N>(x), Some(m), wanted, &mut y);
+        unseed(&y, out, jacobian);
+    }
+
+    /// Values, gradients and Hessians of the outputs `wanted` at `x` and the nominal moduli,
+    /// with `N` = the number of parameters plus one, the modulus last: num-dual's
+    /// second-order numbers through the same generic code.
+    fn hessians<const N: usize>(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    ) {
+        use nalgebra::{Const, U1};
+        use num_dual::Dual2SVec64;
+        let seeded: Vec<Dual2SVec64<N>> = (0..N)
+            .map(|i| Dual2SVec64::from_re(if i + 1 < N { x[i] } else { 1.0 }).derivative(i))
+            .collect();
+        let mut y = vec![Dual2SVec64::<N>::from(0.0); wanted.len()];
+        let modulus = seeded[N - 1];
+        self.evaluate_with_modulus(
+            &self.layout.geometry(&seeded[..N - 1]),
+            Some(modulus),
+            wanted,
+            &mut y,
+        );
+        for (i, yi) in y.into_iter().enumerate() {
+            out[i] = yi.re;
+            let g = yi.v1.unwrap_generic(U1, Const::<N>);
+            let h = yi.v2.unwrap_generic(Const::<N>, Const::<N>);
+            for j in 0..N {
+                jacobian[i * N + j] = g[j];
+                for l in 0..N {
+                    hessian[(i * N + j) * N + l] = h[(j, l)];
+                }
+            }
+        }
+    }
+
     /// Values and gradients of the part's rules at `x`, with `N` = the number of
     /// parameters.
     fn rule_gradients<const N: usize>(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
@@ -196,13 +263,7 @@ impl Model for Bridge {
         out: &mut [f64],
         jacobian: &mut [f64],
     ) {
-        // one gradient size per parameter count: two strips have 8, notches up to 10
-        match x.len() {
-            8 => self.gradients::<8>(x, wanted, out, jacobian),
-            9 => self.gradients::<9>(x, wanted, out, jacobian),
-            10 => self.gradients::<10>(x, wanted, out, jacobian),
-            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
-        }
+        per_count!(x.len(), self.gradients::<+0>(x, wanted, out, jacobian))
     }
 
     fn material(&self) -> Option<&Material> {
@@ -221,6 +282,34 @@ impl Model for Bridge {
 
     fn fit_limits(&self) -> &[super::fit::FitLimit] {
         self.layout.fit_limits()
+    }
+}
+
+impl ModulusScaling for Bridge {
+    fn evaluate_scaled(&self, x: &[f64], modulus: f64, wanted: &[usize], out: &mut [f64]) {
+        self.evaluate_with_modulus(&self.layout.geometry(x), Some(modulus), wanted, out);
+    }
+
+    fn evaluate_scaled_with_gradient(
+        &self,
+        x: &[f64],
+        modulus: f64,
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        per_count!(x.len(), self.scaled_gradients::<+1>(x, modulus, wanted, out, jacobian))
+    }
+
+    fn evaluate_with_hessian(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    ) {
+        per_count!(x.len(), self.hessians::<+1>(x, wanted, out, jacobian, hessian))
     }
 }
 
@@ -295,11 +384,6 @@ impl PartMaker for Bridge {
     }
 
     fn rule_margins_with_gradient(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
-        match x.len() {
-            8 => self.rule_gradients::<8>(x, out, jacobian),
-            9 => self.rule_gradients::<9>(x, out, jacobian),
-            10 => self.rule_gradients::<10>(x, out, jacobian),
-            n => panic!("a bridge design has 8 to 10 parameters, got {n}"),
-        }
+        per_count!(x.len(), self.rule_gradients::<+0>(x, out, jacobian))
     }
 }

@@ -2,7 +2,7 @@
 
 use super::dynamics::{self, QuarterMode};
 use super::geometry::{Geometry, Trig};
-use super::quarter::QuarterBridge;
+use super::quarter::{hinge_compliances, QuarterBridge};
 use super::{Bridge, BridgeSettings};
 use crate::model::scalar::{max, Scalar};
 use crate::model::{Dimension, OutputInfo};
@@ -120,6 +120,19 @@ impl Bridge {
     /// Evaluates the outputs `wanted` (indices into [`BridgeOutput::ALL`]) of design `g`
     /// (SI) into `out`. Only what those outputs need is computed.
     pub fn evaluate<D: Scalar>(&self, g: &Geometry<D>, wanted: &[usize], out: &mut [D]) {
+        self.evaluate_with_modulus(g, None, wanted, out);
+    }
+
+    /// As [`Bridge::evaluate`], the material's Young's and shear moduli `modulus` times the
+    /// nominal ones where given (Poisson's ratio kept): a number carrying a derivative gives
+    /// the outputs' sensitivity to the modulus, which the material's tolerance needs.
+    pub fn evaluate_with_modulus<D: Scalar>(
+        &self,
+        g: &Geometry<D>,
+        modulus: Option<D>,
+        wanted: &[usize],
+        out: &mut [D],
+    ) {
         use BridgeOutput::*;
         let s = &self.settings;
         let trig = g.trig();
@@ -133,7 +146,7 @@ impl Bridge {
         // gradient evaluation is kilobytes, and moving it showed in the profile
         let storage;
         let quarter = if needs_quarter {
-            storage = QuarterBridge::with_trig(g, &trig, s.width, &s.material);
+            storage = QuarterBridge::with_trig(g, &trig, s.width, &s.material, modulus);
             Some(&storage)
         } else {
             None
@@ -149,6 +162,7 @@ impl Bridge {
             trig: &trig,
             quarter,
             input,
+            modulus,
             stresses: None,
             mode: None,
             mass: None,
@@ -168,6 +182,8 @@ struct Evaluation<'a, D> {
     quarter: Option<&'a QuarterBridge<D>>,
     /// `(a11, a21, k_in = 1/a11)`, present with the quarter.
     input: Option<(D, D, D)>,
+    /// The material's moduli over the nominal ones, where they differ.
+    modulus: Option<D>,
     stresses: Option<[D; 4]>,
     /// The output mode and its equivalent mass, computed on demand.
     mode: Option<QuarterMode<D>>,
@@ -232,10 +248,7 @@ impl<D: Scalar> Evaluation<'_, D> {
         // the closed form's hinge compliances when it was built, else the hinges afresh
         let (b, d) = match self.quarter {
             Some(q) => (q.b, q.d),
-            None => (
-                g.b.compliance(s.width, &s.material),
-                g.d.compliance(s.width, &s.material),
-            ),
+            None => hinge_compliances(g, s.width, &s.material, self.modulus),
         };
         *self
             .mode

@@ -77,6 +77,24 @@ use crate::model::material::Material;
 use crate::model::scalar::Scalar;
 
 /// The quarter bridge with its hinge compliances and the shared sub-expressions of
+/// The compliances of hinges b and d of `g`, in a material `modulus` times as stiff as
+/// `material` where given.
+pub(crate) fn hinge_compliances<D: Scalar>(
+    g: &Geometry<D>,
+    width: f64,
+    material: &Material,
+    modulus: Option<D>,
+) -> (Compliance<D>, Compliance<D>) {
+    let (b, d) = (
+        g.b.compliance(width, material),
+        g.d.compliance(width, material),
+    );
+    match modulus {
+        Some(m) => (b.with_modulus(m), d.with_modulus(m)),
+        None => (b, d),
+    }
+}
+
 /// Eq. 6-9 worked out once.
 #[derive(Debug, Clone, Copy)]
 pub struct QuarterBridge<D> {
@@ -94,17 +112,19 @@ pub struct QuarterBridge<D> {
 
 impl<D: Scalar> QuarterBridge<D> {
     pub fn new(g: &Geometry<D>, width: f64, material: &Material) -> Self {
-        Self::with_trig(g, &g.trig(), width, material)
+        Self::with_trig(g, &g.trig(), width, material, None)
     }
 
+    /// The quarter of `g`, its material's moduli `modulus` times the nominal ones where
+    /// given ([`Compliance::with_modulus`]).
     pub(crate) fn with_trig(
         g: &Geometry<D>,
         trig: &Trig<D>,
         width: f64,
         material: &Material,
+        modulus: Option<D>,
     ) -> Self {
-        let b = g.b.compliance(width, material);
-        let d = g.d.compliance(width, material);
+        let (b, d) = hinge_compliances(g, width, material, modulus);
         Self::from_parts(b, d, g.l3, trig)
     }
 

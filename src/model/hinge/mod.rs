@@ -75,6 +75,22 @@ pub struct Compliance<D> {
     pub c33: D,
 }
 
+impl<D: Scalar> Compliance<D> {
+    /// The same hinge's compliances in a material whose Young's and shear moduli are both
+    /// `modulus` times the nominal ones (Poisson's ratio kept): every coefficient of a
+    /// linear-elastic hinge is a length integral over `E` or `G`, so each scales by
+    /// `1 / modulus` exactly. The tolerance analysis varies `E` through it.
+    pub fn with_modulus(self, modulus: D) -> Self {
+        let inv = modulus.recip();
+        Compliance {
+            c11: self.c11 * inv,
+            c22: self.c22 * inv,
+            c23: self.c23 * inv,
+            c33: self.c33 * inv,
+        }
+    }
+}
+
 /// The kinds of flexure hinge flexopt models; each variant's room is in [`kinds`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]

@@ -1,0 +1,411 @@
+//! `flexopt tolerance`'s set: `tolerance.json`, a histogram `histogram_<output>.png` per
+//! constrained output with its limits marked, and the terminal's table. Every value is in
+//! the unit the file uses for the output ([`output_unit`]).
+
+use std::fmt::{self, Display};
+use std::path::{Path, PathBuf};
+
+use indexmap::IndexMap;
+use plotters::prelude::*;
+use serde::Serialize;
+
+use super::folder::OutputSet;
+use super::plot::{format_tick, range, render_png, FAMILY};
+use super::{write_json, WriteError};
+use crate::problem::display::{human, output_unit, significant};
+use crate::problem::tolerances::{Distribution, Input, Origin, Tolerance};
+use crate::problem::Problem;
+use crate::tolerance::monte_carlo::{Spread, CONFIDENCE};
+use crate::tolerance::robust::{Comparison, Side};
+use crate::tolerance::{normal_within, Analysis};
+
+/// One tolerance as the report shows it.
+#[derive(Debug, Clone, Serialize)]
+pub struct ToleranceLine {
+    pub name: String,
+    /// The band, in `unit` (a fraction for the modulus).
+    pub plus_minus: f64,
+    /// The standard deviation, in `unit`.
+    pub sigma: f64,
+    pub unit: String,
+    pub distribution: crate::problem::tolerances::Distribution,
+    pub origin: crate::problem::tolerances::Origin,
+}
+
+/// One output the problem uses, under the tolerances.
+#[derive(Debug, Clone, Serialize)]
+pub struct OutputLine {
+    pub name: String,
+    pub unit: String,
+    /// `objective`, `constraint`, or both.
+    pub role: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lower: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub upper: Option<f64>,
+    pub nominal: f64,
+    /// The first-order standard deviation.
+    pub std: f64,
+    pub worst_case: [f64; 2],
+    /// Tolerance -> share of the first-order variance.
+    pub shares: IndexMap<String, f64>,
+    /// The constraint's yield if the output were normal with the first-order spread.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first_order_yield: Option<f64>,
+    pub monte_carlo: Spread,
+    /// The fraction of samples meeting the constraint.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub monte_carlo_yield: Option<f64>,
+}
+
+/// `tolerance.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ToleranceReport {
+    pub problem: String,
+    pub model: String,
+    /// Variable -> value in the file's unit.
+    pub design: IndexMap<String, f64>,
+    pub tolerances: Vec<ToleranceLine>,
+    pub outputs: Vec<OutputLine>,
+    pub samples: usize,
+    pub seed: u64,
+    /// The fraction of samples meeting every constraint.
+    #[serde(rename = "yield")]
+    pub yield_fraction: f64,
+    pub yield_interval: [f64; 2],
+    pub yield_confidence: f64,
+    pub interval_method: &'static str,
+}
+
+impl ToleranceReport {
+    pub fn new(problem: &Problem, x: &[f64], a: &Analysis) -> Self {
+        let params = problem.model().parameters().len();
+        let tolerances = problem
+            .tolerances
+            .iter()
+            .map(|t| line(problem, t, params))
+            .collect();
+        let mc = &a.monte_carlo;
+        let outputs = a
+            .outputs
+            .wanted
+            .iter()
+            .enumerate()
+            .map(|(j, &index)| {
+                let unit = output_unit(problem, index);
+                let s = |v: f64| unit.from_si(v);
+                let f = &a.first_order[j];
+                let constraint = problem.constraints.iter().position(|c| c.index == index);
+                let c = constraint.map(|k| &problem.constraints[k]);
+                let objective = problem.objective.index == index;
+                let spread = &mc.outputs[j];
+                OutputLine {
+                    name: problem.model().outputs()[index].name.to_string(),
+                    unit: unit.name.clone(),
+                    role: match (objective, c.is_some()) {
+                        (true, true) => "objective, constraint",
+                        (true, false) => "objective",
+                        _ => "constraint",
+                    }
+                    .into(),
+                    lower: c.and_then(|c| c.lower).map(s),
+                    upper: c.and_then(|c| c.upper).map(s),
+                    nominal: s(f.nominal),
+                    std: s(f.std).abs(),
+                    worst_case: {
+                        let [a, b] = f.worst_case.map(s);
+                        [a.min(b), a.max(b)]
+                    },
+                    shares: problem
+                        .tolerances
+                        .iter()
+                        .zip(&f.shares)
+                        .map(|(t, &v)| (t.name.clone(), v))
+                        .collect(),
+                    first_order_yield: c.map(|c| normal_within(f.nominal, f.std, c.lower, c.upper)),
+                    monte_carlo: Spread {
+                        mean: s(spread.mean),
+                        std: s(spread.std).abs(),
+                        quantiles: spread.quantiles.iter().map(|&[q, v]| [q, s(v)]).collect(),
+                        min: s(spread.min),
+                        max: s(spread.max),
+                    },
+                    monte_carlo_yield: constraint.map(|k| mc.constraint_yields[k]),
+                }
+            })
+            .collect();
+        ToleranceReport {
+            problem: problem.name.clone(),
+            model: problem.model().name().to_string(),
+            design: problem.design_in_file_units(x),
+            tolerances,
+            outputs,
+            samples: mc.samples,
+            seed: mc.seed,
+            yield_fraction: mc.yield_fraction,
+            yield_interval: mc.yield_interval,
+            yield_confidence: CONFIDENCE,
+            interval_method: mc.interval_method,
+        }
+    }
+}
+
+fn line(problem: &Problem, t: &Tolerance, params: usize) -> ToleranceLine {
+    let sigma = match t.input {
+        Input::Parameter(i) if i < params => problem.variables[i].unit.from_si(t.sigma),
+        _ => t.sigma,
+    };
+    ToleranceLine {
+        name: t.name.clone(),
+        plus_minus: t.plus_minus,
+        sigma,
+        unit: t.unit.clone(),
+        distribution: t.distribution,
+        origin: t.origin,
+    }
+}
+
+/// The file name of an output's histogram.
+pub fn histogram_name(output: &str) -> String {
+    format!("histogram_{output}.png")
+}
+
+/// Writes `tolerance.json` and the histograms into `dir` as one set; returns the paths.
+pub fn write_tolerance_set(
+    dir: &Path,
+    report: &ToleranceReport,
+    analysis: &Analysis,
+    problem: &Problem,
+) -> Result<Vec<PathBuf>, WriteError> {
+    let m = analysis.outputs.wanted.len();
+    let constrained: Vec<usize> = (0..m)
+        .filter(|&j| report.outputs[j].lower.is_some() || report.outputs[j].upper.is_some())
+        .collect();
+    let mut names = vec!["tolerance.json".to_string()];
+    names.extend(
+        constrained
+            .iter()
+            .map(|&j| histogram_name(&report.outputs[j].name)),
+    );
+    let set = OutputSet::begin(dir)?;
+    set.write(|set| {
+        write_json(&set.path(&names[0]), report)?;
+        for (&j, name) in constrained.iter().zip(&names[1..]) {
+            let unit = output_unit(problem, analysis.outputs.wanted[j]);
+            let values: Vec<f64> = analysis
+                .monte_carlo
+                .values
+                .iter()
+                .skip(j)
+                .step_by(m)
+                .map(|&v| unit.from_si(v))
+                .collect();
+            histogram(
+                &set.path(name),
+                &report.problem,
+                &report.outputs[j],
+                &values,
+            )?;
+        }
+        Ok(())
+    })?;
+    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    set.commit(&refs)
+}
+
+/// The bins of a histogram.
+const BINS: usize = 60;
+
+/// One output's samples as a histogram, its limits as red dashed lines and its nominal value
+/// as a black one.
+fn histogram(png: &Path, problem: &str, o: &OutputLine, values: &[f64]) -> Result<(), WriteError> {
+    let limits: Vec<f64> = [o.lower, o.upper].into_iter().flatten().collect();
+    let (lo, hi) = range(values.iter().copied());
+    // a limit within reach of the samples widens the range; a far one would squash them
+    let reach = 2.0 * (hi - lo);
+    let near: Vec<f64> = limits
+        .iter()
+        .copied()
+        .filter(|&l| l > lo - reach && l < hi + reach)
+        .collect();
+    let (x0, x1) = range(values.iter().copied().chain(near.iter().copied()));
+    let width = (hi - lo) / BINS as f64;
+    let mut counts = vec![0usize; BINS];
+    for &v in values.iter().filter(|v| v.is_finite()) {
+        let b = (((v - lo) / width) as usize).min(BINS - 1);
+        counts[b] += 1;
+    }
+    let top = *counts.iter().max().unwrap_or(&1) as f64 * 1.08;
+    let unit = if o.unit == "1" {
+        String::new()
+    } else {
+        format!(" ({})", o.unit)
+    };
+    let title = format!(
+        "{problem}: {} over {} samples, {} meet the constraint",
+        o.name,
+        values.len(),
+        o.monte_carlo_yield.map_or("-".into(), pc)
+    );
+    render_png(png, (900, 520), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(&title, (FAMILY, 18))
+            .margin(12)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d(x0..x1, 0.0..top)?;
+        chart
+            .configure_mesh()
+            .x_desc(format!("{}{unit}", o.name))
+            .y_desc("samples")
+            .label_style((FAMILY, 12))
+            .axis_desc_style((FAMILY, 13))
+            .light_line_style(TRANSPARENT)
+            .bold_line_style(BLACK.mix(0.12))
+            .x_label_formatter(&|v| format_tick(*v))
+            .y_label_formatter(&|v| format_tick(*v))
+            .draw()?;
+        chart.draw_series(counts.iter().enumerate().map(|(b, &c)| {
+            let left = lo + width * b as f64;
+            Rectangle::new(
+                [(left, 0.0), (left + width, c as f64)],
+                BLUE.mix(0.5).filled(),
+            )
+        }))?;
+        for &l in &near {
+            chart.draw_series(DashedLineSeries::new(
+                [(l, 0.0), (l, top)],
+                6,
+                4,
+                RED.mix(0.8).stroke_width(2),
+            ))?;
+        }
+        chart.draw_series(LineSeries::new(
+            [(o.nominal, 0.0), (o.nominal, top)],
+            BLACK.stroke_width(1),
+        ))?;
+        Ok(())
+    })
+}
+
+/// A fraction as a percentage with its sign, four significant digits.
+fn pc(fraction: f64) -> String {
+    format!("{} %", significant(100.0 * fraction, 4))
+}
+
+/// The terminal's table: the tolerances, then each output's spread and yield.
+pub struct ToleranceTable<'a>(pub &'a ToleranceReport);
+
+impl Display for ToleranceTable<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let r = self.0;
+        writeln!(s, "{} ({} model): tolerances", r.problem, r.model)?;
+        for t in &r.tolerances {
+            let unit = if t.unit == "1" { "" } else { &t.unit };
+            let distribution = match t.distribution {
+                Distribution::Normal => "normal, the band 3 standard deviations",
+                Distribution::Uniform => "uniform",
+            };
+            let origin = match t.origin {
+                Origin::File => "",
+                Origin::Default => " (wire EDM's default)",
+            };
+            writeln!(
+                s,
+                "  {:<16} +-{:<10} {:<4} {distribution}{origin}",
+                t.name,
+                human(t.plus_minus),
+                unit,
+            )?;
+        }
+        writeln!(
+            s,
+            "{:<18} {:>12} {:>11} {:>11} {:>11} {:>9} {:>9}  unit; largest share",
+            "output", "nominal", "std (1st)", "std (MC)", "mean (MC)", "meet 1st", "meet MC"
+        )?;
+        for o in &r.outputs {
+            let (top, share) = o
+                .shares
+                .iter()
+                .max_by(|a, b| a.1.total_cmp(b.1))
+                .map_or(("-", 0.0), |(n, &v)| (n.as_str(), v));
+            let unit = if o.unit == "1" { "" } else { &o.unit };
+            writeln!(
+                s,
+                "{:<18} {:>12} {:>11} {:>11} {:>11} {:>9} {:>9}  {unit}; {top} {}",
+                o.name,
+                human(o.nominal),
+                human(o.std),
+                human(o.monte_carlo.std),
+                human(o.monte_carlo.mean),
+                o.first_order_yield.map_or("-".into(), pc),
+                o.monte_carlo_yield.map_or("-".into(), pc),
+                pc(share),
+            )?;
+        }
+        writeln!(
+            s,
+            "yield: {} of {} samples meet every constraint ({} {} interval {} .. {})",
+            pc(r.yield_fraction),
+            r.samples,
+            pc(r.yield_confidence),
+            r.interval_method.split(',').next().unwrap_or(""),
+            pc(r.yield_interval[0]),
+            pc(r.yield_interval[1]),
+        )
+    }
+}
+
+/// Writes `robust.json` into `dir`, added to the run's set; returns its path.
+pub fn write_robust(dir: &Path, comparison: &Comparison) -> Result<Vec<PathBuf>, WriteError> {
+    let set = OutputSet::begin(dir)?;
+    set.write(|set| write_json(&set.path("robust.json"), comparison))?;
+    set.commit_added(&["robust.json"])
+}
+
+/// The nominal and the robust optimum side by side.
+pub struct RobustTable<'a>(pub &'a Comparison, pub &'a Problem);
+
+impl Display for RobustTable<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (c, p) = (self.0, self.1);
+        let target = c
+            .target_yield
+            .map_or(String::new(), |y| format!(" for a yield of {}", pc(y)));
+        writeln!(
+            s,
+            "robust study: every constraint kept {} first-order standard deviations inside \
+             its limits{target}; yields by {} Monte Carlo samples",
+            significant(c.k_sigma, 4),
+            c.samples
+        )?;
+        let sides = [("nominal", c.nominal.as_ref()), ("robust", Some(&c.robust))];
+        writeln!(s, "  {:<22} {:>16} {:>16}", "", "nominal", "robust")?;
+        let cell = |f: &dyn Fn(&Side) -> String, side: Option<&Side>| side.map_or("-".into(), f);
+        writeln!(
+            s,
+            "  {:<22} {:>16} {:>16}",
+            p.objective.output,
+            cell(&|x| human(x.objective), sides[0].1),
+            cell(&|x| human(x.objective), sides[1].1)
+        )?;
+        writeln!(
+            s,
+            "  {:<22} {:>16} {:>16}",
+            "yield (Monte Carlo)",
+            cell(&|x| pc(x.yield_fraction), sides[0].1),
+            cell(&|x| pc(x.yield_fraction), sides[1].1)
+        )?;
+        for k in c.robust.margins_in_sigma.keys() {
+            let m = |x: &Side| format!("{} sigma", significant(x.margins_in_sigma[k], 3));
+            writeln!(
+                s,
+                "  {:<22} {:>16} {:>16}",
+                format!("margin of {k}"),
+                cell(&m, sides[0].1),
+                cell(&m, sides[1].1)
+            )?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,210 @@
+//! Monte Carlo over a design's tolerances: sample `i` draws from its own random stream
+//! (ChaCha8 seeded with the run's seed, stream `i`), as the multistart seeds its starts, so
+//! that the thread count changes no result.
+
+use rand::Rng;
+use rand_chacha::rand_core::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::StandardNormal;
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::Outputs;
+use crate::problem::tolerances::{Distribution, Input, Tolerance};
+
+/// How many samples, from which seed, on how many threads (0: every core).
+#[derive(Debug, Clone, Copy)]
+pub struct Settings {
+    pub samples: usize,
+    pub seed: u64,
+    pub threads: usize,
+}
+
+/// The probabilities of [`Spread::quantiles`].
+pub const QUANTILES: [f64; 7] = [0.001, 0.01, 0.05, 0.5, 0.95, 0.99, 0.999];
+
+/// The confidence of the yield's interval, and its normal quantile.
+pub const CONFIDENCE: f64 = 0.95;
+const Z95: f64 = 1.959_963_984_540_054;
+
+/// One output over the samples.
+#[derive(Debug, Clone, Serialize)]
+pub struct Spread {
+    pub mean: f64,
+    pub std: f64,
+    /// `[probability, value]` at each of [`QUANTILES`].
+    pub quantiles: Vec<[f64; 2]>,
+    pub min: f64,
+    pub max: f64,
+}
+
+/// The samples' outputs and what they say.
+#[derive(Debug, Clone, Serialize)]
+pub struct MonteCarlo {
+    pub samples: usize,
+    pub seed: u64,
+    /// The fraction of samples that meet every constraint.
+    #[serde(rename = "yield")]
+    pub yield_fraction: f64,
+    /// Its Wilson score interval at [`CONFIDENCE`].
+    pub yield_interval: [f64; 2],
+    pub interval_method: &'static str,
+    /// Per wanted output, in the order of [`Outputs::wanted`].
+    pub outputs: Vec<Spread>,
+    /// Per constraint, the fraction of samples that meet it.
+    pub constraint_yields: Vec<f64>,
+    /// Every sample's wanted outputs, row-major (for the histograms; not written).
+    #[serde(skip)]
+    pub values: Vec<f64>,
+}
+
+/// The deviation of one input, in standard deviations, from `rng`.
+fn draw(rng: &mut ChaCha8Rng, distribution: Distribution) -> f64 {
+    match distribution {
+        Distribution::Normal => rng.sample(StandardNormal),
+        // uniform on +-sqrt(3): unit variance
+        Distribution::Uniform => (2.0 * rng.random::<f64>() - 1.0) * 3f64.sqrt(),
+    }
+}
+
+/// Samples the tolerances around `x` and evaluates the wanted outputs at each sample; an
+/// error names the first sample (by index) whose design leaves the model's domain.
+pub fn run(
+    outputs: &Outputs,
+    tolerances: &[Tolerance],
+    x: &[f64],
+    settings: Settings,
+) -> Result<MonteCarlo, String> {
+    let m = outputs.wanted.len();
+    let model = outputs.problem.model();
+    let mut values = vec![0.0; settings.samples * m];
+    let sample = |i: usize, row: &mut [f64]| -> Result<(), String> {
+        let mut rng = ChaCha8Rng::seed_from_u64(settings.seed);
+        rng.set_stream(i as u64);
+        let mut xi = x.to_vec();
+        let mut modulus = 1.0;
+        for t in tolerances {
+            let d = draw(&mut rng, t.distribution) * t.sigma;
+            match t.input {
+                Input::Parameter(j) => xi[j] += d,
+                Input::Modulus => modulus += d,
+            }
+        }
+        let out_of_domain = if modulus <= 0.0 {
+            Some(format!("youngs_modulus's factor {modulus} is not positive"))
+        } else {
+            model.domain_error(&xi)
+        };
+        if let Some(why) = out_of_domain {
+            return Err(format!(
+                "Monte Carlo sample {i} (seed {}) leaves the model's domain: {why}; the \
+                 tolerances ({}) are too wide for this design",
+                settings.seed,
+                tolerances
+                    .iter()
+                    .map(|t| t.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+        outputs.values(&xi, modulus, row);
+        Ok(())
+    };
+    let mut work = || {
+        values
+            .par_chunks_mut(m)
+            .enumerate()
+            .filter_map(|(i, row)| sample(i, row).err().map(|e| (i, e)))
+            .min_by_key(|(i, _)| *i)
+    };
+    let failed = match rayon::ThreadPoolBuilder::new()
+        .num_threads(settings.threads)
+        .build()
+    {
+        Ok(pool) => pool.install(work),
+        Err(_) => work(),
+    };
+    if let Some((_, e)) = failed {
+        return Err(e);
+    }
+    Ok(summarize(outputs, values, settings))
+}
+
+fn summarize(outputs: &Outputs, values: Vec<f64>, settings: Settings) -> MonteCarlo {
+    let (n, m) = (settings.samples, outputs.wanted.len());
+    let constraints = &outputs.problem.constraints;
+    let columns: Vec<usize> = constraints
+        .iter()
+        .map(|c| {
+            outputs
+                .wanted
+                .iter()
+                .position(|&w| w == c.index)
+                .unwrap_or(0)
+        })
+        .collect();
+    let meets = |row: &[f64], k: usize| {
+        let (c, y) = (&constraints[k], row[columns[k]]);
+        c.lower.is_none_or(|l| y >= l) && c.upper.is_none_or(|u| y <= u)
+    };
+    let mut met = vec![0usize; constraints.len()];
+    let mut all = 0usize;
+    for row in values.chunks(m) {
+        let mut every = true;
+        for (k, count) in met.iter_mut().enumerate() {
+            if meets(row, k) {
+                *count += 1;
+            } else {
+                every = false;
+            }
+        }
+        all += usize::from(every);
+    }
+    let spreads = (0..m)
+        .map(|j| {
+            let mut column: Vec<f64> = values.iter().skip(j).step_by(m).copied().collect();
+            let mean = column.iter().sum::<f64>() / n as f64;
+            let var =
+                column.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1).max(1) as f64;
+            column.sort_by(f64::total_cmp);
+            Spread {
+                mean,
+                std: var.sqrt(),
+                quantiles: QUANTILES.map(|q| [q, quantile(&column, q)]).to_vec(),
+                min: column[0],
+                max: column[n - 1],
+            }
+        })
+        .collect();
+    let fraction = all as f64 / n as f64;
+    MonteCarlo {
+        samples: n,
+        seed: settings.seed,
+        yield_fraction: fraction,
+        yield_interval: wilson(all, n),
+        interval_method: "Wilson score, 95 %",
+        outputs: spreads,
+        constraint_yields: met.iter().map(|&c| c as f64 / n as f64).collect(),
+        values,
+    }
+}
+
+/// The `q` quantile of the sorted `v`, interpolated linearly between order statistics
+/// (Hyndman and Fan's definition 7, the default of R and NumPy).
+pub fn quantile(v: &[f64], q: f64) -> f64 {
+    let h = (v.len() - 1) as f64 * q;
+    let (lo, frac) = (h.floor() as usize, h - h.floor());
+    let hi = (lo + 1).min(v.len() - 1);
+    v[lo] + (v[hi] - v[lo]) * frac
+}
+
+/// The Wilson score interval of a proportion of `k` in `n` at 95 % (E. B. Wilson, J. Am.
+/// Stat. Assoc. 22 (1927) 209-212; Brown, Cai and DasGupta, Stat. Sci. 16 (2001) 101-133,
+/// recommend it over the normal interval, which collapses at a yield of 0 or 1).
+pub fn wilson(k: usize, n: usize) -> [f64; 2] {
+    let (n, p) = (n as f64, k as f64 / n as f64);
+    let z2 = Z95 * Z95;
+    let centre = (p + z2 / (2.0 * n)) / (1.0 + z2 / n);
+    let half = Z95 / (1.0 + z2 / n) * (p * (1.0 - p) / n + z2 / (4.0 * n * n)).sqrt();
+    [(centre - half).max(0.0), (centre + half).min(1.0)]
+}

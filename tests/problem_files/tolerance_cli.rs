@@ -1,0 +1,152 @@
+//! `flexopt tolerance` end to end: the set it writes, its yield, and the bad input it
+//! refuses without writing anything.
+
+use std::path::{Path, PathBuf};
+
+use crate::common;
+
+use common::{flexopt, flexopt_ok};
+use serde_json::Value;
+
+/// wei2017's nominal optimum, rounded in the file's units.
+const OPTIMUM: &str = "l2=1.98403217,delta2=4.05060614,t2=0.4,l3=8.0614441,delta3=3.99583492,\
+                       l4=1.98403217,delta4=4.05060612,t4=0.4";
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("flexopt-tol-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// wei2017.toml with `tolerances` appended, written into `dir`.
+fn wei2017_with(dir: &Path, tolerances: &str) -> PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    let text = std::fs::read_to_string("problems/wei2017.toml").unwrap();
+    let file = dir.join("wei2017.toml");
+    std::fs::write(&file, format!("{text}\n[tolerances]\n{tolerances}\n")).unwrap();
+    file
+}
+
+#[test]
+fn tolerance_writes_its_set_and_the_nominal_yield() {
+    let dir = scratch("set");
+    let out = dir.join("out");
+    let o = out.to_str().unwrap();
+    let stdout = flexopt_ok(&[
+        "tolerance",
+        "problems/wei2017.toml",
+        "--design",
+        OPTIMUM,
+        "--samples",
+        "20000",
+        "--out",
+        o,
+    ])
+    .stdout;
+    let text = String::from_utf8(stdout).unwrap();
+    assert!(
+        text.contains("yield: ") && text.contains("Wilson"),
+        "{text}"
+    );
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("tolerance.json")).unwrap())
+            .unwrap();
+    let y = json["yield"].as_f64().unwrap();
+    assert!(y < 0.05, "yield {y}");
+    assert_eq!(json["samples"].as_u64(), Some(20000));
+    assert_eq!(json["seed"].as_u64(), Some(2017), "the file's search.seed");
+    let names: Vec<&str> = json["tolerances"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["l2", "t2", "l3", "l4", "t4", "youngs_modulus"]);
+    for name in ["span_x", "span_y", "stress_max", "k_in", "k_out"] {
+        assert!(
+            out.join(format!("histogram_{name}.png")).is_file(),
+            "{name}"
+        );
+    }
+    assert!(
+        !out.join("histogram_amplification.png").exists(),
+        "no limits, no histogram"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `flexopt tolerance` on wei2017 with `tolerance` in its `[tolerances]`, which must fail
+/// with exit 2 and write nothing: its standard error.
+fn refused(name: &str, tolerance: &str) -> String {
+    let dir = scratch(name);
+    let file = wei2017_with(&dir, tolerance);
+    let out = dir.join("out");
+    let o = flexopt(&[
+        "tolerance",
+        file.to_str().unwrap(),
+        "--design",
+        OPTIMUM,
+        "--samples",
+        "1000",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{tolerance}");
+    assert!(!out.join("tolerance.json").exists(), "nothing written");
+    assert!(!out.join("histogram_k_in.png").exists(), "nothing written");
+    let _ = std::fs::remove_dir_all(&dir);
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn tolerance_refuses_a_sample_out_of_the_domain_and_writes_nothing() {
+    let err = refused("domain", "t2 = { plus_minus = 1.5 }");
+    assert!(
+        err.contains("wei2017.toml") && err.contains("key `tolerances`"),
+        "{err}"
+    );
+    assert!(
+        err.contains("leaves the model's domain") && err.contains("t2 = -"),
+        "{err}"
+    );
+}
+
+#[test]
+fn tolerance_refuses_bad_tolerances_naming_the_key() {
+    for (tolerance, key, words) in [
+        (
+            "t2 = { plus_minus = -0.005 }",
+            "tolerances.t2.plus_minus",
+            "must be positive",
+        ),
+        (
+            "t9 = { sigma = 0.01 }",
+            "tolerances.t9",
+            "no design variable",
+        ),
+    ] {
+        let err = refused("bad", tolerance);
+        assert!(
+            err.contains(&format!("key `{key}`")) && err.contains(words),
+            "{err}"
+        );
+    }
+}
+
+#[test]
+fn tolerance_refuses_too_few_samples() {
+    let o = flexopt(&[
+        "tolerance",
+        "problems/wei2017.toml",
+        "--design",
+        OPTIMUM,
+        "--samples",
+        "1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("key `--samples`") && err.contains("got 1"),
+        "{err}"
+    );
+}
