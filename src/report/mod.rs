@@ -9,6 +9,7 @@
 pub use crate::problem::display;
 pub mod folder;
 pub mod hinge;
+pub mod html;
 pub mod pareto;
 pub mod part;
 pub mod plot;
