@@ -7,10 +7,11 @@ use std::path::{Path, PathBuf};
 use indexmap::IndexMap;
 use serde::Serialize;
 
+use super::configurations::configurations_png;
 use super::folder::OutputSet;
 use super::html::{self, ProblemText};
 use super::part::{write_part, PART_FILES};
-use super::study_plots::{configurations_png, zones_png};
+use super::study_plots::zones_png;
 use super::verify::{write_verify, VerifyReport, VERIFY_FILES, VERIFY_FOLDER};
 use super::{write_atomic, write_json, DesignReport, WriteError};
 use crate::fe::verify::Verification;
