@@ -10,7 +10,7 @@ use serde::Serialize;
 use super::configurations::configurations_png;
 use super::folder::OutputSet;
 use super::html::{self, ProblemText};
-use super::part::{write_part, PART_FILES};
+use super::part::{write_part, PartOf, PART_FILES};
 use super::study_plots::zones_png;
 use super::verify::{write_verify, VerifyReport, VERIFY_FILES, VERIFY_FOLDER};
 use super::{write_atomic, write_json, DesignReport, WriteError};
@@ -318,7 +318,7 @@ pub fn write_all_refined(
             written.push("refined.json");
             if let (Some(part), Some(design)) = (r.part, r.report.refined.as_ref()) {
                 let named = |f: &str| set.path(&format!("refined_{f}"));
-                write_part(named, &problem.name, &design.design, part)?;
+                write_part(named, &problem.name, &design.design, part, PartOf::Refined)?;
                 written.extend(REFINED_PART_FILES);
             }
         }
@@ -371,7 +371,13 @@ fn write_study(
         written.push(files[5]);
     }
     if let Some(Ok(part)) = part {
-        write_part(path, &problem.name, &optimum.design.design, part)?;
+        write_part(
+            path,
+            &problem.name,
+            &optimum.design.design,
+            part,
+            PartOf::Design,
+        )?;
         written.extend(PART_FILES);
     }
     Ok(written)

@@ -59,6 +59,8 @@ pub(super) fn zones_png(path: &Path, problem: &Problem, study: &Study) -> Result
         let mut chart = ChartBuilder::on(root)
             .caption(&title, (FAMILY, 20))
             .margin(12)
+            // room for the last tick's label, centred on the axis's end
+            .margin_right(36)
             .x_label_area_size(40)
             .y_label_area_size(64)
             .build_cartesian_2d(0f64..(pts.len().max(1) as f64), yr.0..yr.1)?;
@@ -70,6 +72,8 @@ pub(super) fn zones_png(path: &Path, problem: &Problem, study: &Study) -> Result
             .light_line_style(TRANSPARENT)
             .bold_line_style(BLACK.mix(0.12))
             .y_label_formatter(&|v| format_tick(*v))
+            // starts are counted: whole ticks
+            .x_label_formatter(&|v| format!("{v:.0}"))
             .draw()?;
         for &t in &thresholds {
             chart.draw_series(LineSeries::new(
