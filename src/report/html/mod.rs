@@ -181,6 +181,7 @@ fn render(set: &Set, problem: Option<&ProblemText>) -> Markup {
                     (sections::refinement(set))
                     (sections::files(set))
                     (sections::reproduce(set, problem))
+                    (sections::problem_file(problem))
                 }
             }
         }

@@ -136,15 +136,25 @@ pub(super) fn problem(set: &Set, problem: Option<&ProblemText>) -> Markup {
                 "."
             }
             @match problem {
-                Some(p) => {
-                    p { "The problem file as stated (" code { (p.path) } "):" }
-                    pre.source { (p.text) }
-                }
+                Some(p) => p { "The problem file as stated, " code { (p.path) } ", is the "
+                    a href="#problem-file" { "last section" } "." },
                 None => p.note {
                     "The problem file is not part of the set; "
                     code { "flexopt report DIR --problem FILE" }
-                    " adds it here, checked against the content the run read."
+                    " adds it, checked against the content the run read."
                 },
+            }
+        }
+    }
+}
+
+pub(super) fn problem_file(problem: Option<&ProblemText>) -> Markup {
+    html! {
+        @if let Some(p) = problem {
+            section #problem-file {
+                h2 { "The problem file" }
+                p { code { (p.path) } ", as the run read it:" }
+                pre.source { (p.text) }
             }
         }
     }
@@ -160,15 +170,49 @@ pub(super) fn optimum(set: &Set) -> Markup {
         section #optimum {
             h2 { "The optimum" }
             div.columns {
-                table {
-                    thead { tr { th { "variable" } th.num { "value" } th { "unit" } } }
-                    tbody {
-                        @for name in set.order.design.keys() {
-                            tr {
-                                td { code { (name) } }
-                                td.num { (num(design.and_then(|d| d.get(name)))) }
-                                td { (units.and_then(|u| u.get(name)).and_then(Value::as_str).unwrap_or("")) }
+                div {
+                    table {
+                        thead { tr { th { "variable" } th.num { "value" } th { "unit" } } }
+                        tbody {
+                            @for name in set.order.design.keys() {
+                                tr {
+                                    td { code { (name) } }
+                                    td.num { (num(design.and_then(|d| d.get(name)))) }
+                                    td { (units.and_then(|u| u.get(name)).and_then(Value::as_str).unwrap_or("")) }
+                                }
                             }
+                        }
+                    }
+                    p {
+                        "The local solve from start " (num(o.get("start"))) " ended "
+                        (o.get("status").map_or("–", |s| text(s, "status")))
+                        " after " (num(o.get("iterations"))) " iterations (KKT residual "
+                        (num(o.get("kkt_residual"))) "). Of the starts, "
+                        @if let Some(e) = ends {
+                            (num(e.get("converged"))) " converged, " (num(e.get("iteration_limit")))
+                            " hit the iteration limit, " (num(e.get("infeasible"))) " ended infeasible and "
+                            (num(e.get("failed"))) " failed."
+                        }
+                    }
+                    @if let Some(z) = &set.zones {
+                        h3 { "Zones of the optima" }
+                        table {
+                            thead { tr { th { "zone" } th.num { "from" } th.num { "to" } th.num { "starts" } th.num { "best" } th.num { "optima" } } }
+                            tbody {
+                                @for zone in list(Some(z), "zones") {
+                                    tr {
+                                        td { (num(zone.get("rank"))) }
+                                        td.num { (num(zone.get("low"))) }
+                                        td.num { (num(zone.get("high"))) }
+                                        td.num { (num(zone.get("count"))) }
+                                        td.num { (num(zone.get("best"))) }
+                                        td.num { (list(Some(zone), "optima").len()) }
+                                    }
+                                }
+                            }
+                        }
+                        @if let Some(rule) = z.get("configuration_rule").and_then(Value::as_str) {
+                            p.small { "Configurations: " (rule) }
                         }
                     }
                 }
@@ -185,40 +229,8 @@ pub(super) fn optimum(set: &Set) -> Markup {
                     }
                 }
             }
-            p {
-                "The local solve from start " (num(o.get("start"))) " ended "
-                (o.get("status").map_or("–", |s| text(s, "status")))
-                " after " (num(o.get("iterations"))) " iterations (KKT residual "
-                (num(o.get("kkt_residual"))) "). Of the starts, "
-                @if let Some(e) = ends {
-                    (num(e.get("converged"))) " converged, " (num(e.get("iteration_limit")))
-                    " hit the iteration limit, " (num(e.get("infeasible"))) " ended infeasible and "
-                    (num(e.get("failed"))) " failed."
-                }
-            }
-            @if let Some(z) = &set.zones {
-                h3 { "Zones of the optima" }
-                table {
-                    thead { tr { th { "zone" } th.num { "objective from" } th.num { "to" } th.num { "starts" } th.num { "best" } th.num { "optima" } } }
-                    tbody {
-                        @for zone in list(Some(z), "zones") {
-                            tr {
-                                td { (num(zone.get("rank"))) }
-                                td.num { (num(zone.get("low"))) }
-                                td.num { (num(zone.get("high"))) }
-                                td.num { (num(zone.get("count"))) }
-                                td.num { (num(zone.get("best"))) }
-                                td.num { (list(Some(zone), "optima").len()) }
-                            }
-                        }
-                    }
-                }
-                @if let Some(rule) = z.get("configuration_rule").and_then(Value::as_str) {
-                    p.small { "Configurations: " (rule) }
-                }
-            }
-            (super::sections::figure(set, "zones.png", "The starts' objectives by zone"))
-            (super::sections::figure(set, "configurations.png", "The optimum's configuration"))
+            (figure(set, "zones.png", "The starts' objectives by zone"))
+            (figure(set, "configurations.png", "Each zone's optima, to scale"))
         }
     }
 }
