@@ -79,6 +79,10 @@ fn member(a: (f64, f64), b: (f64, f64), t: f64, shape: Option<&[(f64, f64)]>) ->
         .collect()
 }
 
+/// A shape of the drawing: its zone, its outline (a polygon, or a rigid member's two ends),
+/// and whether it is a flexible member (filled) or a rigid one (a line).
+type Shape = (usize, Vec<(f64, f64)>, bool);
+
 /// One drawn optimum: its skeleton and, for each member, the outline of the part's hinge
 /// there if it is a notch.
 struct Drawn {
@@ -163,7 +167,7 @@ pub(super) fn configurations_png(
         .map(|z| z.rank)
         .filter(|&r| lines.iter().any(|l| l.rank == r))
         .collect();
-    let shapes: Vec<(usize, Vec<(f64, f64)>, bool)> = lines
+    let shapes: Vec<Shape> = lines
         .iter()
         .flat_map(|d| {
             let s = &d.skeleton;

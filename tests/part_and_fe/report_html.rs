@@ -59,42 +59,34 @@ fn chromium() -> Option<&'static str> {
         .arg("--version")
         .output()
         .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "chromium (Debian package chromium) is missing, and CI is set: .ci/run must install it"
-        );
-        eprintln!("chromium not found: report.html is not opened in a browser here");
-    }
-    found.then_some("chromium")
+    crate::common::peer_present(
+        found,
+        "chromium (Debian package chromium)",
+        "the check of report.html in a browser",
+    )
+    .then_some("chromium")
 }
 
 /// Chromium, headless and offline, on `page` with `args` (its profile in `profile`).
 fn headless(profile: &Path, page: &Path, width: u32, args: &[&str]) -> std::process::Output {
-    let out = Command::new("chromium")
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--hide-scrollbars",
-        ])
-        .arg(format!("--user-data-dir={}", profile.display()))
-        .arg(format!("--window-size={width},1400"))
-        .args(args)
-        .arg(format!("file://{}", page.canonicalize().unwrap().display()))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
+    crate::common::succeeds(
+        Command::new("chromium")
+            .args([
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--disable-quic",
+                "--no-first-run",
+                "--disable-background-networking",
+                "--disable-component-update",
+                "--disable-sync",
+                "--hide-scrollbars",
+            ])
+            .arg(format!("--user-data-dir={}", profile.display()))
+            .arg(format!("--window-size={width},1400"))
+            .args(args)
+            .arg(format!("file://{}", page.canonicalize().unwrap().display())),
+    )
 }
 
 /// Runs in the page once it has loaded: each picture's decoded width, and every element

@@ -5,7 +5,7 @@ use maud::{html, Markup};
 use serde_json::Value;
 
 use super::{ProblemText, Set, VERIFY};
-use crate::problem::display::human;
+use crate::problem::display::{human, significant};
 use crate::vocab::units::{tables, Unit};
 
 fn num(v: Option<&Value>) -> String {
@@ -424,9 +424,9 @@ pub(super) fn fe_check(set: &Set) -> Markup {
                                     @if let Some(c) = cell {
                                         (in_unit(c.get("value"), si, None).0) br;
                                         span.small {
-                                            "± " (c.get("relative_error").and_then(Value::as_f64).map_or("–".into(), |e| format!("{}", crate::problem::display::significant(100.0 * e, 2)))) " %"
+                                            "± " (c.get("relative_error").and_then(Value::as_f64).map_or("–".into(), |e| significant(100.0 * e, 2))) " %"
                                             @if let Some(d) = c.get("deviation_percent").and_then(Value::as_f64) {
-                                                ", dev. " (crate::problem::display::significant(d, 3)) " %"
+                                                ", dev. " (significant(d, 3)) " %"
                                             }
                                             @if c.get("converging").and_then(Value::as_bool) == Some(false) { ", not converging" }
                                         }
