@@ -64,7 +64,7 @@ fn window(h: &Hinge, aspect: f64) -> ((f64, f64), (f64, f64)) {
         0.5 * (h.start[1] + h.end[1]) * 1e3,
     ];
     let length = (h.end[0] - h.start[0]).hypot(h.end[1] - h.start[1]) * 1e3;
-    let half = 0.5 * length + 2.0 * (h.root + h.fillet) * 1e3;
+    let half = 0.75 * length + (1.5 * h.thickness + h.fillet) * 1e3;
     let tall = half * aspect;
     (
         (mid[0] - half, mid[0] + half),
@@ -76,9 +76,23 @@ fn inside(p: (f64, f64), (xr, yr): ((f64, f64), (f64, f64))) -> bool {
     (xr.0..=xr.1).contains(&p.0) && (yr.0..=yr.1).contains(&p.1)
 }
 
-/// The largest nodal stress within the window of each hinge, on the half mesh or its mirror
-/// image, and where (mm).
-fn hinge_peaks(v: &Verification, k: usize, aspect: f64) -> Vec<(usize, f64, (f64, f64))> {
+/// Whether `p` (mm) is on the hinge `h`: within its root's half-thickness and fillet of its
+/// centre line (the window shows more: the bodies around it, and other hinges' ends).
+fn on(h: &Hinge, p: (f64, f64)) -> bool {
+    let (a, b) = (
+        (h.start[0] * 1e3, h.start[1] * 1e3),
+        (h.end[0] * 1e3, h.end[1] * 1e3),
+    );
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let t =
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / (dx * dx + dy * dy).max(1e-30)).clamp(0.0, 1.0);
+    let d = (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy);
+    d <= (0.5 * h.root + h.fillet) * 1e3 + 1e-9
+}
+
+/// The largest nodal stress on each hinge, on the half mesh or its mirror image, and where
+/// (mm).
+fn hinge_peaks(v: &Verification, k: usize) -> Vec<(usize, f64, (f64, f64))> {
     let f = &v.results[k].fields;
     let mut peaks: Vec<(usize, f64, (f64, f64))> = v
         .part
@@ -86,14 +100,13 @@ fn hinge_peaks(v: &Verification, k: usize, aspect: f64) -> Vec<(usize, f64, (f64
         .iter()
         .enumerate()
         .map(|(i, h)| {
-            let w = window(h, aspect);
             let mut best = (i, 0.0, (0.0, 0.0));
             for (node, &s) in f.mesh.nodes.iter().zip(&f.von_mises) {
                 for p in [
                     (node[0] * 1e3, node[1] * 1e3),
                     (-node[0] * 1e3, node[1] * 1e3),
                 ] {
-                    if s > best.1 && inside(p, w) {
+                    if s > best.1 && on(h, p) {
                         best = (i, s, p);
                     }
                 }
@@ -107,8 +120,8 @@ fn hinge_peaks(v: &Verification, k: usize, aspect: f64) -> Vec<(usize, f64, (f64
 
 /// The two hinges to show close: the most stressed, and the most stressed of the others that
 /// is not its mirror image (which shows the same).
-fn close_ups(v: &Verification, k: usize, aspect: f64) -> Vec<(usize, f64, (f64, f64))> {
-    let peaks = hinge_peaks(v, k, aspect);
+fn close_ups(v: &Verification, k: usize) -> Vec<(usize, f64, (f64, f64))> {
+    let peaks = hinge_peaks(v, k);
     let mut chosen: Vec<(usize, f64, (f64, f64))> = Vec::new();
     for p in peaks {
         let h = &v.part.hinges[p.0];
@@ -264,11 +277,7 @@ pub(super) fn stress_png(path: &Path, problem: &str, v: &Verification) -> Result
                     .into_iter()
                     .map(|p| Cross::new(p, 8, BLACK.stroke_width(3))),
             )?;
-            for (area, (i, peak, spot)) in near
-                .split_evenly((1, 2))
-                .iter()
-                .zip(close_ups(v, k, aspect))
-            {
+            for (area, (i, peak, spot)) in near.split_evenly((1, 2)).iter().zip(close_ups(v, k)) {
                 let h = &v.part.hinges[i];
                 let w = window(h, aspect);
                 let mut chart = panel(area, &format!("{name}: {}", h.name), w.0, w.1)?;
