@@ -270,3 +270,71 @@ pub(super) fn configurations_png(
         Ok(())
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A right-circular notch of radius `r` and least thickness `t` (m), as the part states it:
+    /// the profile's one arc, a half circle, from one root to the other.
+    fn notch(r: f64, t: f64) -> Hinge {
+        Hinge {
+            name: "hinge b".into(),
+            kind: "circular",
+            start: [0.0, 0.0],
+            end: [2.0 * r, 0.0],
+            thickness: t,
+            root: 2.0 * r + t,
+            fillet: 0.0,
+            profile: vec![[0.0, r + t / 2.0, 1.0], [2.0 * r, r + t / 2.0, 0.0]],
+        }
+    }
+
+    #[test]
+    fn a_notch_is_drawn_by_its_outline_thinnest_at_its_middle() {
+        let (r, t) = (2.133e-3, 0.4e-3);
+        let shape = outline(&notch(r, t));
+        // the top half runs from root to root through the arc, the bottom mirrors it
+        let half = shape.len() / 2;
+        for (p, q) in shape[..half].iter().zip(shape[half..].iter().rev()) {
+            assert_eq!((p.0, -p.1), *q);
+        }
+        let thinnest = shape[..half]
+            .iter()
+            .copied()
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap();
+        assert!((thinnest.1 - 0.2).abs() < 1e-9, "{thinnest:?}");
+        assert!((thinnest.0 - 2.133).abs() < 1e-9, "{thinnest:?}");
+        let widest = shape.iter().map(|p| p.1).fold(0.0, f64::max);
+        assert!((widest - 2.333).abs() < 1e-9, "{widest}");
+        // every point of the arc at the radius from its centre, above the centre line
+        for p in &shape[..half] {
+            assert!(
+                ((p.0 - 2.133).hypot(p.1 - 2.333) - 2.133).abs() < 1e-9,
+                "{p:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_member_follows_its_two_nodes_and_a_strip_is_a_band_of_its_thickness() {
+        let band = member((1.0, 1.0), (1.0, 3.0), 0.4, None);
+        assert_eq!(band.len(), 4);
+        let expected = [(0.8, 1.0), (0.8, 3.0), (1.2, 3.0), (1.2, 1.0)];
+        for (p, q) in band.iter().zip(expected) {
+            assert!(
+                (p.0 - q.0).abs() < 1e-12 && (p.1 - q.1).abs() < 1e-12,
+                "{band:?}"
+            );
+        }
+        // a notch's outline laid along the member: its ends at the nodes' roots
+        let shape = outline(&notch(1e-3, 0.2e-3));
+        let laid = member((0.0, 0.0), (0.0, 2.0), 0.2, Some(&shape));
+        assert!(
+            (laid[0].0 + 1.1).abs() < 1e-9 && laid[0].1.abs() < 1e-9,
+            "{:?}",
+            laid[0]
+        );
+    }
+}

@@ -352,3 +352,34 @@ fn draw_annotation(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geo::Intersects;
+
+    /// A 10 mm square of material with a dimension along its top edge: a label too wide for
+    /// the space beside the line moves out, off the material and off a label already there.
+    #[test]
+    fn a_label_that_would_cover_the_part_moves_off_it_and_off_the_other_labels() {
+        let material = geo::Polygon::new(
+            vec![(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)].into(),
+            vec![],
+        );
+        let labels = Labels {
+            material: &material,
+            per_mm: 20.0,
+        };
+        // the line 0.1 mm above the top edge, its label 0.6 mm tall
+        let (mid, up) = ((5.0, 10.1), (0.0, 1.0));
+        let (at, rect, moved) = place_label(mid, up, (4.0, 0.6), &labels, &[]);
+        assert!(!moved && !rect.intersects(&material), "{at:?}");
+        // a label already where this one would go
+        let taken = [rect];
+        let (at, second, moved) = place_label(mid, up, (4.0, 0.6), &labels, &taken);
+        assert!(moved && !second.intersects(&taken[0]), "{at:?}");
+        // the line on the material's edge, pointing into it: the label finds room past it
+        let (at, rect, moved) = place_label((5.0, 9.0), up, (4.0, 3.0), &labels, &[]);
+        assert!(moved && !rect.intersects(&material), "{at:?}");
+    }
+}

@@ -292,3 +292,21 @@ pub(super) fn stress_png(path: &Path, problem: &str, v: &Verification) -> Result
         Ok(())
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::tick_step;
+
+    #[test]
+    fn the_colour_bar_ticks_a_fifth_of_the_range_in_round_steps() {
+        for (top, step) in [
+            (155.7, 50.0),
+            (149.0, 50.0),
+            (99.0, 20.0),
+            (0.9, 0.2),
+            (1000.0, 200.0),
+        ] {
+            assert_eq!(tick_step(top), step, "{top}");
+        }
+    }
+}
