@@ -196,6 +196,26 @@ pub enum Command {
         /// `[refine] max_fe` (2 to 200).
         #[arg(long)]
         max_fe: Option<i64>,
+        /// Write report.html too: the set as one self-contained page for a design review
+        /// (as `flexopt report` does, with the problem file stated).
+        #[arg(long)]
+        report: bool,
+    },
+    /// The design report of a run's folder: report.html, one self-contained page (pictures
+    /// embedded, no network, printable) with the problem, the optimum, its constraints, the
+    /// part, the FE check and refinement where the folder holds them, and the files with
+    /// their hashes. It reads the folder's files; nothing is recomputed.
+    #[command(
+        after_help = "Exit codes: 0 written; 1 report.html could not be written; 2 DIR \
+                            is not a run's folder, or --problem is not the file the run read."
+    )]
+    Report {
+        /// The folder of a run (flexopt run PROBLEM --out DIR; default results/<name>/).
+        dir: PathBuf,
+        /// The problem file the run read, stated in full in the report (its content is
+        /// checked against the run's).
+        #[arg(long)]
+        problem: Option<PathBuf>,
     },
     /// Trade-off front by the epsilon-constraint method: the limit of the problem's
     /// one-sided constraint on OUTPUT is stepped from A to B and the study run at each

@@ -23,6 +23,7 @@ use flexopt::pareto::ParetoSpec;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
 use flexopt::problem::refine::FIDELITIES;
 use flexopt::problem::{fit, Problem};
+use flexopt::report::html::{write_report, ProblemText, ReportError};
 use flexopt::report::part::write_part_set;
 use flexopt::report::summary::Wrote;
 use flexopt::report::sweep::write_sweep;
@@ -113,6 +114,7 @@ fn run(command: Command) -> Result<(), Failure> {
             verify,
             refine,
             max_fe,
+            report,
         } => {
             let (mut problem, options) = study_setup(&problem, &study)?;
             if let Some(r) = refine {
@@ -134,7 +136,30 @@ fn run(command: Command) -> Result<(), Failure> {
                 }
             }
             let dir = output_dir(&problem, study.out)?;
-            run_study(&problem, &options, &dir, verify)
+            let report = report.then(|| problem_text(&problem));
+            run_study(&problem, &options, &dir, verify, report.as_ref())
+        }
+        Command::Report { dir, problem } => {
+            let text = problem
+                .map(|p| {
+                    std::fs::read_to_string(&p)
+                        .map(|text| ProblemText {
+                            path: p.display().to_string(),
+                            text,
+                        })
+                        .map_err(|e| {
+                            Failure::bad_input(format!(
+                                "{}: key `--problem`: cannot read it: {e}",
+                                p.display()
+                            ))
+                        })
+                })
+                .transpose()?;
+            let written = write_report(&dir, text.as_ref()).map_err(|e| match e {
+                ReportError::BadInput(m) => Failure::bad_input(m),
+                ReportError::Write(e) => Failure::write_failed(e),
+            })?;
+            emit(&format!("wrote {}\n", written.display()))
         }
         Command::Tolerance {
             problem,
@@ -173,6 +198,17 @@ fn run(command: Command) -> Result<(), Failure> {
             run_pareto(&problem, &spec, &options, &dir)
         }
     }
+}
+
+/// The problem file's text for `run --report`, read again from its path (standard input is
+/// read once: then the report names the file only), where it is still the content the run
+/// read.
+fn problem_text(problem: &Problem) -> Option<ProblemText> {
+    let text = std::fs::read_to_string(&problem.file).ok()?;
+    (flexopt::problem::fingerprint(&text) == problem.fingerprint).then(|| ProblemText {
+        path: problem.file.display().to_string(),
+        text,
+    })
 }
 
 /// The folder a study writes into (`--out`, else `results/<name>/`), checked before the

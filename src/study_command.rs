@@ -12,6 +12,7 @@ use flexopt::part::{Part, PartError};
 use flexopt::problem::schema::{STARTS, THREADS};
 use flexopt::problem::{fit, Problem, SOLVERS};
 use flexopt::refine::study::refine_study;
+use flexopt::report::html::ProblemText;
 use flexopt::report::pareto::write_pareto;
 use flexopt::report::refine::{RefineSummary, RefinedReport};
 use flexopt::report::study::{write_all_refined, RefinedFiles};
@@ -115,6 +116,7 @@ pub(crate) fn run_study(
     options: &StudyOptions,
     dir: &Path,
     verify: bool,
+    report: Option<&Option<ProblemText>>,
 ) -> Result<(), Failure> {
     // Ctrl-C stops the starts not yet begun; the finished ones are written, marked partial
     let stop = options.stop.clone();
@@ -197,6 +199,7 @@ pub(crate) fn run_study(
             part: part.as_ref(),
         }),
         verified,
+        report.map(Option::as_ref),
     )
     .map_err(Failure::write_failed)?;
     emit(&StudySummary {

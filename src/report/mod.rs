@@ -7,8 +7,10 @@
 // how quantities read where a person reads them: since it moved below the study, kept
 // reachable here for the writers
 pub use crate::problem::display;
+mod configurations;
 pub mod folder;
 pub mod hinge;
+pub mod html;
 pub mod pareto;
 pub mod part;
 pub mod plot;

@@ -26,12 +26,22 @@ struct PartJson<'a> {
     part: PartMm,
 }
 
+/// Whose part a drawing shows, for its title.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PartOf {
+    /// The design as given or the study's optimum.
+    Design,
+    /// The optimum refined against the finite elements.
+    Refined,
+}
+
 /// Writes the four part files through `path` (which maps a file name to where it goes).
 pub fn write_part(
     path: impl Fn(&str) -> PathBuf,
     problem: &str,
     design: &indexmap::IndexMap<String, f64>,
     part: &Part,
+    of: PartOf,
 ) -> Result<Vec<PathBuf>, WriteError> {
     let files: Vec<PathBuf> = PART_FILES.iter().map(|f| path(f)).collect();
     let bytes = dxf::to_bytes(part).map_err(|e| WriteError {
@@ -49,7 +59,7 @@ pub fn write_part(
             part: part.in_mm(),
         },
     )?;
-    drawing_png(&files[3], problem, part)?;
+    drawing_png(&files[3], problem, part, of)?;
     Ok(files)
 }
 
@@ -62,7 +72,7 @@ pub fn write_part_set(
     part: &Part,
 ) -> Result<Vec<PathBuf>, WriteError> {
     let set = OutputSet::begin(dir)?;
-    set.write(|set| write_part(|name| set.path(name), problem, design, part))?;
+    set.write(|set| write_part(|name| set.path(name), problem, design, part, PartOf::Design))?;
     set.commit(&PART_FILES)
 }
 
@@ -71,8 +81,9 @@ fn face_colour(k: usize) -> RGBColor {
     [RED, BLUE, GREEN, MAGENTA, CYAN][k % 5]
 }
 
-/// `part.png`: the outline at true proportions, the faces, and the annotations.
-fn drawing_png(path: &Path, problem: &str, part: &Part) -> Result<(), WriteError> {
+/// `part.png`: the outline at true proportions, the faces, the annotations (their labels
+/// moved off the part where they would cover it), and the plate's thickness in the title.
+fn drawing_png(path: &Path, problem: &str, part: &Part, of: PartOf) -> Result<(), WriteError> {
     let mm = part.in_mm();
     let [x0, y0, x1, y1] = mm.bounding_box;
     // room around the part for the dimension lines and labels
@@ -84,10 +95,18 @@ fn drawing_png(path: &Path, problem: &str, part: &Part) -> Result<(), WriteError
     let plot_w = (width - left - 2 * margin) as f64;
     let plot_h = plot_w * (yr.1 - yr.0) / (xr.1 - xr.0);
     let height = (plot_h.round() as u32) + bottom + top + 2 * margin;
+    let per_mm = plot_w / (xr.1 - xr.0);
     let title = format!(
-        "{problem}: the part (mm); {}; faces in colour",
+        "{problem}: the {}part (mm), plate {} mm thick; {}; faces in colour",
+        if of == PartOf::Refined {
+            "refined "
+        } else {
+            ""
+        },
+        crate::problem::display::human(part.width * MM),
         part.caption
     );
+    let material = material(&mm.loops);
     render_png(path, (width, height), |root| {
         let root = root.titled(&title, (FAMILY, 22))?;
         let mut chart = ChartBuilder::on(&root)
@@ -129,8 +148,20 @@ fn drawing_png(path: &Path, problem: &str, part: &Part) -> Result<(), WriteError
                     PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(5))
                 });
         }
-        for a in &part.annotations {
-            draw_annotation(&mut chart, a)?;
+        // the notes' labels stand where the model puts them; the dimensions' find room
+        let mut placed = Vec::new();
+        let mut order: Vec<&Annotation> = part.annotations.iter().collect();
+        order.sort_by_key(|a| matches!(a, Annotation::Length { .. }));
+        for a in order {
+            draw_annotation(
+                &mut chart,
+                a,
+                &Labels {
+                    material: &material,
+                    per_mm,
+                },
+                &mut placed,
+            )?;
         }
         chart
             .configure_series_labels()
@@ -149,12 +180,78 @@ type Chart<'a, 'b> = ChartContext<
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
 >;
 
+/// The part's material (mm): the outer loop less the inner ones, which labels keep off.
+fn material(loops: &[crate::part::Loop]) -> geo::Polygon {
+    let ring = |l: &crate::part::Loop| -> geo::LineString {
+        l.points(24).iter().map(|p| (p[0], p[1])).collect()
+    };
+    let outer = loops
+        .iter()
+        .find(|l| l.outer)
+        .map(ring)
+        .unwrap_or_else(|| geo::LineString::new(vec![]));
+    let inner = loops.iter().filter(|l| !l.outer).map(ring).collect();
+    geo::Polygon::new(outer, inner)
+}
+
+/// What a label is placed against: the material, and the drawing's pixels per mm.
+struct Labels<'a> {
+    material: &'a geo::Polygon,
+    per_mm: f64,
+}
+
+/// Where a dimension's label goes: beyond its line, off the part and off the labels placed
+/// so far, at the first of a few steps outward that is free (else the last); whether it
+/// moved from beside the line (then a leader joins them).
+fn place_label(
+    mid: (f64, f64),
+    dir: (f64, f64),
+    size: (f64, f64),
+    labels: &Labels,
+    placed: &[geo::Rect],
+) -> ((f64, f64), geo::Rect, bool) {
+    use geo::Intersects;
+    let (w, h) = size;
+    let reach = dir.0.abs() * w / 2.0 + dir.1.abs() * h / 2.0;
+    let boxed = |k: usize| {
+        let d = 0.2 + reach + 0.5 * k as f64;
+        let c = (mid.0 + d * dir.0, mid.1 + d * dir.1);
+        (
+            c,
+            geo::Rect::new(
+                (c.0 - w / 2.0, c.1 - h / 2.0),
+                (c.0 + w / 2.0, c.1 + h / 2.0),
+            ),
+        )
+    };
+    const STEPS: usize = 16;
+    for k in 0..STEPS {
+        let (c, r) = boxed(k);
+        if !r.intersects(labels.material) && placed.iter().all(|p| !p.intersects(&r)) {
+            return (c, r, k > 0);
+        }
+    }
+    let (c, r) = boxed(0);
+    (c, r, false)
+}
+
 /// A dimension line with arrows and extension lines, or a label with a leader.
 fn draw_annotation(
     chart: &mut Chart<'_, '_>,
     a: &Annotation,
+    labels: &Labels,
+    placed: &mut Vec<geo::Rect>,
 ) -> Result<(), super::plot::DrawError> {
     let style = RGBColor(40, 40, 40);
+    let font = TextStyle::from((FAMILY, 14).into_font());
+    // a label's box (mm), a little larger than its text
+    let size = |chart: &Chart<'_, '_>, label: &str| -> Result<(f64, f64), super::plot::DrawError> {
+        let (w, h) = chart.plotting_area().estimate_text_size(label, &font)?;
+        Ok((
+            (f64::from(w) + 6.0) / labels.per_mm,
+            (f64::from(h) + 4.0) / labels.per_mm,
+        ))
+    };
     match a {
         Annotation::Length {
             a,
@@ -198,7 +295,19 @@ fn draw_annotation(
             }
             let mid = (0.5 * (pa.0 + pb.0), 0.5 * (pa.1 + pb.1));
             let side = if off < 0.0 { -1.0 } else { 1.0 };
-            let at = (mid.0 + side * 0.35 * n[0], mid.1 + side * 0.35 * n[1]);
+            let dir = (side * n[0], side * n[1]);
+            let (at, rect, moved) = place_label(mid, dir, size(chart, label)?, labels, placed);
+            if moved {
+                chart.draw_series(std::iter::once(PathElement::new(
+                    vec![mid, at],
+                    style.mix(0.5).stroke_width(1),
+                )))?;
+            }
+            chart.draw_series(std::iter::once(Rectangle::new(
+                [(rect.min().x, rect.min().y), (rect.max().x, rect.max().y)],
+                WHITE.mix(0.85).filled(),
+            )))?;
+            placed.push(rect);
             chart.draw_series(std::iter::once(Text::new(
                 label.clone(),
                 at,
@@ -218,6 +327,11 @@ fn draw_annotation(
         } => {
             let p = (at[0] * MM, at[1] * MM);
             let q = (label_at[0] * MM, label_at[1] * MM);
+            let (w, h) = size(chart, label)?;
+            placed.push(geo::Rect::new(
+                (q.0 - w / 2.0, q.1),
+                (q.0 + w / 2.0, q.1 + h),
+            ));
             chart.draw_series(std::iter::once(Circle::new(p, 3, style.filled())))?;
             chart.draw_series(std::iter::once(PathElement::new(
                 vec![p, q],
@@ -237,4 +351,35 @@ fn draw_annotation(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geo::Intersects;
+
+    /// A 10 mm square of material with a dimension along its top edge: a label too wide for
+    /// the space beside the line moves out, off the material and off a label already there.
+    #[test]
+    fn a_label_that_would_cover_the_part_moves_off_it_and_off_the_other_labels() {
+        let material = geo::Polygon::new(
+            vec![(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)].into(),
+            vec![],
+        );
+        let labels = Labels {
+            material: &material,
+            per_mm: 20.0,
+        };
+        // the line 0.1 mm above the top edge, its label 0.6 mm tall
+        let (mid, up) = ((5.0, 10.1), (0.0, 1.0));
+        let (at, rect, moved) = place_label(mid, up, (4.0, 0.6), &labels, &[]);
+        assert!(!moved && !rect.intersects(&material), "{at:?}");
+        // a label already where this one would go
+        let taken = [rect];
+        let (at, second, moved) = place_label(mid, up, (4.0, 0.6), &labels, &taken);
+        assert!(moved && !second.intersects(&taken[0]), "{at:?}");
+        // the line on the material's edge, pointing into it: the label finds room past it
+        let (at, rect, moved) = place_label((5.0, 9.0), up, (4.0, 3.0), &labels, &[]);
+        assert!(moved && !rect.intersects(&material), "{at:?}");
+    }
 }

@@ -7,9 +7,11 @@ use std::path::{Path, PathBuf};
 use indexmap::IndexMap;
 use serde::Serialize;
 
+use super::configurations::configurations_png;
 use super::folder::OutputSet;
-use super::part::{write_part, PART_FILES};
-use super::study_plots::{configurations_png, zones_png};
+use super::html::{self, ProblemText};
+use super::part::{write_part, PartOf, PART_FILES};
+use super::study_plots::zones_png;
 use super::verify::{write_verify, VerifyReport, VERIFY_FILES, VERIFY_FOLDER};
 use super::{write_atomic, write_json, DesignReport, WriteError};
 use crate::fe::verify::Verification;
@@ -277,7 +279,7 @@ pub fn write_all(
     study: &Study,
     part: Option<&Result<Part, PartError>>,
 ) -> Result<Vec<PathBuf>, WriteError> {
-    write_all_refined(dir, problem, study, part, None, None)
+    write_all_refined(dir, problem, study, part, None, None, None)
 }
 
 /// The files of a refinement, written with the study's set.
@@ -295,8 +297,10 @@ pub const REFINED_PART_FILES: [&str; 4] = [
     "refined_part.png",
 ];
 
-/// [`write_all`], with `refined.json` and the refined design's part files in the set, and
-/// the FE check of the optimum (`run --verify`) as its folder `verify/`, itself a set.
+/// [`write_all`], with `refined.json` and the refined design's part files in the set, the
+/// FE check of the optimum (`run --verify`) as its folder `verify/`, itself a set, and, with
+/// `report` (`run --report`), `report.html` of the set, written last (it lists the others),
+/// stating the problem file where it is given.
 pub fn write_all_refined(
     dir: &Path,
     problem: &Problem,
@@ -304,6 +308,7 @@ pub fn write_all_refined(
     part: Option<&Result<Part, PartError>>,
     refined: Option<RefinedFiles>,
     verified: Option<(&VerifyReport, &Verification)>,
+    report: Option<Option<&ProblemText>>,
 ) -> Result<Vec<PathBuf>, WriteError> {
     let set = OutputSet::begin(dir)?;
     let written = set.write(|set| {
@@ -313,7 +318,7 @@ pub fn write_all_refined(
             written.push("refined.json");
             if let (Some(part), Some(design)) = (r.part, r.report.refined.as_ref()) {
                 let named = |f: &str| set.path(&format!("refined_{f}"));
-                write_part(named, &problem.name, &design.design, part)?;
+                write_part(named, &problem.name, &design.design, part, PartOf::Refined)?;
                 written.extend(REFINED_PART_FILES);
             }
         }
@@ -321,6 +326,10 @@ pub fn write_all_refined(
             write_verify(|f| set.path(VERIFY_FOLDER).join(f), report, v)?;
             set.seal_folder(VERIFY_FOLDER, &VERIFY_FILES)?;
             written.push(VERIFY_FOLDER);
+        }
+        if let Some(text) = report {
+            html::write_staged(&set.path(html::REPORT), &set.path(""), &written, text)?;
+            written.push(html::REPORT);
         }
         Ok(written)
     })?;
@@ -362,7 +371,13 @@ fn write_study(
         written.push(files[5]);
     }
     if let Some(Ok(part)) = part {
-        write_part(path, &problem.name, &optimum.design.design, part)?;
+        write_part(
+            path,
+            &problem.name,
+            &optimum.design.design,
+            part,
+            PartOf::Design,
+        )?;
         written.extend(PART_FILES);
     }
     Ok(written)

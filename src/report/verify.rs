@@ -19,7 +19,7 @@ use crate::fe::mesh::Mesh;
 use crate::fe::richardson::Estimate;
 use crate::fe::verify::{Level, Output, SolidSolve, Verification};
 use crate::fe::{Fidelity, Idealization};
-use crate::part::analysis::{FeCounterpart, Quantity};
+use crate::part::analysis::FeCounterpart;
 use crate::part::MM;
 use crate::problem::display::percent;
 use crate::problem::Problem;
@@ -27,6 +27,8 @@ use crate::vocab::units::Unit;
 use compare::{analytic, displacements_at, value};
 
 mod compare;
+mod stress;
+use stress::stress_png;
 
 /// The files a verification writes, in order.
 pub const VERIFY_FILES: [&str; 5] = [
@@ -224,19 +226,6 @@ pub fn write_verify_set(
     set.commit(&VERIFY_FILES)
 }
 
-/// A colour of the scale from blue (low) to red (high), `t` in [0, 1].
-fn heat(t: f64) -> RGBColor {
-    let t = t.clamp(0.0, 1.0);
-    let (r, g, b) = if t < 0.5 {
-        let s = t / 0.5;
-        (0.0, s, 1.0 - s)
-    } else {
-        let s = (t - 0.5) / 0.5;
-        (s, 1.0 - s, 0.0)
-    };
-    RGBColor((255.0 * r) as u8, (255.0 * g) as u8, (255.0 * b) as u8)
-}
-
 /// The panels' common frame (mm): the whole part with a margin, and the image's size at
 /// equal scale on both axes.
 fn frame(v: &Verification, panels: u32) -> ((f64, f64), (f64, f64), (u32, u32)) {
@@ -310,68 +299,6 @@ fn panel<'a, 'b>(
         .label_style((FAMILY, 12))
         .draw()?;
     Ok(chart)
-}
-
-/// `stress.png`: the von Mises stress under the actuation, each idealization a panel.
-fn stress_png(path: &Path, problem: &str, v: &Verification) -> Result<(), WriteError> {
-    let (xr, yr, size) = frame(v, v.results.len() as u32);
-    let title = format!("{problem}: von Mises stress under the actuation (MPa), largest marked");
-    render_png(path, size, |root| {
-        let root = root.titled(&title, (FAMILY, 20))?;
-        let areas = root.split_evenly((1, v.results.len()));
-        for (k, (area, r)) in areas.iter().zip(&v.results).enumerate() {
-            let tris = cells(v, k, &|_| [0.0, 0.0]);
-            let top = r.fields.von_mises.iter().copied().fold(0.0, f64::max);
-            let peak = v
-                .analysis
-                .find(Quantity::PeakStress)
-                .and_then(|id| r.outputs.iter().find(|o| o.id == id));
-            let caption = format!(
-                "{} (largest {:.1} MPa{})",
-                r.idealization.name(),
-                top * 1e-6,
-                if peak.is_some_and(|p| p.estimate.converging) {
-                    ""
-                } else {
-                    ", not converging"
-                }
-            );
-            let mut chart = panel(area, &caption, xr, yr)?;
-            chart.draw_series(tris.iter().map(|(t, val)| {
-                Polygon::new(t.clone(), heat(val / top.max(f64::MIN_POSITIVE)).filled())
-            }))?;
-            if let Some(at) = peak.and_then(|p| p.location_mm) {
-                for p in [at, [-at[0], at[1]]] {
-                    chart.draw_series(std::iter::once(Cross::new(
-                        (p[0], p[1]),
-                        9,
-                        BLACK.stroke_width(3),
-                    )))?;
-                }
-            }
-            // the colour scale along the bottom
-            let steps = 20;
-            let (x0, x1) = (xr.0 + 0.05 * (xr.1 - xr.0), xr.0 + 0.45 * (xr.1 - xr.0));
-            let y = yr.0 + 0.03 * (yr.1 - yr.0);
-            let h = 0.025 * (yr.1 - yr.0);
-            for s in 0..steps {
-                let a = x0 + (x1 - x0) * s as f64 / steps as f64;
-                let b = x0 + (x1 - x0) * (s + 1) as f64 / steps as f64;
-                chart.draw_series(std::iter::once(Rectangle::new(
-                    [(a, y), (b, y + h)],
-                    heat((s as f64 + 0.5) / steps as f64).filled(),
-                )))?;
-            }
-            for (x, label) in [(x0, "0".to_string()), (x1, format!("{:.0}", top * 1e-6))] {
-                chart.draw_series(std::iter::once(Text::new(
-                    label,
-                    (x, y + 2.0 * h),
-                    (FAMILY, 13),
-                )))?;
-            }
-        }
-        Ok(())
-    })
 }
 
 /// `deformed.png`: the deformed outline under the actuation, scaled, over the undeformed.

@@ -80,6 +80,32 @@ pub fn rel(a: f64, b: f64, scale: f64) -> f64 {
     (a - b).abs() / b.abs().max(scale)
 }
 
+/// Whether a peer program a test runs (CalculiX, ezdxf, Chromium) is here, `found`: where it
+/// is not, the test says so (`missing`: what is missing, `skipped`: what is not run) and
+/// passes, but under CI (the variable `CI` set), where it fails: `.ci/run` installs it.
+pub fn peer_present(found: bool, missing: &str, skipped: &str) -> bool {
+    if !found {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "{missing} is missing, and CI is set: .ci/run must install it"
+        );
+        eprintln!("{missing} not found: {skipped} is not run here");
+    }
+    found
+}
+
+/// Runs `command`, which must succeed (its standard error shown where it does not), and
+/// returns its output.
+pub fn succeeds(command: &mut std::process::Command) -> std::process::Output {
+    let out = command.output().unwrap();
+    assert!(
+        out.status.success(),
+        "{command:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
 /// Runs the `flexopt` binary with `args` and collects its exit status and output.
 pub fn flexopt(args: &[&str]) -> std::process::Output {
     std::process::Command::new(env!("CARGO_BIN_EXE_flexopt"))

@@ -15,14 +15,8 @@ fn python() -> Option<&'static str> {
             .args(["-c", "import ezdxf"])
             .output()
             .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "{venv} with ezdxf is missing, and CI is set: .ci/run must make it"
-        );
-        eprintln!("{venv} with ezdxf not found: the DXF audit is not run here");
-    }
-    found.then_some(venv)
+    crate::common::peer_present(found, &format!("{venv} with ezdxf"), "the DXF audit")
+        .then_some(venv)
 }
 
 #[test]
@@ -40,15 +34,10 @@ fn every_committed_dxf_opens_with_nothing_to_fix_its_extents_and_thickness_set()
         .collect();
     files.sort();
     assert!(files.len() >= 6, "{files:?}");
-    let out = Command::new(python)
-        .arg("scripts/dxf_audit.py")
-        .args(&files)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let out = crate::common::succeeds(
+        Command::new(python)
+            .arg("scripts/dxf_audit.py")
+            .args(&files),
     );
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for file in &files {

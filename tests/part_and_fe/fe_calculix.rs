@@ -29,15 +29,11 @@ use flexopt::problem::Problem;
 const PRINTED: &str = "l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07,t4=0.4";
 
 fn ccx_available() -> bool {
-    let found = Command::new("ccx").arg("-v").output().is_ok();
-    if !found {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "ccx (Debian package calculix-ccx) is missing, and CI is set: .ci/run must install it"
-        );
-        eprintln!("ccx not found: the CalculiX comparison is not run here");
-    }
-    found
+    crate::common::peer_present(
+        Command::new("ccx").arg("-v").output().is_ok(),
+        "ccx (Debian package calculix-ccx)",
+        "the CalculiX comparison",
+    )
 }
 
 fn printed_verification() -> Verification {

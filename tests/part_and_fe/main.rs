@@ -20,4 +20,5 @@ mod meshing;
 mod part;
 mod part_rules;
 mod refine;
+mod report_html;
 mod sets;

@@ -57,15 +57,16 @@ struct Manifest {
     files: Vec<Entry>,
 }
 
+/// A file or folder of a set, as its manifest lists it.
 #[derive(Debug, Clone, Serialize, Deserialize)]
-struct Entry {
-    name: String,
+pub struct Entry {
+    pub name: String,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    bytes: Option<u64>,
+    pub bytes: Option<u64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    fnv1a64: Option<String>,
+    pub fnv1a64: Option<String>,
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-    folder: bool,
+    pub folder: bool,
 }
 
 fn fail(path: &Path, e: &dyn std::fmt::Display) -> WriteError {
@@ -130,6 +131,17 @@ fn is_entry(path: &Path, folder: bool) -> bool {
                 .iter()
                 .any(|e| name == e.name.as_str() && is_entry(&entry.path(), e.folder))
     })
+}
+
+/// The entries the manifest of `dir` lists, if it has a manifest that reads as one.
+pub fn listed(dir: &Path) -> Option<Vec<Entry>> {
+    read_manifest(&dir.join(MANIFEST)).map(|m| m.files)
+}
+
+/// The entries of the files `names` as written in `dir`, as a manifest would list them: what
+/// a file of the set that describes the others (the report) lists before the manifest exists.
+pub fn entries_of(dir: &Path, names: &[&str]) -> Result<Vec<Entry>, WriteError> {
+    entries(dir, names)
 }
 
 /// The entries of the names `names` written in `dir`: each file's size and hash, each

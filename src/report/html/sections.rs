@@ -1,0 +1,550 @@
+//! The report's sections, each from the set's JSON as written: values in SI are shown in the
+//! unit the file chose for them or a designer's usual one, to the digits that matter.
+
+use maud::{html, Markup};
+use serde_json::Value;
+
+use super::{ProblemText, Set, VERIFY};
+use crate::problem::display::{human, significant};
+use crate::vocab::units::{tables, Unit};
+
+fn num(v: Option<&Value>) -> String {
+    v.and_then(Value::as_f64).map_or("–".into(), human)
+}
+
+fn text<'a>(v: &'a Value, key: &str) -> &'a str {
+    v.get(key).and_then(Value::as_str).unwrap_or("–")
+}
+
+fn list<'a>(v: Option<&'a Value>, key: &str) -> &'a [Value] {
+    v.and_then(|v| v.get(key))
+        .and_then(Value::as_array)
+        .map_or(&[], Vec::as_slice)
+}
+
+fn yes(v: &Value, key: &str) -> &'static str {
+    match v.get(key).and_then(Value::as_bool) {
+        Some(true) => "yes",
+        Some(false) => "no",
+        None => "–",
+    }
+}
+
+/// The unit a value given in the SI unit `si` is shown in (`display` where it is one of that
+/// dimension's units, else the designer's usual one), with its factor from SI.
+fn shown(si: &str, display: Option<&str>) -> Unit {
+    tables()
+        .iter()
+        .find(|(_, units)| units.iter().any(|&(n, f)| n == si && f == 1.0))
+        .map_or(
+            Unit {
+                name: si.to_string(),
+                dimension: crate::vocab::Dimension::Ratio,
+                to_si: 1.0,
+            },
+            |&(d, _)| Unit::shown(d, display),
+        )
+}
+
+/// `value` (SI, in `si`) in the unit [`shown`] gives, and that unit's name.
+fn in_unit(value: Option<&Value>, si: &str, display: Option<&str>) -> (String, String) {
+    let unit = shown(si, display);
+    let v = value
+        .and_then(Value::as_f64)
+        .map_or("–".into(), |v| human(unit.from_si(v)));
+    (v, unit.name)
+}
+
+/// A constraint's limits as the problem states them: `7.5 mm <= span_x <= 12 mm`.
+fn limits(c: &Value) -> String {
+    let unit = text(c, "unit");
+    let unit = if unit == "1" { "" } else { unit };
+    let bound = |k: &str| c.get(k).and_then(Value::as_f64).map(human);
+    let output = text(c, "output");
+    match (bound("lower"), bound("upper")) {
+        (Some(l), Some(u)) => format!("{l} {unit} ≤ {output} ≤ {u} {unit}"),
+        (Some(l), None) => format!("{output} ≥ {l} {unit}"),
+        (None, Some(u)) => format!("{output} ≤ {u} {unit}"),
+        (None, None) => output.to_string(),
+    }
+}
+
+fn figure(set: &Set, name: &str, caption: &str) -> Markup {
+    html! {
+        @if let Some(uri) = set.picture(name) {
+            figure {
+                img src=(uri) alt=(caption);
+                figcaption { (caption) " (" code { (name) } ")" }
+            }
+        }
+    }
+}
+
+fn objective_line(o: &Value) -> String {
+    let output = text(o, "objective_output");
+    let output = if o.get("absolute").and_then(Value::as_bool) == Some(true) {
+        format!("|{output}|")
+    } else {
+        output.to_string()
+    };
+    format!("{} {output}", text(o, "sense"))
+}
+
+pub(super) fn heading(set: &Set) -> Markup {
+    let o = &set.optimum;
+    let feasible = o.get("feasible").and_then(Value::as_bool) == Some(true);
+    html! {
+        header {
+            h1 { "Design report: " (text(o, "problem")) }
+            p.lead {
+                "Model " strong { (text(o, "model")) } ". "
+                @if feasible {
+                    "The optimum meets every constraint: " (objective_line(o)) " = "
+                    strong { (num(o.get("objective"))) } ", zone " (num(o.get("zone")))
+                    ", configuration " (text(o, "configuration")) "."
+                } @else {
+                    strong.bad { "No start ended feasible" }
+                    ": the design below is the least violating one."
+                }
+            }
+            p.small {
+                "Written by flexopt " (env!("CARGO_PKG_VERSION")) " from the set's files; seed " (num(o.get("seed"))) ", " (num(o.get("starts"))) " starts, solver "
+                (text(o, "solver")) ", problem file content " code { (text(o, "problem_fnv1a64")) }
+                " (FNV-1a of its data)."
+            }
+        }
+    }
+}
+
+pub(super) fn problem(set: &Set, problem: Option<&ProblemText>) -> Markup {
+    let o = &set.optimum;
+    let units = o.get("design_units");
+    html! {
+        section #problem {
+            h2 { "The problem" }
+            p { "Objective: " strong { (objective_line(o)) } "." }
+            p { "Constraints:" }
+            ul {
+                @for c in list(Some(o), "constraints") { li { (limits(c)) } }
+            }
+            p {
+                "Design variables (in the file's units): "
+                @for (i, name) in set.order.design.keys().enumerate() {
+                    @if i > 0 { ", " }
+                    code { (name) } " [" (units.and_then(|u| u.get(name)).and_then(Value::as_str).unwrap_or("")) "]"
+                }
+                "."
+            }
+            @match problem {
+                Some(p) => p { "The problem file as stated, " code { (p.path) } ", is the "
+                    a href="#problem-file" { "last section" } "." },
+                None => p.note {
+                    "The problem file is not part of the set; "
+                    code { "flexopt report DIR --problem FILE" }
+                    " adds it, checked against the content the run read."
+                },
+            }
+        }
+    }
+}
+
+pub(super) fn problem_file(problem: Option<&ProblemText>) -> Markup {
+    html! {
+        @if let Some(p) = problem {
+            section #problem-file {
+                h2 { "The problem file" }
+                p { code { (p.path) } ", as the run read it:" }
+                pre.source { (p.text) }
+            }
+        }
+    }
+}
+
+pub(super) fn optimum(set: &Set) -> Markup {
+    let o = &set.optimum;
+    let design = o.get("design");
+    let units = o.get("design_units");
+    let outputs = o.get("outputs");
+    let ends = o.get("ends");
+    html! {
+        section #optimum {
+            h2 { "The optimum" }
+            div.columns {
+                div {
+                    table {
+                        thead { tr { th { "variable" } th.num { "value" } th { "unit" } } }
+                        tbody {
+                            @for name in set.order.design.keys() {
+                                tr {
+                                    td { code { (name) } }
+                                    td.num { (num(design.and_then(|d| d.get(name)))) }
+                                    td { (units.and_then(|u| u.get(name)).and_then(Value::as_str).unwrap_or("")) }
+                                }
+                            }
+                        }
+                    }
+                    p {
+                        "The local solve from start " (num(o.get("start"))) " ended "
+                        (o.get("status").map_or("–", |s| text(s, "status")))
+                        " after " (num(o.get("iterations"))) " iterations (KKT residual "
+                        (num(o.get("kkt_residual"))) "). Of the starts, "
+                        @if let Some(e) = ends {
+                            (num(e.get("converged"))) " converged, " (num(e.get("iteration_limit")))
+                            " hit the iteration limit, " (num(e.get("infeasible"))) " ended infeasible and "
+                            (num(e.get("failed"))) " failed."
+                        }
+                    }
+                    @if let Some(z) = &set.zones {
+                        h3 { "Zones of the optima" }
+                        table {
+                            thead { tr { th { "zone" } th.num { "from" } th.num { "to" } th.num { "starts" } th.num { "best" } th.num { "optima" } } }
+                            tbody {
+                                @for zone in list(Some(z), "zones") {
+                                    tr {
+                                        td { (num(zone.get("rank"))) }
+                                        td.num { (num(zone.get("low"))) }
+                                        td.num { (num(zone.get("high"))) }
+                                        td.num { (num(zone.get("count"))) }
+                                        td.num { (num(zone.get("best"))) }
+                                        td.num { (list(Some(zone), "optima").len()) }
+                                    }
+                                }
+                            }
+                        }
+                        @if let Some(rule) = z.get("configuration_rule").and_then(Value::as_str) {
+                            p.small { "Configurations: " (rule) }
+                        }
+                    }
+                }
+                table {
+                    thead { tr { th { "output" } th.num { "value" } th { "unit" } } }
+                    tbody {
+                        @for name in set.order.outputs.keys() {
+                            @let v = outputs.and_then(|d| d.get(name));
+                            @let si = o.get("output_units").and_then(|u| u.get(name)).and_then(Value::as_str).unwrap_or("");
+                            @let display = o.get("display_units").and_then(|u| u.get(name)).and_then(Value::as_str);
+                            @let (value, unit) = in_unit(v, si, display);
+                            tr { td { code { (name) } } td.num { (value) } td { (unit) } }
+                        }
+                    }
+                }
+            }
+            (figure(set, "zones.png", "The starts' objectives by zone"))
+            (figure(set, "configurations.png", "Each zone's optima, to scale"))
+        }
+    }
+}
+
+fn constraint_table(constraints: &[Value]) -> Markup {
+    html! {
+        table {
+            thead { tr {
+                th { "constraint" } th.num { "value" } th.num { "lower" } th.num { "upper" }
+                th { "unit" } th.num { "margin" } th.num { "relative" } th { "met" } th { "active" }
+            } }
+            tbody {
+                @for c in constraints {
+                    tr.active[c.get("active").and_then(Value::as_bool) == Some(true)]
+                      .bad[c.get("satisfied").and_then(Value::as_bool) == Some(false)] {
+                        td { code { (text(c, "output")) } }
+                        td.num { (num(c.get("value"))) }
+                        td.num { (num(c.get("lower"))) }
+                        td.num { (num(c.get("upper"))) }
+                        td { (text(c, "unit")) }
+                        td.num { (num(c.get("margin"))) }
+                        td.num { (num(c.get("relative_margin"))) }
+                        td { (yes(c, "satisfied")) }
+                        td { (yes(c, "active")) }
+                    }
+                }
+            }
+        }
+    }
+}
+
+pub(super) fn constraints(set: &Set) -> Markup {
+    let o = &set.optimum;
+    let fits = list(Some(o), "fit_ranges");
+    let rules = list(Some(o), "part_rules");
+    html! {
+        section #constraints {
+            h2 { "Constraints at the optimum" }
+            p.small {
+                "Margin: the distance to the nearer limit in the constraint's unit, positive \
+                 inside; relative: over the limit. Active rows (shaded) hold the optimum where it is."
+            }
+            (constraint_table(list(Some(o), "constraints")))
+            @if !fits.is_empty() {
+                h3 { "Ranges where the model's formulas hold" }
+                table {
+                    thead { tr { th { "owner" } th { "ratio" } th.num { "value" } th.num { "lower" } th.num { "upper" } th { "inside" } th { "source" } } }
+                    tbody {
+                        @for f in fits {
+                            tr.bad[f.get("inside").and_then(Value::as_bool) == Some(false)] {
+                                td { (text(f, "owner")) } td { code { (text(f, "ratio")) } }
+                                td.num { (num(f.get("value"))) } td.num { (num(f.get("lower"))) }
+                                td.num { (num(f.get("upper"))) } td { (yes(f, "inside")) }
+                                td.small { (text(f, "source")) }
+                            }
+                        }
+                    }
+                }
+            }
+            @if !rules.is_empty() {
+                h3 { "The part's size rules" }
+                table {
+                    thead { tr { th { "rule" } th { "what" } th.num { "margin, mm" } th { "met" } th { "active" } } }
+                    tbody {
+                        @for r in rules {
+                            tr.active[r.get("active").and_then(Value::as_bool) == Some(true)]
+                              .bad[r.get("met").and_then(Value::as_bool) == Some(false)] {
+                                td { code { (text(r, "rule")) } } td { (text(r, "description")) }
+                                td.num { (num(r.get("margin_mm"))) } td { (yes(r, "met")) } td { (yes(r, "active")) }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn part_facts(part: &Value) -> Markup {
+    let bb: Vec<f64> = list(Some(part), "bounding_box")
+        .iter()
+        .filter_map(Value::as_f64)
+        .collect();
+    html! {
+        p {
+            "Plate thickness (the part's width out of the plane) "
+            strong { (num(part.get("width"))) " mm" }
+            @if let [x0, y0, x1, y1] = bb[..] {
+                "; outline " (human(x1 - x0)) " mm × " (human(y1 - y0)) " mm"
+            }
+            "; area " (num(part.get("area"))) " mm²."
+        }
+        table {
+            thead { tr { th { "hinge" } th { "kind" } th.num { "length, mm" } th.num { "least thickness, mm" } th.num { "root, mm" } th.num { "fillet, mm" } } }
+            tbody {
+                @for h in list(Some(part), "hinges") {
+                    @let ends: Vec<f64> = ["start", "end"].iter().flat_map(|k| list(Some(h), k)).filter_map(Value::as_f64).collect();
+                    tr {
+                        td { (text(h, "name")) } td { (text(h, "kind")) }
+                        td.num { @if let [a, b, c, d] = ends[..] { (human((c - a).hypot(d - b))) } }
+                        td.num { (num(h.get("thickness"))) } td.num { (num(h.get("root"))) }
+                        td.num { (num(h.get("fillet"))) }
+                    }
+                }
+            }
+        }
+    }
+}
+
+pub(super) fn part(set: &Set) -> Markup {
+    html! {
+        section #part {
+            h2 { "The part" }
+            @match &set.part {
+                Some(part) => {
+                    (figure(set, "part.png", "The part, dimensioned (mm)"))
+                    (part_facts(part))
+                    p.small { "For the shop: " code { "part.dxf" } " (outline, plate thickness on layer PLATE), "
+                        code { "part.svg" } ", " code { "part.json" } "." }
+                }
+                None => p.note { "The set holds no part: the model has none, or the optimum's cannot be made (optimum.json names why)." },
+            }
+        }
+    }
+}
+
+/// The FE check's idealizations as verify.json names them, with their headings.
+const IDEALIZATIONS: [(&str, &str); 3] = [
+    ("plane_stress", "plane stress"),
+    ("plane_strain", "plane strain"),
+    ("3d", "3D"),
+];
+
+pub(super) fn fe_check(set: &Set) -> Markup {
+    let Some((v, _)) = &set.verify else {
+        return html! {
+            section #fe {
+                h2 { "Finite-element check" }
+                p.note { (set.verify_skipped.as_deref().unwrap_or(
+                    "The set holds no finite-element check of the optimum: run with --verify \
+                     (or flexopt verify PROBLEM --optimum optimum.json --out DIR/verify).")) }
+            }
+        };
+    };
+    let read = text(v, "read");
+    let outputs = v.get("outputs");
+    let columns: Vec<(&str, &str)> = IDEALIZATIONS
+        .into_iter()
+        .filter(|(k, _)| outputs.and_then(|o| o.get(*k)).is_some())
+        .collect();
+    let names = &set.order.fe;
+    let read_heading = columns
+        .iter()
+        .find(|(k, _)| *k == read)
+        .map_or(read, |(_, h)| *h);
+    html! {
+        section #fe {
+            h2 { "Finite-element check of the optimum's part" }
+            p {
+                "The half part meshed and solved in " (columns.len()) " idealizations, each output's
+                discretization error estimated over refined meshes (tolerance "
+                (num(v.get("tolerance"))) ", " @if v.get("converged").and_then(Value::as_bool) == Some(true) { "reached" } @else { strong.bad { "not reached" } } ")."
+                " The plate's width over its thinnest hinge is " (num(v.get("width_over_thickness")))
+                ": " strong { "read the " (read_heading) " column" } " (shaded); the others bound it."
+            }
+            p.small {
+                "Each cell: the FE value, ± its estimated relative error, and the model's deviation \
+                 from it ((model − FE) / FE). Test force " (num(v.get("test_force"))) " N; the force \
+                 the actuator needs for its stroke: model " (num(v.get("analytic_actuation_force"))) " N"
+                @for (k, h) in &columns {
+                    ", " (h) " " (num(v.get("actuation_force").and_then(|a| a.get(*k)))) " N"
+                }
+                "."
+            }
+            table.fe {
+                thead { tr {
+                    th { "output" } th { "unit" } th.num { "model" }
+                    @for (k, h) in &columns { th.num.read[*k == read] { (h) } }
+                } }
+                tbody {
+                    @for name in names {
+                        @let first = columns.iter().find_map(|(k, _)| outputs?.get(*k)?.get(name.as_str()));
+                        @let si = first.map_or("", |f| text(f, "unit"));
+                        tr {
+                            td { code { (name) } br; span.small { (first.map_or("", |f| text(f, "meaning"))) } }
+                            td { (shown(si, None).name) }
+                            td.num { (in_unit(first.and_then(|f| f.get("analytic")), si, None).0) }
+                            @for (k, _) in &columns {
+                                @let cell = outputs.and_then(|o| o.get(*k)).and_then(|o| o.get(name.as_str()));
+                                td.num.read[*k == read] {
+                                    @if let Some(c) = cell {
+                                        (in_unit(c.get("value"), si, None).0) br;
+                                        span.small {
+                                            "± " (c.get("relative_error").and_then(Value::as_f64).map_or("–".into(), |e| significant(100.0 * e, 2))) " %"
+                                            @if let Some(d) = c.get("deviation_percent").and_then(Value::as_f64) {
+                                                ", dev. " (significant(d, 3)) " %"
+                                            }
+                                            @if c.get("converging").and_then(Value::as_bool) == Some(false) { ", not converging" }
+                                        }
+                                        @if let Some(at) = c.get("at").and_then(Value::as_str) { br; span.small { (at) } }
+                                    } @else { "–" }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            (figure(set, &format!("{VERIFY}/stress.png"), "Von Mises stress under the actuation"))
+            (figure(set, &format!("{VERIFY}/deformed.png"), "The part deformed under the test force"))
+            p.small { "CalculiX decks of the same meshes for an independent check: "
+                code { "verify/part.inp" } ", " code { "verify/part3d.inp" } "." }
+        }
+    }
+}
+
+pub(super) fn refinement(set: &Set) -> Markup {
+    let Some(r) = &set.refined else {
+        return html! {};
+    };
+    let refined = r.get("refined");
+    let start = r.get("analytic_optimum");
+    let design_of = |d: Option<&Value>| d.and_then(|d| d.get("design")).cloned();
+    let (a, b) = (design_of(start), design_of(refined));
+    let settings = r.get("settings");
+    html! {
+        section #refinement {
+            h2 { "Refinement against the part" }
+            p {
+                "Fidelity: " (text(r, "fidelity")) ". Status " strong { (text(r, "status")) }
+                ", converged " (yes(r, "converged")) ", feasible " (yes(r, "feasible")) ", after "
+                (num(r.get("measurements"))) " FE checks (at most " (num(settings.and_then(|s| s.get("max_fe")))) ", tolerance "
+                (num(settings.and_then(|s| s.get("tolerance")))) ", stress " (settings.map_or("–", |s| text(s, "stress"))) ")."
+            }
+            table {
+                thead { tr { th { "variable" } th.num { "analytic optimum" } th.num { "refined" } } }
+                tbody {
+                    @for name in set.order.design.keys() {
+                        tr { td { code { (name) } } td.num { (num(a.as_ref().and_then(|a| a.get(name)))) }
+                             td.num { (num(b.as_ref().and_then(|b| b.get(name)))) } }
+                    }
+                }
+            }
+            h3 { "The refined design's outputs: model and FE" }
+            table {
+                thead { tr { th { "output" } th { "unit" } th.num { "model" } th.num { "FE" } th.num { "FE error" } th.num { "model over FE" } } }
+                tbody {
+                    @for out in list(refined, "outputs") {
+                        tr {
+                            td { code { (text(out, "output")) } } td { (text(out, "unit")) }
+                            td.num { (num(out.get("analytic"))) } td.num { (num(out.get("measured"))) }
+                            td.num { (num(out.get("error"))) } td.num { (num(out.get("deviation"))) }
+                        }
+                    }
+                }
+            }
+            h3 { "The refined design's constraints, as measured" }
+            (constraint_table(list(refined, "constraints")))
+            (figure(set, "refined_part.png", "The refined part, dimensioned (mm)"))
+            @if let Some(p) = &set.refined_part { (part_facts(p)) }
+        }
+    }
+}
+
+pub(super) fn files(set: &Set) -> Markup {
+    let check = set
+        .verify
+        .as_ref()
+        .map(|(_, own)| own.as_slice())
+        .unwrap_or(&[]);
+    let in_set = set.files.iter().any(|e| e.name == VERIFY && e.folder);
+    html! {
+        section #files {
+            h2 { "The files of the set" }
+            p.small { "As manifest.json lists them: size and FNV-1a 64-bit hash of each, to tell a file of this set from another's." }
+            table.files {
+                thead { tr { th { "file" } th.num { "bytes" } th { "fnv1a64" } } }
+                tbody {
+                    @for e in set.files.iter().filter(|e| !e.folder) {
+                        tr { td { code { (e.name) } } td.num { (e.bytes.map_or(String::new(), |b| b.to_string())) } td { code { (e.fnv1a64.as_deref().unwrap_or("")) } } }
+                    }
+                    @for e in check {
+                        tr { td { code { (VERIFY) "/" (e.name) } } td.num { (e.bytes.map_or(String::new(), |b| b.to_string())) } td { code { (e.fnv1a64.as_deref().unwrap_or("")) } } }
+                    }
+                }
+            }
+            @if !check.is_empty() && !in_set {
+                p.small { code { (VERIFY) "/" } " is a set of its own (written by " code { "flexopt verify" } "), listed by its own manifest." }
+            }
+        }
+    }
+}
+
+pub(super) fn reproduce(set: &Set, problem: Option<&ProblemText>) -> Markup {
+    let o = &set.optimum;
+    let file = problem.map_or("PROBLEM.toml", |p| p.path.as_str());
+    let mut command = format!(
+        "flexopt run {file} --seed {} --starts {} --solver {}",
+        num(o.get("seed")),
+        num(o.get("starts")),
+        text(o, "solver")
+    );
+    if set.refined.is_some() {
+        command.push_str(" --refine fe");
+    }
+    if set.files.iter().any(|e| e.name == VERIFY && e.folder) {
+        command.push_str(" --verify");
+    }
+    html! {
+        section #reproduce {
+            h2 { "To reproduce it" }
+            p { "flexopt " (env!("CARGO_PKG_VERSION")) ", with the problem file whose content hashes to "
+                code { (text(o, "problem_fnv1a64")) } ":" }
+            pre { (command) " --report" }
+            p.small { "Starts are seeded by their index: the thread count does not change a result." }
+        }
+    }
+}
