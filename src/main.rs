@@ -298,8 +298,14 @@ fn export(path: &Path, design: &DesignArgs, out: Option<PathBuf>) -> Result<(), 
     })?;
     warn(path, &part.warnings);
     let report = DesignReport::new(&problem, &x);
-    let files = write_part_set(&dir, &problem.name, &report.design, &part)
-        .map_err(Failure::write_failed)?;
+    let files = write_part_set(
+        &dir,
+        &problem.name,
+        &report.design,
+        &part,
+        &report.part_rules,
+    )
+    .map_err(Failure::write_failed)?;
     emit(&Wrote(&files))
 }
 

@@ -11,6 +11,7 @@ use super::folder::OutputSet;
 use super::plot::{render_png, FAMILY};
 use super::{write_atomic, write_json, WriteError};
 use crate::part::{dxf, svg, Annotation, Part, PartMm, MM};
+use crate::problem::part_rules::RuleCheck;
 
 /// The names of the part's files, in the order they are written.
 pub const PART_FILES: [&str; 4] = ["part.dxf", "part.svg", "part.json", "part.png"];
@@ -35,13 +36,15 @@ pub enum PartOf {
     Refined,
 }
 
-/// Writes the four part files through `path` (which maps a file name to where it goes).
+/// Writes the four part files through `path` (which maps a file name to where it goes);
+/// `rules`, the part's rules at the design, for the drawing to name the nearest its limit.
 pub fn write_part(
     path: impl Fn(&str) -> PathBuf,
     problem: &str,
     design: &indexmap::IndexMap<String, f64>,
     part: &Part,
     of: PartOf,
+    rules: &[RuleCheck],
 ) -> Result<Vec<PathBuf>, WriteError> {
     let files: Vec<PathBuf> = PART_FILES.iter().map(|f| path(f)).collect();
     let bytes = dxf::to_bytes(part).map_err(|e| WriteError {
@@ -59,7 +62,7 @@ pub fn write_part(
             part: part.in_mm(),
         },
     )?;
-    drawing_png(&files[3], problem, part, of)?;
+    drawing_png(&files[3], problem, part, of, closest(rules))?;
     Ok(files)
 }
 
@@ -70,10 +73,48 @@ pub fn write_part_set(
     problem: &str,
     design: &indexmap::IndexMap<String, f64>,
     part: &Part,
+    rules: &[RuleCheck],
 ) -> Result<Vec<PathBuf>, WriteError> {
     let set = OutputSet::begin(dir)?;
-    set.write(|set| write_part(|name| set.path(name), problem, design, part, PartOf::Design))?;
+    set.write(|set| {
+        write_part(
+            |name| set.path(name),
+            problem,
+            design,
+            part,
+            PartOf::Design,
+            rules,
+        )
+    })?;
     set.commit(&PART_FILES)
+}
+
+/// The rule nearest its limit (the least margin), if the part states rules.
+fn closest(rules: &[RuleCheck]) -> Option<&RuleCheck> {
+    rules
+        .iter()
+        .min_by(|a, b| a.margin_mm.total_cmp(&b.margin_mm))
+}
+
+/// The drawing's line on the rule nearest its limit.
+fn rule_line(r: &RuleCheck) -> String {
+    let state = if !r.met {
+        "broken"
+    } else if r.active {
+        "active"
+    } else {
+        "met"
+    };
+    // a margin on its limit reads zero, not the rounding it is within
+    let margin = if r.margin_mm.abs() < 5e-5 {
+        0.0
+    } else {
+        r.margin_mm
+    };
+    format!(
+        "nearest part rule: {} ({state}, margin {margin:.4} mm): {}",
+        r.rule, r.description
+    )
 }
 
 /// The colour of a named face in the drawing.
@@ -82,8 +123,15 @@ fn face_colour(k: usize) -> RGBColor {
 }
 
 /// `part.png`: the outline at true proportions, the faces, the annotations (their labels
-/// moved off the part where they would cover it), and the plate's thickness in the title.
-fn drawing_png(path: &Path, problem: &str, part: &Part, of: PartOf) -> Result<(), WriteError> {
+/// moved off the part where they would cover it), the plate's thickness in the title, and
+/// below the drawing the part's rule nearest its limit, where it states rules.
+fn drawing_png(
+    path: &Path,
+    problem: &str,
+    part: &Part,
+    of: PartOf,
+    nearest: Option<&RuleCheck>,
+) -> Result<(), WriteError> {
     let mm = part.in_mm();
     let [x0, y0, x1, y1] = mm.bounding_box;
     // room around the part for the dimension lines and labels
@@ -94,7 +142,8 @@ fn drawing_png(path: &Path, problem: &str, part: &Part, of: PartOf) -> Result<()
     let (left, bottom, top, margin) = (60u32, 44u32, 40u32, 10u32);
     let plot_w = (width - left - 2 * margin) as f64;
     let plot_h = plot_w * (yr.1 - yr.0) / (xr.1 - xr.0);
-    let height = (plot_h.round() as u32) + bottom + top + 2 * margin;
+    let footer = if nearest.is_some() { 26u32 } else { 0 };
+    let height = (plot_h.round() as u32) + bottom + top + 2 * margin + footer;
     let per_mm = plot_w / (xr.1 - xr.0);
     let title = format!(
         "{problem}: the {}part (mm), plate {} mm thick; {}; faces in colour",
@@ -109,6 +158,15 @@ fn drawing_png(path: &Path, problem: &str, part: &Part, of: PartOf) -> Result<()
     let material = material(&mm.loops);
     render_png(path, (width, height), |root| {
         let root = root.titled(&title, (FAMILY, 22))?;
+        let (_, area_height) = root.dim_in_pixel();
+        let (root, foot) = root.split_vertically(area_height - footer);
+        if let Some(r) = nearest {
+            foot.draw_text(
+                &rule_line(r),
+                &(FAMILY, 15).into_text_style(&foot),
+                (left as i32, 4),
+            )?;
+        }
         let mut chart = ChartBuilder::on(&root)
             .margin(margin)
             .x_label_area_size(bottom - 4)
@@ -360,6 +418,31 @@ mod tests {
 
     /// A 10 mm square of material with a dimension along its top edge: a label too wide for
     /// the space beside the line moves out, off the material and off a label already there.
+    #[test]
+    fn the_drawing_names_the_rule_nearest_its_limit() {
+        let rule = |name: &str, margin_mm: f64, met: bool, active: bool| RuleCheck {
+            rule: name.into(),
+            description: format!("what {name} asks"),
+            margin_mm,
+            met,
+            active,
+        };
+        let rules = [
+            rule("slot", 0.8, true, false),
+            rule("link_width", -3e-16, true, true),
+            rule("pocket", 2.0, true, false),
+        ];
+        let nearest = closest(&rules).unwrap();
+        assert_eq!(nearest.rule, "link_width");
+        assert_eq!(
+            rule_line(nearest),
+            "nearest part rule: link_width (active, margin 0.0000 mm): what link_width asks"
+        );
+        let broken = rule("slot", -0.25, false, false);
+        assert!(rule_line(&broken).contains("(broken, margin -0.2500 mm)"));
+        assert!(closest(&[]).is_none());
+    }
+
     #[test]
     fn a_label_that_would_cover_the_part_moves_off_it_and_off_the_other_labels() {
         let material = geo::Polygon::new(

@@ -318,7 +318,20 @@ pub fn write_all_refined(
             written.push("refined.json");
             if let (Some(part), Some(design)) = (r.part, r.report.refined.as_ref()) {
                 let named = |f: &str| set.path(&format!("refined_{f}"));
-                write_part(named, &problem.name, &design.design, part, PartOf::Refined)?;
+                // the design in model order, every parameter, for its rules
+                let mut x = vec![0.0; problem.variables.len()];
+                for v in &problem.variables {
+                    x[v.parameter] = design.design_si[&v.name];
+                }
+                let rules = crate::problem::part_rules::checks(problem, &x);
+                write_part(
+                    named,
+                    &problem.name,
+                    &design.design,
+                    part,
+                    PartOf::Refined,
+                    &rules,
+                )?;
                 written.extend(REFINED_PART_FILES);
             }
         }
@@ -377,6 +390,7 @@ fn write_study(
             &optimum.design.design,
             part,
             PartOf::Design,
+            &optimum.design.part_rules,
         )?;
         written.extend(PART_FILES);
     }
