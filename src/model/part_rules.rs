@@ -21,7 +21,7 @@ pub const SCALE: f64 = 1e-4;
 
 /// The margin (m) below which a part's check reports a rule broken: what the study's
 /// feasibility tolerance lets a row fall short of 0, 1e-9 mm.
-pub const TOLERANCE: f64 = 1e-12;
+pub const TOLERANCE: f64 = crate::part::checks::TOLERANCE;
 
 /// One rule: its name (what reports call it) and what it asks, in words.
 #[derive(Debug, Clone, PartialEq)]

@@ -48,6 +48,36 @@ pub fn keep_out(h: &HingeSite, slot: f64, shortened: bool) -> Vec<[f64; 2]> {
     vec![at(a, -w), at(b, -w), at(b, w), at(a, w)]
 }
 
+/// How far (m) a solid may reach into a band or the actuator, or a slot fall short, before
+/// a check reports it: the study's feasibility tolerance for the part's rules
+/// ([`crate::model::part_rules::TOLERANCE`], 1e-9 mm), so that a design the study ends on,
+/// on a rule's limit, passes the check of the same thing.
+pub const TOLERANCE: f64 = 1e-12;
+
+/// `points` (a counterclockwise convex polygon, m) moved in by `d` along each side's normal.
+fn inset(points: &[[f64; 2]], d: f64) -> Vec<[f64; 2]> {
+    let n = points.len();
+    // each side's line moved in, then the corners where consecutive lines meet
+    let line = |i: usize| {
+        let (a, b) = (points[i], points[(i + 1) % n]);
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let len = dx.hypot(dy);
+        let normal = [-dy / len, dx / len];
+        let c = normal[0] * a[0] + normal[1] * a[1] + d;
+        (normal, c)
+    };
+    (0..n)
+        .map(|i| {
+            let ((n1, c1), (n2, c2)) = (line((i + n - 1) % n), line(i));
+            let det = n1[0] * n2[1] - n1[1] * n2[0];
+            [
+                (c1 * n2[1] - c2 * n1[1]) / det,
+                (n1[0] * c2 - n2[0] * c1) / det,
+            ]
+        })
+        .collect()
+}
+
 /// A distance for a message: mm, four decimals.
 fn short_mm(v: f64) -> String {
     format!("{v:.4} mm")
@@ -67,8 +97,8 @@ pub fn before_union(spec: &PartSpec) -> Vec<String> {
     };
     for h in &spec.hinges {
         let slot = h.fillet.max(spec.min_slot);
-        let band = polygon(&keep_out(h, slot, false));
-        let shortened = polygon(&keep_out(h, slot, true));
+        let band = polygon(&inset(&keep_out(h, slot, false), TOLERANCE));
+        let shortened = polygon(&inset(&keep_out(h, slot, true), TOLERANCE));
         for (k, s) in solids.iter().enumerate() {
             if k == h.solid {
                 continue;
@@ -99,7 +129,7 @@ pub fn before_union(spec: &PartSpec) -> Vec<String> {
                 continue;
             }
             let gap = Euclidean.distance(&solids[i], &solids[j]);
-            if gap < slot {
+            if gap < slot - TOLERANCE * MM {
                 problems.push(if gap == 0.0 {
                     format!("{} and {} overlap", name(i), name(j))
                 } else {
@@ -118,7 +148,7 @@ pub fn before_union(spec: &PartSpec) -> Vec<String> {
     if let Some((a, height)) = spec.actuator.as_ref().and_then(|a| Some((a, a.height?))) {
         // the actuator's body, a hair inside its length so that it only touches the faces
         // it pushes
-        let (hl, hh) = (0.5 * a.length - 1e-9, 0.5 * height);
+        let (hl, hh) = (0.5 * a.length - 1e-9 - TOLERANCE, 0.5 * height - TOLERANCE);
         let body = polygon(&[[-hl, -hh], [hl, -hh], [hl, hh], [-hl, hh]]);
         for (k, s) in solids.iter().enumerate() {
             if body.intersects(s) {

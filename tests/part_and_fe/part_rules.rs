@@ -204,10 +204,12 @@ fn the_clearance_rules_change_sign_where_the_check_of_the_solids_flips_to_1e_9_m
             continue;
         }
         for t in [lo, hi] {
+            // the check tolerates what the study's feasibility tolerance lets a rule fall
+            // short, 1e-9 mm: it flips there (an inset band's corner, up to twice that)
             let (m, _) = clearance_and_check(&model, &at(t)).unwrap();
             assert!(
-                m.abs() <= TOLERANCE,
-                "the check flips at a margin of {m} m, not within 1e-9 mm of the rules' zero"
+                (m + TOLERANCE).abs() <= TOLERANCE,
+                "the check flips at a margin of {m} m, not within 1e-9 mm of the rules' -1e-9 mm"
             );
         }
         flips += 1;
