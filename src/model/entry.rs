@@ -24,8 +24,12 @@ pub struct ModelEntry {
     /// A model whose `[hinge]` section sets the kind of its hinges: its parameters when
     /// every hinge is of the given kind, each with the index of the kind's dimension it is
     /// (none for the other parameters), for `flexopt init --hinge`.
-    pub hinge_layout: Option<fn(HingeKind) -> Vec<(ParameterInfo, Option<usize>)>>,
+    pub hinge_layout: Option<HingeLayout>,
 }
+
+/// A model's parameters when every hinge is of the given kind, each with the index of the
+/// kind's dimension it is (none for the other parameters).
+pub type HingeLayout = fn(HingeKind) -> Vec<(ParameterInfo, Option<usize>)>;
 
 /// One section of a model's part of a problem file, for the JSON Schema.
 pub struct SectionSchema {

@@ -239,3 +239,36 @@ pub fn name_from(stem: &str) -> String {
         name
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The quoted value of the first line of `template` that starts with `prefix`.
+    fn value_of<'a>(template: &'a str, prefix: &str) -> &'a str {
+        let line = template.lines().find(|l| l.starts_with(prefix)).unwrap();
+        line.split('"').nth(1).unwrap()
+    }
+
+    #[test]
+    fn the_templates_own_choices_give_the_template() {
+        let models = MODELS.iter().filter(|m| m.hinge_layout.is_some());
+        let mut checked = 0;
+        for model in models {
+            let kind = value_of(model.template, "kind = ");
+            let preset = value_of(model.template, "preset = ");
+            let chosen = Choices {
+                hinge: HingeKind::from_name(kind),
+                material: Some(preset),
+            };
+            let with = template_with(model, "p", chosen).unwrap();
+            let m = model.name;
+            let flags =
+                format!("#   flexopt init --model {m} --material {preset} --hinge {kind}\n");
+            let plain = format!("#   flexopt init --model {m}\n");
+            assert_eq!(with.replacen(&flags, &plain, 1), template(model, "p"));
+            checked += 1;
+        }
+        assert!(checked > 0);
+    }
+}
