@@ -43,12 +43,20 @@ pub enum Command {
     /// their defaults, a ready set of variables, objective and constraints.
     #[command(
         after_help = "Then: flexopt run FILE. Exit codes: 0 written; 2 FILE exists \
-                            (give --force) or cannot be written."
+                            (give --force) or cannot be written, or the model has no hinges \
+                            (--hinge) or no material (--material)."
     )]
     Init {
         /// The model (`flexopt outputs --model M` describes each).
         #[arg(long, default_value = MODELS[0].name, value_parser = models())]
         model: String,
+        /// The kind of every hinge (models with hinges): the variables become its
+        /// dimensions, with bounds inside its range of fit.
+        #[arg(long, value_parser = PossibleValuesParser::new(HingeKind::NAMES))]
+        hinge: Option<String>,
+        /// The material preset (models with a [material] section).
+        #[arg(long, value_parser = PossibleValuesParser::new(Material::PRESETS))]
+        material: Option<String>,
         /// The file to write (its stem names the problem); without it, the file goes to
         /// standard output.
         file: Option<PathBuf>,

@@ -45,7 +45,19 @@ fn main() -> ExitCode {
 
 fn run(command: Command) -> Result<(), Failure> {
     match command {
-        Command::Init { model, file, force } => start_command::init(&model, file.as_deref(), force),
+        Command::Init {
+            model,
+            hinge,
+            material,
+            file,
+            force,
+        } => start_command::init(
+            &model,
+            hinge.as_deref(),
+            material.as_deref(),
+            file.as_deref(),
+            force,
+        ),
         Command::Schema => start_command::schema(),
         Command::Completions { shell } => start_command::completions(shell),
         Command::Outputs { problem, model } => start_command::outputs(&model, problem.as_deref()),

@@ -8,8 +8,9 @@ use clap::CommandFactory;
 
 use crate::args::Cli;
 use crate::failure::{emit, Failure};
+use flexopt::model::hinge::HingeKind;
 use flexopt::model::registry::{find, MODELS};
-use flexopt::problem::init::{name_from, template};
+use flexopt::problem::init::{name_from, template, template_with, Choices};
 use flexopt::problem::json_schema::json_schema;
 use flexopt::problem::units::Unit;
 use flexopt::problem::Problem;
@@ -33,15 +34,32 @@ pub(crate) fn load_problem(path: &Path) -> Result<Problem, Failure> {
     Problem::parse(Path::new("<stdin>"), &text).map_err(Failure::bad_input)
 }
 
-/// `flexopt init`: the template of `model` into `file`, or onto standard output.
-pub(crate) fn init(model: &str, file: Option<&Path>, force: bool) -> Result<(), Failure> {
+/// `flexopt init`: the template of `model`, with the hinge kind and material preset chosen,
+/// into `file`, or onto standard output.
+pub(crate) fn init(
+    model: &str,
+    hinge: Option<&str>,
+    material: Option<&str>,
+    file: Option<&Path>,
+    force: bool,
+) -> Result<(), Failure> {
     let entry = find(MODELS, model)
         .ok_or_else(|| Failure::bad_input(format!("unknown model \"{model}\"")))?;
+    let hinge = match hinge {
+        Some(name) => Some(HingeKind::from_name(name).ok_or_else(|| {
+            Failure::bad_input(format!(
+                "--hinge: unknown kind \"{name}\"; the kinds: {}",
+                HingeKind::NAMES.join(", ")
+            ))
+        })?),
+        None => None,
+    };
     let name = file
         .and_then(|f| f.file_stem())
         .map(|s| name_from(&s.to_string_lossy()))
         .unwrap_or_else(|| format!("my_{model}"));
-    let text = template(entry, &name);
+    let text =
+        template_with(entry, &name, Choices { hinge, material }).map_err(Failure::bad_input)?;
     let Some(file) = file else {
         emit(&text)?;
         return Ok(());

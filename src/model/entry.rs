@@ -1,7 +1,8 @@
 //! How a problem file selects and configures a model: the entry each model gives the
 //! registry ([`super::registry::MODELS`]).
 
-use super::Mechanism;
+use super::hinge::HingeKind;
+use super::{Mechanism, ParameterInfo};
 use crate::vocab::sections::Sections;
 use crate::vocab::ProblemError;
 
@@ -20,7 +21,15 @@ pub struct ModelEntry {
     /// Its part of the file `flexopt init` writes: its sections, commented, then a ready
     /// set of variables, objective and constraints.
     pub template: &'static str,
+    /// A model whose `[hinge]` section sets the kind of its hinges: its parameters when
+    /// every hinge is of the given kind, each with the index of the kind's dimension it is
+    /// (none for the other parameters), for `flexopt init --hinge`.
+    pub hinge_layout: Option<HingeLayout>,
 }
+
+/// A model's parameters when every hinge is of the given kind, each with the index of the
+/// kind's dimension it is (none for the other parameters).
+pub type HingeLayout = fn(HingeKind) -> Vec<(ParameterInfo, Option<usize>)>;
 
 /// One section of a model's part of a problem file, for the JSON Schema.
 pub struct SectionSchema {

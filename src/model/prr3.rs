@@ -321,6 +321,7 @@ pub const ENTRY: ModelEntry = ModelEntry {
     sections: &[],
     schema: super::entry::no_sections,
     template: include_str!("templates/prr3.toml"),
+    hinge_layout: None,
     build: |_| Ok(super::Mechanism::depicted(Prr3Model)),
 };
 

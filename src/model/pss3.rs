@@ -322,6 +322,7 @@ pub const ENTRY: ModelEntry = ModelEntry {
     sections: &[],
     schema: super::entry::no_sections,
     template: include_str!("templates/pss3.toml"),
+    hinge_layout: None,
     build: |_| Ok(super::Mechanism::depicted(Pss3Model)),
 };
 

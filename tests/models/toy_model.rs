@@ -126,6 +126,7 @@ const TOY: ModelEntry = ModelEntry {
     build,
     schema: flexopt::model::entry::no_sections,
     template: "",
+    hinge_layout: None,
 };
 
 fn models() -> Vec<ModelEntry> {

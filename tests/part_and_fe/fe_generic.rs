@@ -432,6 +432,7 @@ impl PartMaker for ClampedStrip {
 const STRIP_ENTRY: ModelEntry = ModelEntry {
     name: "clamped_strip",
     sections: &[],
+    hinge_layout: None,
     build: |_| {
         Ok(Mechanism::complete(ClampedStrip {
             material: Material {

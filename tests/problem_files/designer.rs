@@ -28,7 +28,7 @@ const DIMENSIONS: [Dimension; 11] = [
     Dimension::Time,
 ];
 
-fn temp_dir(tag: &str) -> PathBuf {
+pub(crate) fn temp_dir(tag: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("flexopt-designer-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
     d

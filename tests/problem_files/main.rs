@@ -8,6 +8,7 @@ mod common;
 
 mod cli;
 mod designer;
+mod init_choices;
 mod messages;
 mod optimum_report;
 mod problem_errors;

@@ -217,6 +217,19 @@ impl Layout {
         &self.parameters
     }
 
+    /// Each parameter and, for a hinge's dimension, its index in the hinge kind's
+    /// dimensions (`r2` of a circular notch at b: 0).
+    pub fn hinge_dimensions(&self) -> Vec<(ParameterInfo, Option<usize>)> {
+        self.parameters
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let at = |slots: &[usize]| slots.iter().position(|&s| s == i);
+                (p.clone(), at(&self.b).or_else(|| at(&self.d)))
+            })
+            .collect()
+    }
+
     /// The design whose parameters (in the order of [`Layout::parameters`]) are `x`.
     pub fn geometry<D: Scalar>(&self, x: &[D]) -> Geometry<D> {
         if let (true, Ok(x)) = (self.strips, <[D; 8]>::try_from(x)) {

@@ -54,6 +54,7 @@ pub const ENTRY: ModelEntry = ModelEntry {
     build: file::build,
     schema: file::schema,
     template: include_str!("../templates/bridge.toml"),
+    hinge_layout: Some(|kind| Layout::new(kind, kind).hinge_dimensions()),
 };
 
 /// The piezo actuator that drives the bridge (paper 004, Eq. 12-14).

@@ -190,6 +190,11 @@ impl HingeKind {
             .collect()
     }
 
+    /// The bounds (mm) `flexopt init --hinge` gives each dimension ([`Kind::START`]).
+    pub fn start_bounds(self) -> &'static [(f64, f64)] {
+        with_kind!(self, k => kind_start(k))
+    }
+
     /// The length of the hinge along its centre line (m).
     pub fn length<D: Scalar>(self, dims: &[D]) -> D {
         with_kind!(self, k => k.length(dims))
@@ -309,6 +314,10 @@ fn kind_fit<K: Kind>(_: &K) -> &'static [FitRatio] {
     K::FIT
 }
 
+fn kind_start<K: Kind>(_: &K) -> &'static [(f64, f64)] {
+    K::START
+}
+
 /// The table of every kind's ranges ([`HingeKind::fit`]), as the guide and
 /// `docs/hinges.md` show it (a test holds them to it).
 pub fn fit_table() -> String {
@@ -403,6 +412,51 @@ mod tests {
             assert_eq!(serde_name.as_str(), Some(name));
             assert_eq!(HingeKind::from_name(name), Some(kind));
             assert!(kind.dimensions().len() <= MAX_HINGE_DIMENSIONS, "{name}");
+        }
+    }
+
+    #[test]
+    fn inits_bounds_make_hinges_inside_the_range_of_fit() {
+        for &kind in HingeKind::ALL {
+            let start = kind.start_bounds();
+            let names: Vec<&str> = kind.dimensions().iter().map(|d| d.stem).collect();
+            assert_eq!(start.len(), names.len(), "{}", kind.name());
+            let lower: Vec<f64> = start.iter().map(|b| b.0 * 1e-3).collect();
+            let upper: Vec<f64> = start.iter().map(|b| b.1 * 1e-3).collect();
+            assert!(start.iter().all(|&(lo, hi)| 0.0 < lo && lo < hi));
+            assert_eq!(kind.box_error(&lower, &upper, &names), None);
+            // every corner of a notch's or a filleted leaf's box, and the strip's centre
+            // (the study keeps its short thick corner out), is a hinge the formulas hold for
+            let corners: Vec<Vec<f64>> = (0..1 << start.len())
+                .map(|bits: usize| {
+                    (0..start.len())
+                        .map(|i| {
+                            if bits >> i & 1 == 1 {
+                                upper[i]
+                            } else {
+                                lower[i]
+                            }
+                        })
+                        .collect()
+                })
+                .collect();
+            let centre: Vec<f64> = lower
+                .iter()
+                .zip(&upper)
+                .map(|(a, b)| (a + b) / 2.0)
+                .collect();
+            let designs = if kind == HingeKind::Strip {
+                vec![centre]
+            } else {
+                corners
+            };
+            for dims in &designs {
+                assert_eq!(kind.domain_error(dims, &names), None, "{}", kind.name());
+                for f in kind.fit() {
+                    let ratio = dims[f.numerator] / dims[f.denominator];
+                    assert!(f.range.contains(ratio), "{} {dims:?}", kind.name());
+                }
+            }
         }
     }
 

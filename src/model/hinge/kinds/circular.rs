@@ -31,6 +31,9 @@ impl Kind for Circular {
                      charts; the accuracy table's t/r from 0.05 to 1",
         },
     }];
+    /// `t/r` at most 0.5 / 0.5 = 1 over the whole box; radii up to 3 mm keep the notch's
+    /// root (`2 r + t`) within the default input block beside the actuator.
+    const START: &'static [(f64, f64)] = &[(0.5, 3.0), (0.1, 0.5)];
 
     fn length<D: Scalar>(&self, dims: &[D]) -> D {
         dims[0] * 2.0

@@ -49,6 +49,9 @@ impl Kind for CornerFilleted {
             },
         },
     ];
+    /// `r/t` at least 0.1 / 2 = 0.05 and `t/l` at most 2 / 4 = 0.5 over the whole box, and
+    /// the two fillets (2 mm at most) shorter than the leaf (4 mm at least).
+    const START: &'static [(f64, f64)] = &[(4.0, 20.0), (0.4, 2.0), (0.1, 1.0)];
 
     fn length<D: Scalar>(&self, dims: &[D]) -> D {
         dims[0]

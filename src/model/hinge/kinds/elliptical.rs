@@ -47,6 +47,8 @@ impl Kind for Elliptical {
             },
         },
     ];
+    /// `b/a` at most 2 / 2 = 1 and `t/b` at most 0.5 / 0.5 = 1 over the whole box.
+    const START: &'static [(f64, f64)] = &[(2.0, 10.0), (0.5, 2.0), (0.1, 0.5)];
 
     fn length<D: Scalar>(&self, dims: &[D]) -> D {
         dims[0] * 2.0

@@ -54,6 +54,10 @@ pub trait Kind: Sized {
     /// these (`flexopt::model::hinge::fit_table`), and the study keeps a design inside them
     /// unless the problem file says otherwise.
     const FIT: &'static [FitRatio];
+    /// The bounds (mm) `flexopt init --hinge` gives each dimension, in the order of
+    /// [`Kind::DIMENSIONS`]: sizes a wire-EDM part of a few centimetres has, with the box
+    /// inside [`Kind::FIT`] wherever the kind's ranges allow it (a test holds them to it).
+    const START: &'static [(f64, f64)];
 
     /// The length of the hinge along its centre line (m).
     fn length<D: Scalar>(&self, dims: &[D]) -> D;

@@ -28,6 +28,9 @@ impl Kind for Strip {
                      optimum: l/t = 5); the accuracy table's shortest leaf, l/t = 2",
         },
     }];
+    /// Paper 004's Table 1 bounds, which the default template keeps: the short thick
+    /// corner (`l/t` below 2) is left to the study, which keeps designs inside [`Strip::FIT`].
+    const START: &'static [(f64, f64)] = &[(0.5, 20.0), (0.4, 2.0)];
 
     fn length<D: Scalar>(&self, dims: &[D]) -> D {
         dims[0]
