@@ -18,26 +18,29 @@ use super::outline::polygon_mm as polygon;
 
 use super::{HingeSite, PartSpec, MM};
 
+/// Which end of a hinge a body joined to it meets.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Joint {
+    Start,
+    End,
+}
+
 /// The band beside `h` (metres, counterclockwise): its root half thickness and `slot` to
 /// each side of its centre line, kept `1e-9` m short of the faces at both ends, where the
-/// bodies begin. Against the two bodies the hinge joins, which meet it there through their
-/// faces, the band is `shortened` at both ends by its half width: a body may fold back
-/// beside its own face as far as its corner, no farther (both ends at the middle where the
-/// hinge is too short for that).
-pub fn keep_out(h: &HingeSite, slot: f64, shortened: bool) -> Vec<[f64; 2]> {
+/// bodies begin. Against a body the hinge joins, which meets it at one end through its
+/// face, the band is `shortened` at that end by its half width: a body may fold back beside
+/// its own face as far as its corner, no farther.
+pub fn keep_out(h: &HingeSite, slot: f64, shortened: Option<Joint>) -> Vec<[f64; 2]> {
     let len = (h.end[0] - h.start[0]).hypot(h.end[1] - h.start[1]);
     let u = [(h.end[0] - h.start[0]) / len, (h.end[1] - h.start[1]) / len];
     let n = [-u[1], u[0]];
     let w = 0.5 * h.root + slot;
     let inset = 1e-9;
     let (mut a, mut b) = (-h.fillet + inset, len + (h.fillet - inset));
-    if shortened {
-        let mid = 0.5 * (a + b);
-        (a, b) = if a + w <= b - w {
-            (a + w, b - w)
-        } else {
-            (mid, mid)
-        };
+    match shortened {
+        Some(Joint::Start) => a = (a + w).min(b),
+        Some(Joint::End) => b = (b - w).max(a),
+        None => {}
     }
     let at = |s: f64, t: f64| {
         [
@@ -46,6 +49,37 @@ pub fn keep_out(h: &HingeSite, slot: f64, shortened: bool) -> Vec<[f64; 2]> {
         ]
     };
     vec![at(a, -w), at(b, -w), at(b, w), at(a, w)]
+}
+
+/// Whether `solid` (mm) reaches into the band with `corners` (m, counterclockwise) by more
+/// than [`TOLERANCE`]: a band shortened to nothing is the segment across its end.
+fn reaches_into(corners: &[[f64; 2]], solid: &Polygon<f64>) -> bool {
+    let [a, b, d] = [corners[0], corners[1], corners[3]];
+    if (b[0] - a[0]).hypot(b[1] - a[1]) > 0.0 {
+        return polygon(&inset(corners, TOLERANCE)).intersects(solid);
+    }
+    // the segment from a to d, its ends moved in by the tolerance
+    let len = (d[0] - a[0]).hypot(d[1] - a[1]);
+    let t = TOLERANCE / len;
+    let at = |s: f64| geo::Coord {
+        x: (a[0] + s * (d[0] - a[0])) * MM,
+        y: (a[1] + s * (d[1] - a[1])) * MM,
+    };
+    geo::Line::new(at(t), at(1.0 - t)).intersects(solid)
+}
+
+/// The end of `h` at which `body` (mm) meets it: the one whose face is nearer.
+fn joint(h: &HingeSite, body: &Polygon<f64>) -> Joint {
+    let len = (h.end[0] - h.start[0]).hypot(h.end[1] - h.start[1]);
+    let u = [(h.end[0] - h.start[0]) / len, (h.end[1] - h.start[1]) / len];
+    let face =
+        |p: [f64; 2], s: f64| geo::Point::new((p[0] + s * u[0]) * MM, (p[1] + s * u[1]) * MM);
+    let to = |p| Euclidean.distance(body, &p);
+    if to(face(h.start, -h.fillet)) <= to(face(h.end, h.fillet)) {
+        Joint::Start
+    } else {
+        Joint::End
+    }
 }
 
 /// How far (m) a solid may reach into a band or the actuator, or a slot fall short, before
@@ -97,18 +131,12 @@ pub fn before_union(spec: &PartSpec) -> Vec<String> {
     };
     for h in &spec.hinges {
         let slot = h.fillet.max(spec.min_slot);
-        let band = polygon(&inset(&keep_out(h, slot, false), TOLERANCE));
-        let shortened = polygon(&inset(&keep_out(h, slot, true), TOLERANCE));
         for (k, s) in solids.iter().enumerate() {
             if k == h.solid {
                 continue;
             }
-            let band = if joined(k, h.solid) {
-                &shortened
-            } else {
-                &band
-            };
-            if band.intersects(s) {
+            let joint = joined(k, h.solid).then(|| joint(h, s));
+            if reaches_into(&keep_out(h, slot, joint), s) {
                 named.insert((k.min(h.solid), k.max(h.solid)));
                 let gap = Euclidean.distance(&solids[h.solid], s);
                 problems.push(format!(

@@ -450,12 +450,13 @@ fn every_check_has_a_design_that_trips_it_and_names_what_collides_with_what() {
     steep[4] = -40.0 * DEG;
     steep[3] = 15.0 * MM;
     assert_trips(d(), steep, &["(upper left)", "(lower left)", "overlap"]);
-    // a link swung back over its own hinge (the link turns more than a right angle)
+    // a link swung back over its own hinge (the link turns back along it): beyond the
+    // corner beside its own face, into the hinge's band
     let mut folded = x;
-    folded[0] = 0.5 * MM;
+    folded[0] = 3.0 * MM;
     folded[1] = 45.0 * DEG;
     folded[3] = 5.0 * MM;
-    folded[4] = -50.0 * DEG;
+    folded[4] = -125.0 * DEG;
     folded[6] = 0.0;
     let tall = PartSettings {
         input_block_height: 30.0 * MM,

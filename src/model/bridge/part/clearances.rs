@@ -10,18 +10,18 @@
 //! the pushed face's ends (above it, beside it, below it). The part is symmetric about both
 //! axes, so each rule looks at one pair of every set of mirror images.
 //!
-//! - `hinge_b_keep_out`, `hinge_d_keep_out`: no solid reaches into the keep-out band beside
-//!   the upper left quarter's hinge (its root half thickness plus the narrowest slot or the
-//!   fillet, whichever is wider, to each side), the clearance of band and solid. The two
-//!   bodies the hinge joins meet the band at its ends, through their faces: against them the
-//!   band is shortened at both ends by its half width, so that a body may fold back only as
-//!   far as its own corner beside its face.
-//! - `slots`: solids not joined at least `part.min_slot` apart.
-//! - `link_width`: the middle link's two sides, from one face to the other, at least as far
-//!   apart as the thickest hinge it carries is thick, so that a disc that wide travels from
-//!   hinge to hinge inside it (the disc the width check rolls through every body).
-//! - `actuator_clear`: the actuator's body, where its length and height are given, clear of
-//!   every solid but the faces it pushes (whose room is the pocket's rule).
+//! - `clear/A/B`, two solids not joined: the least of their distance less `part.min_slot`
+//!   and of each one's clearance from the other's keep-out band, where the other is a hinge
+//!   (its root half thickness plus the narrowest slot or the fillet, whichever is wider, to
+//!   each side).
+//! - `behind_face/A/B`, a hinge and a body it joins: the body meets the band at one end,
+//!   through its face; against it the band is shortened by its half width at that end, so
+//!   that a body may fold back only as far as its own corner beside its face.
+//! - `actuator/A`: the actuator's body, where its length and height are given, clear of a
+//!   solid but the faces it pushes (whose room is the pocket's rule).
+//! - `link_width`: the middle link's width, a disc as wide as the thickest hinge it carries
+//!   travelling inside it from hinge to hinge (the disc the width check rolls through every
+//!   body).
 //!
 //! A clearance more than [`CAP`] beyond its rule is not worked out: the rule reads
 //! [`CAP`] there, continuously, as no pair is nearer than that, and the study's search
@@ -133,11 +133,15 @@ fn rows(with_actuator: bool) -> &'static [Row] {
                 if h < 4 || (h - 4) % 3 == 1 {
                     continue;
                 }
-                let band = match (from_quarter_of(h, h), joined(h, k)) {
-                    (4, false) => BAND_B,
-                    (4, true) => BAND_B_JOINED,
-                    (_, false) => BAND_D,
-                    (_, true) => BAND_D_JOINED,
+                // the bodies joined at a hinge's start (the input block for b, the link for
+                // d) and at its end (the link for b, the output block for d)
+                let band = match (from_quarter_of(h, h), from_quarter_of(h, k)) {
+                    (4, 0) => BAND_B_START,
+                    (4, 5) => BAND_B_END,
+                    (4, _) => BAND_B,
+                    (_, 5) => BAND_D_START,
+                    (_, 2) => BAND_D_END,
+                    _ => BAND_D,
                 };
                 terms.push(Term {
                     a: band,
@@ -238,14 +242,16 @@ type Piece<D> = [P<D>; 4];
 const SOLIDS: usize = 16;
 /// The shapes the rules compare beyond the solids.
 const BAND_B: usize = 16;
-const BAND_B_JOINED: usize = 17;
+const BAND_B_START: usize = 17;
 const BAND_D: usize = 18;
-const BAND_D_JOINED: usize = 19;
+const BAND_D_START: usize = 19;
 const ACTUATOR: usize = 20;
 const INPUT_UPPER: usize = 21;
+const BAND_B_END: usize = 22;
+const BAND_D_END: usize = 23;
 
 /// Each shape's pieces: `(first, count)` in [`pieces`]'s array.
-const RANGES: [(usize, usize); 22] = [
+const RANGES: [(usize, usize); 24] = [
     (0, 3),
     (3, 3),
     (6, 1),
@@ -269,8 +275,10 @@ const RANGES: [(usize, usize); 22] = [
     (24, 1),
     // the left input block's piece above the pushed face
     (0, 1),
+    (25, 1),
+    (26, 1),
 ];
-const PIECES: usize = 25;
+const PIECES: usize = 27;
 
 fn mirror_x<D: Scalar>(p: P<D>) -> P<D> {
     [-p[0], p[1]]
@@ -299,19 +307,14 @@ fn keep_out<D: Scalar>(start: P<D>, end: P<D>, root: D, slot: f64, [from, to]: [
 }
 
 /// The ends of a keep-out band along its hinge of length `len` with fillet `r`: the whole
-/// band's, and, shortened by its half width `w`, the one the joined bodies are held to
-/// (both ends at the middle where the hinge is too short for that).
-fn band_ends<D: Scalar>(len: D, r: f64, w: D) -> [[D; 2]; 2] {
+/// band's, then, shortened by its half width `w` at its start and at its end, the ones the
+/// body joined there is held to (a body may fold back beside its own face as far as its
+/// corner), as the part's check has them ([`crate::part::checks::keep_out`]).
+fn band_ends<D: Scalar>(len: D, r: f64, w: D) -> [[D; 2]; 3] {
     let whole = [D::from(-r + FACE_INSET), len + (r - FACE_INSET)];
-    let mid = (whole[0] + whole[1]) * 0.5;
-    let from = whole[0] + w;
-    let to = whole[1] - w;
-    let joined = if from.re() <= to.re() {
-        [from, to]
-    } else {
-        [mid, mid]
-    };
-    [whole, joined]
+    let start = min(whole[0] + w, whole[1]);
+    let end = max(whole[1] - w, whole[0]);
+    [whole, [start, whole[1]], [whole[0], end]]
 }
 
 /// Every piece of the part's solids and of the shapes the rules compare them with, at the
@@ -348,8 +351,8 @@ fn pieces<D: Scalar>(s: &PartSettings, layout: &Layout, g: &Geometry<D>) -> [Pie
         let d = [q[0] - p[0], q[1] - p[1]];
         (d[0] * d[0] + d[1] * d[1]).sqrt()
     };
-    let [whole_b, joined_b] = band_ends(length(q.n[0], q.n[1]), rb, tb * 0.5 + slot_b);
-    let [whole_d, joined_d] = band_ends(length(q.n[2], q.n[3]), rd, td * 0.5 + slot_d);
+    let [whole_b, start_b, end_b] = band_ends(length(q.n[0], q.n[1]), rb, tb * 0.5 + slot_b);
+    let [whole_d, start_d, end_d] = band_ends(length(q.n[2], q.n[3]), rd, td * 0.5 + slot_d);
     let (hl, hh) = (
         0.5 * s.actuator_length.unwrap_or(0.0) - FACE_INSET,
         0.5 * s.actuator_height.unwrap_or(0.0),
@@ -375,10 +378,12 @@ fn pieces<D: Scalar>(s: &PartSettings, layout: &Layout, g: &Geometry<D>) -> [Pie
         }
     }
     out[20] = keep_out(q.n[0], q.n[1], tb, slot_b, whole_b);
-    out[21] = keep_out(q.n[0], q.n[1], tb, slot_b, joined_b);
+    out[21] = keep_out(q.n[0], q.n[1], tb, slot_b, start_b);
     out[22] = keep_out(q.n[2], q.n[3], td, slot_d, whole_d);
-    out[23] = keep_out(q.n[2], q.n[3], td, slot_d, joined_d);
+    out[23] = keep_out(q.n[2], q.n[3], td, slot_d, start_d);
     out[24] = actuator;
+    out[25] = keep_out(q.n[0], q.n[1], tb, slot_b, end_b);
+    out[26] = keep_out(q.n[2], q.n[3], td, slot_d, end_d);
     out
 }
 
@@ -599,7 +604,7 @@ mod tests {
         let bands = rows(true)
             .iter()
             .flat_map(|r| &r.terms)
-            .filter(|t| t.a >= BAND_B && t.a <= BAND_D_JOINED)
+            .filter(|t| (BAND_B..=BAND_D_START).contains(&t.a) || t.a >= BAND_B_END)
             .count();
         assert!(bands >= 15, "{bands}");
     }
