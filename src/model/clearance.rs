@@ -239,7 +239,7 @@ impl Feature {
 }
 
 /// A side of a convex solid: its corners `(i, j)` and whether the solid lies to its left.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct Side {
     i: usize,
     j: usize,
@@ -284,9 +284,10 @@ impl Side {
     }
 }
 
-/// What gives a [`reach`]: the constraints that hold with equality at its optimum.
+/// The constraints that hold with equality at a [`reach`]'s optimum, the sides by their
+/// place in a list of lines.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Reach {
+enum Active {
     /// The point at the target itself, deep inside.
     AtTarget,
     /// The target's disc and one side.
@@ -295,6 +296,14 @@ pub enum Reach {
     TwoSides(usize, usize, f64),
     /// Three sides: the centre of the largest disc inside (the disc of the target slack).
     ThreeSides(usize, usize, usize),
+}
+
+/// What gives a [`reach`]: the constraints that hold with equality at its optimum, with the
+/// sides among them (the first of `sides`, as many as `active` names, in its order).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reach {
+    active: Active,
+    sides: [Side; 3],
 }
 
 /// How far a disc of radius `radius` that travels inside the convex solid with `corners`
@@ -314,73 +323,67 @@ pub fn reach(corners: &[Pt<f64>], radius: f64, target: Pt<f64>, allowance: f64) 
         norm(sub(p, target)) <= allowance - s + slack
             && lines.iter().all(|&(n, c)| dot(n, p) + s <= c + slack)
     };
-    let mut best = (f64::NEG_INFINITY, Reach::AtTarget);
-    let mut consider = |r: Reach| {
+    let mut best = (f64::NEG_INFINITY, Active::AtTarget);
+    let mut consider = |r: Active| {
         if let Some((p, s)) = solve(r, &lines, target, allowance) {
             if s > best.0 && feasible((p, s)) {
                 best = (s, r);
             }
         }
     };
-    consider(Reach::AtTarget);
+    consider(Active::AtTarget);
     let k = lines.len();
     for a in 0..k {
-        consider(Reach::OneSide(a));
+        consider(Active::OneSide(a));
         for b in a + 1..k {
-            consider(Reach::TwoSides(a, b, -1.0));
-            consider(Reach::TwoSides(a, b, 1.0));
+            consider(Active::TwoSides(a, b, -1.0));
+            consider(Active::TwoSides(a, b, 1.0));
             for c in b + 1..k {
-                consider(Reach::ThreeSides(a, b, c));
+                consider(Active::ThreeSides(a, b, c));
             }
         }
     }
-    (best.0, best.1.with_sides(&sides))
+    // the sides the optimum stands on, renumbered to their place among them
+    let (active, named) = match best.1 {
+        Active::AtTarget => (Active::AtTarget, vec![]),
+        Active::OneSide(a) => (Active::OneSide(0), vec![a]),
+        Active::TwoSides(a, b, r) => (Active::TwoSides(0, 1, r), vec![a, b]),
+        Active::ThreeSides(a, b, c) => (Active::ThreeSides(0, 1, 2), vec![a, b, c]),
+    };
+    let mut chosen = [Side::default(); 3];
+    for (slot, &k) in chosen.iter_mut().zip(&named) {
+        *slot = sides[k];
+    }
+    let at = Reach {
+        active,
+        sides: chosen,
+    };
+    (best.0, at)
 }
 
 impl Reach {
-    /// The same optimum with its sides named by their corners' indices packed as
-    /// `i * 16 + j + 256 * left`, so that [`Reach::value`] finds them again.
-    fn with_sides(self, sides: &[Side]) -> Reach {
-        let id = |k: usize| {
-            let s = sides[k];
-            s.i * 16 + s.j + if s.left { 256 } else { 0 }
-        };
-        match self {
-            Reach::AtTarget => Reach::AtTarget,
-            Reach::OneSide(a) => Reach::OneSide(id(a)),
-            Reach::TwoSides(a, b, r) => Reach::TwoSides(id(a), id(b), r),
-            Reach::ThreeSides(a, b, c) => Reach::ThreeSides(id(a), id(b), id(c)),
-        }
-    }
-
     /// The margin this optimum gives for the solid with `corners` (the one it was found
     /// on, now over dual numbers).
     pub fn value<D: Scalar>(&self, corners: &[Pt<D>], radius: D, target: Pt<D>, allowance: D) -> D {
-        let line = |id: usize| {
-            let side = Side {
-                i: (id % 256) / 16,
-                j: id % 16,
-                left: id >= 256,
-            };
-            side.line(corners, radius)
+        let count = match self.active {
+            Active::AtTarget => 0,
+            Active::OneSide(_) => 1,
+            Active::TwoSides(..) => 2,
+            Active::ThreeSides(..) => 3,
         };
-        let (local, lines) = match *self {
-            Reach::AtTarget => (Reach::AtTarget, vec![]),
-            Reach::OneSide(a) => (Reach::OneSide(0), vec![line(a)]),
-            Reach::TwoSides(a, b, r) => (Reach::TwoSides(0, 1, r), vec![line(a), line(b)]),
-            Reach::ThreeSides(a, b, c) => {
-                (Reach::ThreeSides(0, 1, 2), vec![line(a), line(b), line(c)])
-            }
-        };
-        solve(local, &lines, target, allowance).map_or(D::from(f64::NAN), |(_, s)| s)
+        let lines: Vec<(Pt<D>, D)> = self.sides[..count]
+            .iter()
+            .map(|s| s.line(corners, radius))
+            .collect();
+        solve(self.active, &lines, target, allowance).map_or(D::from(f64::NAN), |(_, s)| s)
     }
 }
 
 /// The centre and margin where the constraints of `r` hold with equality, if they meet.
-fn solve<D: Scalar>(r: Reach, lines: &[(Pt<D>, D)], f: Pt<D>, rho: D) -> Option<(Pt<D>, D)> {
+fn solve<D: Scalar>(r: Active, lines: &[(Pt<D>, D)], f: Pt<D>, rho: D) -> Option<(Pt<D>, D)> {
     match r {
-        Reach::AtTarget => Some((f, rho)),
-        Reach::OneSide(a) => {
+        Active::AtTarget => Some((f, rho)),
+        Active::OneSide(a) => {
             // from the target straight towards the side: the disc's radius and the side's
             // slack meet halfway
             let (n, c) = lines[a];
@@ -391,7 +394,7 @@ fn solve<D: Scalar>(r: Reach, lines: &[(Pt<D>, D)], f: Pt<D>, rho: D) -> Option<
             }
             Some((sub(f, [n[0] * along, n[1] * along]), (rho + gap) * 0.5))
         }
-        Reach::TwoSides(a, b, root) => {
+        Active::TwoSides(a, b, root) => {
             // the centre on both sides' lines, p(s) = p0 - s v, at distance rho - s from f
             let ((n1, c1), (n2, c2)) = (lines[a], lines[b]);
             let det = cross(n1, n2);
@@ -428,7 +431,7 @@ fn solve<D: Scalar>(r: Reach, lines: &[(Pt<D>, D)], f: Pt<D>, rho: D) -> Option<
             }
             Some((sub(p0, [v[0] * s, v[1] * s]), s))
         }
-        Reach::ThreeSides(a, b, c) => {
+        Active::ThreeSides(a, b, c) => {
             // n_k . p + s = c_k for three sides: Cramer's rule
             let rows = [lines[a], lines[b], lines[c]];
             let det3 = |m: [[D; 3]; 3]| {
