@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use common::hs::{hs21, hs35, Hs};
+use common::hs::{hs10, hs14, hs15, hs21, hs35, hs6, hs7, hs71, Hs};
 use flexopt::model::scalar::Jet;
 use flexopt::optim::nelder_mead::{self, NelderMeadSettings};
 use flexopt::optim::sqp::{self, SqpSettings};
@@ -231,4 +231,82 @@ fn no_feasible_point_is_reported_as_such() {
             "{s:?}"
         );
     }
+}
+
+/// `problem` with its objective multiplied by `factor`: a stress in pascals beside the
+/// same stress in units of its own size.
+struct Rescaled<'p> {
+    problem: &'p dyn Problem,
+    factor: f64,
+}
+
+impl Problem for Rescaled<'_> {
+    fn dimension(&self) -> usize {
+        self.problem.dimension()
+    }
+    fn bounds(&self) -> (&[f64], &[f64]) {
+        self.problem.bounds()
+    }
+    fn equality_count(&self) -> usize {
+        self.problem.equality_count()
+    }
+    fn constraint_count(&self) -> usize {
+        self.problem.constraint_count()
+    }
+    fn evaluate(&self, x: &[f64], c: &mut [f64]) -> f64 {
+        self.factor * self.problem.evaluate(x, c)
+    }
+    fn evaluate_with_gradient(
+        &self,
+        x: &[f64],
+        c: &mut [f64],
+        g: &mut [f64],
+        jac: &mut [f64],
+    ) -> f64 {
+        let f = self.problem.evaluate_with_gradient(x, c, g, jac);
+        g.iter_mut().for_each(|v| *v *= self.factor);
+        self.factor * f
+    }
+}
+
+/// The SQP on `p` with its objective multiplied by each factor: the same optimum.
+fn same_optimum_whatever_the_objectives_unit<const N: usize>(p: Hs<N>) {
+    for factor in [1e-3, 1.0, 3e7, 1e12] {
+        let scaled = Rescaled {
+            problem: &p,
+            factor,
+        };
+        let s = sqp::solve(&scaled, &p.start, &SqpSettings::default());
+        sound(&scaled, &s);
+        assert_eq!(s.status, Status::Converged, "{} x {factor}: {s:?}", p.name);
+        let err = (s.objective / factor - p.f_opt).abs() / p.f_opt.abs().max(1.0);
+        assert!(
+            err <= 1e-8,
+            "{} x {factor}: f = {} ({err:e})",
+            p.name,
+            s.objective
+        );
+        for (x, x_opt) in s.x.iter().zip(&p.x_opt) {
+            assert!(
+                (x - x_opt).abs() <= 1e-4 * (1.0 + x_opt.abs()),
+                "{} x {factor}: {:?}",
+                p.name,
+                s.x
+            );
+        }
+    }
+}
+
+#[test]
+fn an_objective_of_any_size_reaches_the_same_optimum() {
+    // the SQP's first model is the identity and its elastic QP prices the violation at a
+    // multiple of the gradient: neither may make the result depend on the objective's unit
+    same_optimum_whatever_the_objectives_unit(hs71());
+    same_optimum_whatever_the_objectives_unit(hs35());
+    same_optimum_whatever_the_objectives_unit(hs21());
+    same_optimum_whatever_the_objectives_unit(hs10());
+    same_optimum_whatever_the_objectives_unit(hs14());
+    same_optimum_whatever_the_objectives_unit(hs15());
+    same_optimum_whatever_the_objectives_unit(hs6());
+    same_optimum_whatever_the_objectives_unit(hs7());
 }

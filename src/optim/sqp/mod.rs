@@ -38,6 +38,7 @@
 
 mod curvature;
 mod line_search;
+mod scaling;
 mod subproblem;
 mod termination;
 
@@ -45,6 +46,7 @@ use super::dense::{inf_norm, max_violation};
 use super::problem::{clamp_into, Problem, Solution, Status};
 use curvature::Curvature;
 use line_search::{LineSearch, Outcome};
+use scaling::{objective_scale, ScaledObjective};
 use subproblem::{QpKind, Step, Subproblem};
 
 /// Settings of the SQP solver.
@@ -75,9 +77,23 @@ pub const HESSIAN_REFRESH: usize = 5;
 /// The Hessian refresh and the step limit stop once the KKT residual is below this.
 const REFRESH_UNTIL_KKT: f64 = 1e-4;
 
-/// Solves `problem` from `x0` (moved into the bounds first).
+/// Solves `problem` from `x0` (moved into the bounds first), its objective scaled where
+/// its gradient there is large ([`scaling`]).
 pub fn solve(problem: &dyn Problem, x0: &[f64], settings: &SqpSettings) -> Solution {
-    Sqp::new(problem, x0).run(settings)
+    let (lower, upper) = problem.bounds();
+    let mut start = x0.to_vec();
+    clamp_into(&mut start, lower, upper);
+    let scale = objective_scale(problem, &start);
+    if scale == 1.0 {
+        let mut s = Sqp::new(problem, &start).run(settings);
+        s.evaluations += 1;
+        return s;
+    }
+    let scaled = ScaledObjective { problem, scale };
+    let mut s = Sqp::new(&scaled, &start).run(settings);
+    s.objective /= scale;
+    s.evaluations += 1;
+    s
 }
 
 /// A point with the problem's values and gradients there.
@@ -211,6 +227,8 @@ impl<'p> Sqp<'p> {
         let mut kkt = f64::INFINITY;
         let (mut best_kkt, mut stalled) = (f64::INFINITY, 0);
         let mut stationary_violation = 0;
+        // line searches failed in a row, from the same point
+        let mut failed_searches = 0;
         for iteration in 0..settings.max_iterations {
             // near a KKT point the secant updates have the curvature they need: the refresh
             // is for the way there (measured: the same iterations, 6 % less time)
@@ -279,20 +297,30 @@ impl<'p> Sqp<'p> {
             for (mi, li) in mu.iter_mut().zip(&self.step.lambda) {
                 *mi = (1.01 * li.abs()).max(0.5 * (*mi + li.abs()));
             }
-            match line_search::search(&mut self, &mu) {
+            match line_search::search(&mut self, &mu, elastic) {
                 Outcome::Accepted { alpha } => {
+                    failed_searches = 0;
                     if !elastic {
                         self.curvature.limit_next_step(alpha, step, kkt);
                     }
                 }
                 Outcome::NoDecrease => {
-                    if self.curvature.is_identity() {
+                    // the second time at the same point: the curvature started afresh did
+                    // not help either (the refresh may have rebuilt it in between)
+                    if self.curvature.is_identity() || failed_searches > 0 {
+                        if elastic {
+                            // the linearisation promises less violation and no step gives
+                            // it: a kink of the violation (a clearance changing its nearest
+                            // features), a local minimizer of it
+                            return self.finish(Status::Infeasible, iteration + 1, Some(kkt));
+                        }
                         return self.finish(
                             Status::Failed("the line search found no decrease".into()),
                             iteration + 1,
                             Some(kkt),
                         );
                     }
+                    failed_searches += 1;
                     // restart the curvature model and try again from the same point
                     self.curvature.reset();
                 }

@@ -127,6 +127,13 @@ impl Subproblem {
                     curvature.reset();
                     return self.solve(shape, point, rhs, curvature, step);
                 }
+                _ if elastic && !curvature.is_identity() => {
+                    // the elastic QP always has a solution (d = 0 with the slack at the
+                    // worst violation): the dual method lost it to B's conditioning, as
+                    // after a refresh across a clearance's kink. Start B afresh.
+                    curvature.reset();
+                    return self.solve(shape, point, rhs, curvature, step);
+                }
                 _ => {}
             }
         }
@@ -188,14 +195,18 @@ impl Subproblem {
                 .map(|(u, x)| (u - x).min(limit)),
         );
         if elastic {
-            // a large linear price on the slack, and a curvature of the size of B's so that
-            // G stays well conditioned; priced from the gradient alone: the multipliers of
-            // an elastic QP are bounded by this price, and feeding them back would make it
-            // grow without end
-            let scale = inf_norm(&point.g).max(1.0);
-            let diag = (0..n).map(|i| hess[i * n + i]).sum::<f64>() / n as f64;
-            self.g[n * nv + n] = diag.max(1e-8);
-            self.a.push(1e4 * scale);
+            // a large linear price on the slack, priced from the gradient alone: the
+            // multipliers of an elastic QP are bounded by this price, and feeding them back
+            // would make it grow without end
+            let price = 1e4 * inf_norm(&point.g).max(1.0);
+            // the multipliers' sum is the price plus the slack's curvature times the slack:
+            // with a curvature of B's size they followed B, and B, refreshed with them, grew
+            // a hundredfold an iteration until the dual method lost the QP (measured on
+            // wei2017_min_stress). Small beside the price over the slack's possible size
+            // (the worst violation), it keeps them within a thousandth of the price.
+            let worst = crate::optim::dense::max_violation(&rhs[..m], meq);
+            self.g[n * nv + n] = 1e-3 * price / (1.0 + worst);
+            self.a.push(price);
             self.lo.push(0.0);
             self.hi.push(f64::INFINITY);
         }
