@@ -12,7 +12,8 @@ use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyString, PyTuple};
 
 use crate::commands;
 use crate::error::Error;
@@ -29,6 +30,8 @@ pub struct Problem {
     free: Vec<usize>,
     /// The outputs `flexopt eval` reports: every one the model computes by its formulas.
     analytic: Vec<usize>,
+    /// Their names as Python strings.
+    output_names: PyOnceLock<Vec<Py<PyString>>>,
 }
 
 impl Problem {
@@ -47,6 +50,7 @@ impl Problem {
             text,
             free,
             analytic,
+            output_names: PyOnceLock::new(),
         }
     }
 
@@ -57,11 +61,15 @@ impl Problem {
     /// The model's parameters (SI) at the free variables' values `free` (the file's units),
     /// the fixed ones at their values; refused outside the model's domain as `flexopt eval`
     /// refuses a `--design` there.
-    pub fn design_of_free(&self, free: &[f64], key: &str) -> Result<Vec<f64>, Error> {
+    pub fn design_of_free(
+        &self,
+        free: &[f64],
+        key: &dyn Fn() -> String,
+    ) -> Result<Vec<f64>, Error> {
         if free.len() != self.free.len() {
             return Err(Error::bad_input(
                 self.file(),
-                key,
+                &key(),
                 format!(
                     "expected {} values (the free variables {}), got {}",
                     self.free.len(),
@@ -76,13 +84,16 @@ impl Problem {
             if !value.is_finite() {
                 return Err(Error::bad_input(
                     self.file(),
-                    &format!("{key} {}", v.name),
+                    &format!("{} {}", key(), v.name),
                     format!("{value} is not a finite number"),
                 ));
             }
             x[i] = v.unit.to_si(value);
         }
-        self.in_domain(&x, key)?;
+        if let Some(why) = self.inner.model().domain_error(&x) {
+            let what = format!("outside the model's domain: {why}");
+            return Err(Error::bad_input(self.file(), &key(), what));
+        }
         Ok(x)
     }
 
@@ -114,6 +125,10 @@ impl Problem {
     /// or as a sequence of the free variables' values.
     fn design(&self, py: Python<'_>, design: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
         if let Ok(dict) = design.cast::<PyDict>() {
+            if let Some(x) = self.plain_design(dict) {
+                self.in_domain(&x, "--design")?;
+                return Ok(x);
+            }
             let mut text = String::new();
             for (k, v) in dict.iter() {
                 let name: String = k.extract()?;
@@ -137,7 +152,7 @@ impl Problem {
             return Ok(parsed.x);
         }
         let free = free_values(design)?;
-        Ok(self.design_of_free(&free, "design")?)
+        Ok(self.design_of_free(&free, &|| "design".into())?)
     }
 
     /// A bound of each free variable (SI, `side` picks it) in the file's units.
@@ -149,11 +164,47 @@ impl Problem {
             .collect()
     }
 
+    /// The design of a dict that `parse_design` would take without a message or a warning
+    /// (every free variable given, each once, finite and within its bounds), read directly;
+    /// `None` for any other, which the text's reading then refuses or warns of.
+    fn plain_design(&self, dict: &Bound<'_, PyDict>) -> Option<Vec<f64>> {
+        let vars = &self.inner.variables;
+        let mut x = vec![f64::NAN; vars.len()];
+        for (k, v) in dict.iter() {
+            let name = k.cast::<PyString>().ok()?.to_cow().ok()?;
+            let i = vars.iter().position(|v| v.name == *name)?;
+            let value: f64 = v.extract().ok()?;
+            if !value.is_finite() {
+                return None;
+            }
+            x[i] = vars[i].unit.to_si(value);
+        }
+        for (xi, var) in x.iter_mut().zip(vars) {
+            if xi.is_nan() {
+                if !var.fixed {
+                    return None;
+                }
+                *xi = var.lower;
+            }
+            // parse_design's tolerance of a bound
+            let tol = 1e-12 * var.upper.abs().max(var.lower.abs());
+            if *xi < var.lower - tol || *xi > var.upper + tol {
+                return None;
+            }
+        }
+        Some(x)
+    }
+
     fn output_dict<'py>(&self, py: Python<'py>, values: &[f64]) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        let infos = self.inner.model().outputs();
-        for (&i, &v) in self.analytic.iter().zip(values) {
-            d.set_item(infos[i].name, if v.is_finite() { v } else { f64::NAN })?;
+        // the names made once: a dict's keys are most of an evaluation's cost
+        let names = self.output_names.get_or_init(py, || {
+            let infos = self.inner.model().outputs();
+            let names = self.analytic.iter().map(|&i| infos[i].name);
+            names.map(|n| PyString::new(py, n).unbind()).collect()
+        });
+        for (name, &v) in names.iter().zip(values) {
+            d.set_item(name.bind(py), if v.is_finite() { v } else { f64::NAN })?;
         }
         Ok(d)
     }
@@ -337,12 +388,15 @@ impl Problem {
         designs: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let a = designs.as_array();
-        let rows: Vec<Vec<f64>> = a.outer_iter().map(|r| r.to_vec()).collect();
         let m = self.analytic.len();
+        let rows = a.nrows();
         let out = py.detach(|| -> Result<Vec<f64>, Error> {
-            let mut out = vec![0.0; rows.len() * m];
-            for (k, (row, o)) in rows.iter().zip(out.chunks_mut(m.max(1))).enumerate() {
-                let x = self.design_of_free(row, &format!("designs row {k}"))?;
+            let mut out = vec![0.0; rows * m];
+            let mut row = Vec::with_capacity(a.ncols());
+            for (k, (r, o)) in a.outer_iter().zip(out.chunks_mut(m.max(1))).enumerate() {
+                row.clear();
+                row.extend(r.iter());
+                let x = self.design_of_free(&row, &|| format!("designs row {k}"))?;
                 self.outputs_at(&x, o);
             }
             Ok(out)
@@ -350,7 +404,7 @@ impl Problem {
         let out = out
             .into_iter()
             .map(|v| if v.is_finite() { v } else { f64::NAN });
-        let a = Array2::from_shape_vec((rows.len(), m), out.collect())
+        let a = Array2::from_shape_vec((rows, m), out.collect())
             .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
         Ok(a.into_pyarray(py))
     }
@@ -447,7 +501,7 @@ impl Problem {
             let mut out = vec![0.0; self.analytic.len()];
             let begin = std::time::Instant::now();
             for _ in 0..n {
-                let x = self.design_of_free(std::hint::black_box(&design), "design")?;
+                let x = self.design_of_free(std::hint::black_box(&design), &|| "design".into())?;
                 self.outputs_at(&x, &mut out);
                 std::hint::black_box(&out);
             }

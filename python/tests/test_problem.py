@@ -130,3 +130,14 @@ def test_export_writes_the_part_files(wei2017, tmp_path):
     names = sorted(p.rsplit("/", 1)[-1] for p in files)
     assert "part.dxf" in names and "part.svg" in names
     assert all((tmp_path / "part" / n).is_file() for n in names)
+
+
+def test_a_value_outside_its_bounds_warns_as_flexopt_eval_does(wei2017, cli):
+    outside = dict(TABLE1, t2=0.35)
+    with pytest.warns(UserWarning) as warned:
+        got = wei2017.evaluate(outside)
+    done = cli("eval", str(WEI2017), "--design", design_text(outside), "--format", "json")
+    assert done.returncode == 0, done.stderr
+    assert [f"warning: {w.message}" for w in warned] == done.stderr.strip().splitlines()
+    expected = json.loads(done.stdout)["outputs"]
+    assert {k: v.hex() for k, v in got.items()} == {k: float(v).hex() for k, v in expected.items()}
