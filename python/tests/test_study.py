@@ -59,3 +59,28 @@ def test_shards_that_do_not_make_one_study_raise(wei2017):
     other = wei2017.run(starts=6, seed=1, start_range=(3, 6))
     with pytest.raises(flexopt.FlexoptError, match="the shards are of different studies"):
         flexopt.merge(wei2017, [a, other])
+
+
+def test_run_releases_the_gil(wei2017):
+    """While a study solves, another Python thread runs: the main thread's clock readings
+    taken while the study's thread is inside `run` span most of the run (were the GIL held,
+    they would fall in one switch interval at its ends)."""
+    import threading
+    import time
+
+    span = {}
+
+    def work():
+        span["begin"] = time.perf_counter()
+        wei2017.run(starts=1000, threads=1)
+        span["end"] = time.perf_counter()
+
+    t = threading.Thread(target=work)
+    readings = []
+    t.start()
+    while t.is_alive():
+        readings.append(time.perf_counter())
+    t.join()
+    inside = [r for r in readings if span["begin"] < r < span["end"]]
+    assert inside, "no reading while the study ran"
+    assert inside[-1] - inside[0] > 0.5 * (span["end"] - span["begin"])
