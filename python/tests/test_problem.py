@@ -141,3 +141,29 @@ def test_a_value_outside_its_bounds_warns_as_flexopt_eval_does(wei2017, cli):
     assert [f"warning: {w.message}" for w in warned] == done.stderr.strip().splitlines()
     expected = json.loads(done.stdout)["outputs"]
     assert {k: v.hex() for k, v in got.items()} == {k: float(v).hex() for k, v in expected.items()}
+
+
+def test_a_missing_file_raises_as_the_cli_says_it(cli, tmp_path):
+    missing = tmp_path / "missing.toml"
+    with pytest.raises(flexopt.FlexoptError) as e:
+        flexopt.Problem.load(missing)
+    assert e.value.file == str(missing) and e.value.code == 2
+    done = cli("eval", str(missing), "--design", design_text(TABLE1))
+    assert done.returncode == 2
+    assert done.stderr.strip() == f"error: {e.value}"
+
+
+def test_a_part_that_cannot_be_made_raises_with_exit_code_5(wei2017, cli, tmp_path):
+    short = {"l2": 0.5, "delta2": 4.0, "t2": 2.0, "l3": 0.5, "delta3": 4.0, "l4": 0.5,
+             "delta4": 4.0, "t4": 2.0}
+    out = tmp_path / "part"
+    with pytest.raises(flexopt.FlexoptError, match="no part that can be made") as e:
+        wei2017.export(short, out)
+    assert e.value.code == 5
+    assert list(out.iterdir()) == []  # the folder checked writable, as the CLI leaves it
+    done = cli("export", str(WEI2017), "--design", design_text(short), "--out", str(out))
+    assert done.returncode == 5
+    assert done.stderr.strip() == f"error: {e.value}"
+    with pytest.raises(flexopt.FlexoptError, match="no part that can be made") as e:
+        wei2017.verify(short)
+    assert e.value.code == 5
