@@ -6,10 +6,9 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use flexopt::optim::{Solution, Status};
-use flexopt::problem::schema::{STARTS, THREADS};
 use flexopt::problem::{Solver, SOLVERS};
 use flexopt::report::study::{optimum_report, start_records, zones_report};
-use flexopt::study::{self, Run, Study as Inner, StudyOptions};
+use flexopt::study::{self, Overrides, Run, Study as Inner, StudyOptions};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
@@ -25,7 +24,7 @@ pub struct Study {
 }
 
 /// The study options of `problem` with the caller's overrides, checked as `flexopt run`
-/// checks its options.
+/// checks its options (the keys named without its `--`).
 pub fn options(
     problem: &Problem,
     starts: Option<i64>,
@@ -33,57 +32,18 @@ pub fn options(
     threads: Option<i64>,
     solver: Option<&str>,
 ) -> Result<StudyOptions, Error> {
-    let p = &problem.inner;
-    let file = problem.file();
-    if let Some(why) = flexopt::problem::fit::unreachable(p) {
-        return Err(Error {
-            message: why.to_string(),
-            file: Some(file.display().to_string()),
-            key: None,
-            code: 2,
-        });
-    }
-    if p.free_variables().next().is_none() {
-        return Err(Error::bad_input(
-            file,
-            "variables",
-            "every variable has a fixed `value`, so there is nothing to optimize",
-        ));
-    }
-    let mut options = StudyOptions::from_problem(p);
-    if let Some(s) = starts {
-        let (lo, hi) = STARTS;
-        if !(lo..=hi).contains(&s) {
-            let what = format!("must lie between {lo} and {hi}, got {s}");
-            return Err(Error::bad_input(file, "starts", what));
-        }
-        options.starts = s as usize;
-    }
-    if let Some(t) = threads {
-        if !(THREADS.0..=THREADS.1).contains(&t) {
-            let what = format!("must lie between {} and {}, got {t}", THREADS.0, THREADS.1);
-            return Err(Error::bad_input(file, "threads", what));
-        }
-        options.threads = t as usize;
-    }
-    if let Some(s) = seed {
-        if s < 0 {
-            let what = format!("must lie between 0 and {}, got {s}", i64::MAX);
-            return Err(Error::bad_input(file, "seed", what));
-        }
-        options.seed = s as u64;
-    }
-    if let Some(name) = solver {
-        options.solver = SOLVERS.get(name).ok_or_else(|| {
-            let names = SOLVERS.names().join(", ");
-            Error::bad_input(
-                file,
-                "solver",
-                format!("unknown solver \"{name}\"; expected one of {names}"),
-            )
-        })?;
-    }
-    Ok(options)
+    let overrides = Overrides {
+        starts: starts.map(i128::from),
+        seed: seed.map(i128::from),
+        threads: threads.map(i128::from),
+        solver,
+    };
+    StudyOptions::with_overrides(&problem.inner, &overrides, "").map_err(|e| Error {
+        message: e.message,
+        file: Some(problem.file().display().to_string()),
+        key: e.key,
+        code: 2,
+    })
 }
 
 /// Runs the study of `problem` (its starts in `range`, else all), the GIL released.

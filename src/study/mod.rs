@@ -20,8 +20,10 @@ use crate::problem::nlp::{feasible_end, DesignNlp, FEASIBILITY_TOLERANCE};
 use crate::problem::{Problem, Sampling, Sense, Solver};
 
 pub mod least_violating;
+mod overrides;
 mod shards;
 pub use least_violating::LeastViolating;
+pub use overrides::{OverrideError, Overrides};
 pub use shards::{merge, run_range, ShardError};
 
 /// What a study runs with; the problem file's `[search]` gives the defaults.
