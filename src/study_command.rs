@@ -9,8 +9,7 @@ use crate::verify_command::check_design;
 use flexopt::fe::verify::VerifySettings;
 use flexopt::pareto::{pareto, ParetoSpec};
 use flexopt::part::{Part, PartError};
-use flexopt::problem::schema::{STARTS, THREADS};
-use flexopt::problem::{fit, Problem, SOLVERS};
+use flexopt::problem::{fit, Problem};
 use flexopt::refine::study::refine_study;
 use flexopt::report::html::ProblemText;
 use flexopt::report::pareto::write_pareto;
@@ -18,7 +17,7 @@ use flexopt::report::refine::{RefineSummary, RefinedReport};
 use flexopt::report::study::{write_all_refined, RefinedFiles};
 use flexopt::report::summary::{infeasible_message, ParetoSummary, StudySummary};
 use flexopt::report::verify::VerifyTable;
-use flexopt::study::{self, Study, StudyOptions};
+use flexopt::study::{self, Overrides, Study, StudyOptions};
 
 /// Loads the problem and applies the command line's overrides of its `[search]`.
 pub(crate) fn study_setup(
@@ -32,50 +31,15 @@ pub(crate) fn study_setup(
         ..
     } = *args;
     let problem = crate::start_command::load_problem(path)?;
-    if let Some(why) = flexopt::problem::fit::unreachable(&problem) {
-        return Err(Failure::bad_input(why));
-    }
-    if problem.free_variables().next().is_none() {
-        return Err(Failure::bad_input(format!(
-            "{}: key `variables`: every variable has a fixed `value`, so there is nothing to \
-             optimize; give at least one `lower` and `upper` instead (`flexopt eval` and \
-             `flexopt sweep` take a fixed design)",
-            problem.file.display()
-        )));
-    }
-    let mut options = StudyOptions::from_problem(&problem);
-    if let Some(s) = starts {
-        let (lo, hi) = STARTS;
-        if !i64::try_from(s).is_ok_and(|s| (lo..=hi).contains(&s)) {
-            return Err(Failure::bad_input(format!(
-                "{}: key `--starts`: must lie between {lo} and {hi}, got {s}",
-                problem.file.display()
-            )));
-        }
-        options.starts = s;
-    }
-    if let Some(t) = threads.filter(|&t| i64::try_from(t).map_or(true, |t| t > THREADS.1)) {
-        return Err(Failure::bad_input(format!(
-            "{}: key `--threads`: must lie between {} and {}, got {t}",
-            problem.file.display(),
-            THREADS.0,
-            THREADS.1
-        )));
-    }
-    // the file's seed is a TOML integer: one range for both
-    if let Some(s) = seed.filter(|&s| s > i64::MAX as u64) {
-        return Err(Failure::bad_input(format!(
-            "{}: key `--seed`: must lie between 0 and {}, got {s}",
-            problem.file.display(),
-            i64::MAX
-        )));
-    }
-    if let Some(solver) = args.solver.as_deref().and_then(|s| SOLVERS.get(s)) {
-        options.solver = solver;
-    }
+    let overrides = Overrides {
+        starts: starts.map(|s| s as i128),
+        seed: seed.map(i128::from),
+        threads: threads.map(|t| t as i128),
+        solver: args.solver.as_deref(),
+    };
+    let mut options = StudyOptions::with_overrides(&problem, &overrides, "--")
+        .map_err(|e| Failure::bad_input(e.message))?;
     options.progress = !args.quiet;
-    options.seed = seed.unwrap_or(options.seed);
-    options.threads = threads.unwrap_or(options.threads);
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     if options.threads > cores {
         eprintln!(

@@ -1,6 +1,7 @@
 //! The multistart study of a design problem: local solves from many starts, every result
 //! kept, optima merged and sorted into zones, the best feasible design picked.
 
+use std::ops::Range;
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -19,7 +20,11 @@ use crate::problem::nlp::{feasible_end, DesignNlp, FEASIBILITY_TOLERANCE};
 use crate::problem::{Problem, Sampling, Sense, Solver};
 
 pub mod least_violating;
+mod overrides;
+mod shards;
 pub use least_violating::LeastViolating;
+pub use overrides::{OverrideError, Overrides};
+pub use shards::{merge, run_range, ShardError};
 
 /// What a study runs with; the problem file's `[search]` gives the defaults.
 #[derive(Debug, Clone)]
@@ -95,6 +100,9 @@ pub struct Study {
     pub mirrored: Option<Vec<f64>>,
     pub elapsed: Duration,
     pub options: StudyOptions,
+    /// The starts solved: all of them (`0..options.starts`), or a shard's range
+    /// ([`run_range`]) until [`merge`] joins the shards.
+    pub range: Range<usize>,
 }
 
 /// How the local solves of a study ended, by status.
@@ -163,6 +171,10 @@ fn preferred_mirror(problem: &Problem, nlp: &DesignNlp, run: &Run) -> Option<Vec
 
 /// Runs the study of `problem`.
 pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
+    solve_range(problem, options, 0..options.starts)
+}
+
+fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -> Study {
     let nlp = DesignNlp::new(problem);
     let n = nlp.dimension();
     let sampling = match problem.search.sampling {
@@ -176,6 +188,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
         options.seed,
         sampling,
     );
+    let starts = &starts[range.clone()];
     let tolerance = problem.search.tolerance;
     let max_iterations = problem.search.max_iterations;
     // the progress's best: a feasible end's objective as the problem states it
@@ -190,7 +203,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
     };
     let progress = options
         .progress
-        .then(|| Progress::new("local solves", options.starts, &label));
+        .then(|| Progress::new("local solves", range.len(), &label));
     let progress = progress.as_ref();
     let begin = Instant::now();
     // the part's rules it keeps for the end of each start, if any (crate::optim::staged)
@@ -236,7 +249,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
                 }
                 None => multistart::run_until(
                     &nlp,
-                    &starts,
+                    starts,
                     |p, x0| staged(p, first.as_ref().map(|f| f as _), x0, &sqp),
                     options.threads,
                     progress,
@@ -253,7 +266,7 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
             let nm = |p: &dyn OptimProblem, x0: &[f64]| nelder_mead::solve(p, x0, &settings);
             multistart::run_until(
                 &nlp,
-                &starts,
+                starts,
                 |p, x0| staged(p, first.as_ref().map(|f| f as _), x0, &nm),
                 options.threads,
                 progress,
@@ -262,15 +275,15 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
         }
     };
     let interrupted = solutions.iter().any(Option::is_none);
-    let mut runs: Vec<Run> = solutions
+    let runs: Vec<Run> = solutions
         .into_iter()
         .enumerate()
-        .filter_map(|(i, s)| Some((i, s?)))
-        .map(|(i, s)| {
+        .filter_map(|(k, s)| Some((k, s?)))
+        .map(|(k, s)| {
             let feasible = feasible_end(&s);
             Run {
-                start: i,
-                x_start: nlp.full_design(&starts[i]),
+                start: range.start + k,
+                x_start: nlp.full_design(&starts[k]),
                 x_end: nlp.full_design(&s.x),
                 objective: nlp.objective_at(&s.x, s.objective),
                 feasible,
@@ -280,6 +293,30 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
             }
         })
         .collect();
+    let mut study = from_runs(problem, options, runs, interrupted, range);
+    study.elapsed = begin.elapsed();
+    study
+}
+
+/// The study of the starts `range` from their runs (in the order of their starts; their
+/// optimum and zone are set here): the clustering, the best run, the ends, the least
+/// violating design and the mirror image, as [`run`] and [`merge`] conclude them; a shard
+/// sent elsewhere is rebuilt by it from its runs. Its `elapsed` is zero, for the caller to
+/// set.
+pub fn from_runs(
+    problem: &Problem,
+    options: &StudyOptions,
+    mut runs: Vec<Run>,
+    interrupted: bool,
+    range: Range<usize>,
+) -> Study {
+    let nlp = &DesignNlp::new(problem);
+    for r in &mut runs {
+        r.optimum = None;
+        r.zone = None;
+    }
+    let tolerance = problem.search.tolerance;
+    let max_iterations = problem.search.max_iterations;
     let feasible_runs: Vec<usize> = (0..runs.len()).filter(|&i| runs[i].feasible).collect();
     let points: Vec<EndPoint> = feasible_runs
         .iter()
@@ -345,15 +382,14 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
             .filter(|&i| runs[i].solution.x.iter().all(|x| x.is_finite()))
             .collect();
         let ends: Vec<Vec<f64>> = from.iter().map(|&i| runs[i].solution.x.clone()).collect();
-        least_violating::search(&nlp, &ends, &settings, options.threads).map(|mut l| {
+        least_violating::search(nlp, &ends, &settings, options.threads).map(|mut l| {
             l.from = runs[from[l.from]].start;
             l
         })
     };
     let mirrored = (any_feasible && z.merge_mirror_images)
-        .then(|| preferred_mirror(problem, &nlp, &runs[best]))
+        .then(|| preferred_mirror(problem, nlp, &runs[best]))
         .flatten();
-    let elapsed = begin.elapsed();
     Study {
         least_violating,
         mirrored,
@@ -365,7 +401,8 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
         feasible_runs,
         best,
         any_feasible,
-        elapsed,
+        elapsed: Duration::ZERO,
         options: options.clone(),
+        range,
     }
 }
