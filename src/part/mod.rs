@@ -15,7 +15,7 @@
 //! Files: `analysis.rs` (the check a model asks of its part), `outline.rs` (union, exact
 //! coordinates, fillets, loops), `checks.rs` (what cannot be made, on the solids),
 //! `widths.rs` (bodies thinner than their hinges, on the outline), `mm.rs` (the part as
-//! its files hold it), `dxf.rs`, `svg.rs` (the writers).
+//! its files hold it), `dxf.rs`, `svg.rs`, `step.rs` (the writers).
 
 pub mod analysis;
 pub mod checks;
@@ -24,6 +24,7 @@ pub mod half;
 mod mm;
 pub mod outline;
 mod roots;
+pub mod step;
 pub mod svg;
 mod widths;
 

@@ -1,6 +1,7 @@
-//! The part's files: `part.dxf`, `part.svg`, `part.json` and `part.png`, the drawing a
+//! The part's files: `part.dxf`, `part.svg`, `part.json`, `part.png`, the drawing a
 //! designer checks before sending a file to the shop (the outline at equal scale on both
-//! axes, the load faces in colour, the main dimensions annotated).
+//! axes, the load faces in colour, the main dimensions annotated), and `part.step`, the
+//! solid for mechanical CAD.
 
 use std::path::{Path, PathBuf};
 
@@ -10,11 +11,11 @@ use serde::Serialize;
 use super::folder::OutputSet;
 use super::plot::{render_png, FAMILY};
 use super::{write_atomic, write_json, WriteError};
-use crate::part::{dxf, svg, Annotation, Part, PartMm, MM};
+use crate::part::{dxf, step, svg, Annotation, Part, PartMm, MM};
 use crate::problem::part_rules::RuleCheck;
 
 /// The names of the part's files, in the order they are written.
-pub const PART_FILES: [&str; 4] = ["part.dxf", "part.svg", "part.json", "part.png"];
+pub const PART_FILES: [&str; 5] = ["part.dxf", "part.svg", "part.json", "part.png", "part.step"];
 
 /// `part.json`: the outline and faces (mm) and what they were made from.
 #[derive(Debug, Serialize)]
@@ -36,7 +37,7 @@ pub enum PartOf {
     Refined,
 }
 
-/// Writes the four part files through `path` (which maps a file name to where it goes);
+/// Writes the five part files through `path` (which maps a file name to where it goes);
 /// `rules`, the part's rules at the design, for the drawing to name the nearest its limit.
 pub fn write_part(
     path: impl Fn(&str) -> PathBuf,
@@ -63,10 +64,11 @@ pub fn write_part(
         },
     )?;
     drawing_png(&files[3], problem, part, of, closest(rules))?;
+    write_atomic(&files[4], step::to_string(part, problem).as_bytes())?;
     Ok(files)
 }
 
-/// Writes the four part files into `dir` as one set in place of the folder's earlier one
+/// Writes the five part files into `dir` as one set in place of the folder's earlier one
 /// ([`super::folder`]); returns the paths in place.
 pub fn write_part_set(
     dir: &Path,

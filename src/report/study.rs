@@ -290,11 +290,12 @@ pub struct RefinedFiles<'a> {
 }
 
 /// The names of the refined design's part files.
-pub const REFINED_PART_FILES: [&str; 4] = [
+pub const REFINED_PART_FILES: [&str; 5] = [
     "refined_part.dxf",
     "refined_part.svg",
     "refined_part.json",
     "refined_part.png",
+    "refined_part.step",
 ];
 
 /// [`write_all`], with `refined.json` and the refined design's part files in the set, the

@@ -94,6 +94,18 @@ pub fn peer_present(found: bool, missing: &str, skipped: &str) -> bool {
     found
 }
 
+/// The Python of the virtual environment `.ci/run` makes (`.venv`), where it imports
+/// `module`; otherwise [`peer_present`]'s verdict for `skipped`.
+pub fn venv_python(module: &str, skipped: &str) -> Option<&'static str> {
+    let venv = ".venv/bin/python";
+    let found = std::path::Path::new(venv).is_file()
+        && std::process::Command::new(venv)
+            .args(["-c", &format!("import {module}")])
+            .output()
+            .is_ok_and(|o| o.status.success());
+    peer_present(found, &format!("{venv} with {module}"), skipped).then_some(venv)
+}
+
 /// Runs `command`, which must succeed (its standard error shown where it does not), and
 /// returns its output.
 pub fn succeeds(command: &mut std::process::Command) -> std::process::Output {

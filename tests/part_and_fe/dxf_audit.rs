@@ -8,20 +8,9 @@
 use std::path::Path;
 use std::process::Command;
 
-fn python() -> Option<&'static str> {
-    let venv = ".venv/bin/python";
-    let found = Path::new(venv).is_file()
-        && Command::new(venv)
-            .args(["-c", "import ezdxf"])
-            .output()
-            .is_ok_and(|o| o.status.success());
-    crate::common::peer_present(found, &format!("{venv} with ezdxf"), "the DXF audit")
-        .then_some(venv)
-}
-
 #[test]
 fn every_committed_dxf_opens_with_nothing_to_fix_its_extents_and_thickness_set() {
-    let Some(python) = python() else {
+    let Some(python) = crate::common::venv_python("ezdxf", "the DXF audit") else {
         return;
     };
     // every results/<run>/*.dxf

@@ -22,3 +22,4 @@ mod part_rules;
 mod refine;
 mod report_html;
 mod sets;
+mod step;

@@ -502,7 +502,7 @@ fn every_check_has_a_design_that_trips_it_and_names_what_collides_with_what() {
 }
 
 #[test]
-fn export_writes_the_four_files_and_refuses_a_part_that_cannot_be_made() {
+fn export_writes_the_five_files_and_refuses_a_part_that_cannot_be_made() {
     let dir = std::env::temp_dir().join(format!("flexopt-export-{}", std::process::id()));
     let out = flexopt_ok(&[
         "export",
@@ -513,7 +513,7 @@ fn export_writes_the_four_files_and_refuses_a_part_that_cannot_be_made() {
         dir.to_str().unwrap(),
     ]);
     let text = String::from_utf8_lossy(&out.stdout);
-    for f in ["part.dxf", "part.svg", "part.json", "part.png"] {
+    for f in ["part.dxf", "part.svg", "part.json", "part.png", "part.step"] {
         assert!(dir.join(f).is_file() && text.contains(f), "{f}");
     }
     let json: serde_json::Value =
@@ -574,7 +574,7 @@ fn the_optimum_of_a_run_is_reported_outward_and_exported_with_the_study() {
     assert!(optimum["outputs"]["span_y"].as_f64().unwrap() > 0.0);
     assert!(optimum["design"]["delta3"].as_f64().unwrap() > 0.0);
     let manifest = std::fs::read_to_string(dir.join("manifest.json")).unwrap();
-    for f in ["part.dxf", "part.svg", "part.json", "part.png"] {
+    for f in ["part.dxf", "part.svg", "part.json", "part.png", "part.step"] {
         assert!(dir.join(f).is_file() && manifest.contains(f), "{f}");
     }
     // the part file's design is the optimum's

@@ -390,7 +390,7 @@ fn the_study_keeps_to_the_rules_and_names_the_binding_one_unless_told_not_to() {
         text.contains("active: ") && text.contains("part rule output_block_faces"),
         "{text}"
     );
-    for f in ["part.dxf", "part.svg", "part.json", "part.png"] {
+    for f in ["part.dxf", "part.svg", "part.json", "part.png", "part.step"] {
         assert!(out.join(f).is_file(), "{f}");
     }
     let json = optimum(&out);

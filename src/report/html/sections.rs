@@ -349,7 +349,8 @@ pub(super) fn part(set: &Set) -> Markup {
                     (figure(set, "part.png", "The part, dimensioned (mm)"))
                     (part_facts(part))
                     p.small { "For the shop: " code { "part.dxf" } " (outline, plate thickness on layer PLATE), "
-                        code { "part.svg" } ", " code { "part.json" } "." }
+                        code { "part.svg" } ", " code { "part.json" } "; for mechanical CAD: "
+                        code { "part.step" } " (the solid, the outline extruded through the plate thickness)." }
                 }
                 None => p.note { "The set holds no part: the model has none, or the optimum's cannot be made (optimum.json names why)." },
             }
