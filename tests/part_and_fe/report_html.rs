@@ -433,3 +433,45 @@ fn the_report_shows_the_tolerance_check_of_its_optimum_and_only_of_it() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A robust run's report puts its optimum beside the nominal one, as `robust.json` holds
+/// them: both objectives, both yields, the margins in standard deviations.
+#[test]
+fn a_robust_runs_report_shows_both_optima_and_their_yields() {
+    let dir = fresh("robust");
+    let text = std::fs::read_to_string(WEI2017).unwrap();
+    let file = dir.join("robust.toml");
+    std::fs::write(
+        &file,
+        text.replace("[search]\n", "[search]\nrobust = { yield = 0.99 }\n"),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let ran = run(file.to_str().unwrap(), &out, &["--report"]);
+    assert!(ran.status.success(), "{ran:?}");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let robust: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("robust.json")).unwrap()).unwrap();
+    assert!(html.contains("The robust optimum beside the nominal one"));
+    assert!(html.contains("for a yield of 99.00 %"));
+    for side in ["nominal", "robust"] {
+        let y = format!(
+            "{:.2} %",
+            100.0 * robust[side]["yield"].as_f64().unwrap()
+        );
+        assert!(html.contains(&y), "{side}'s yield {y}");
+        let margins = robust[side]["margins_in_sigma"].as_object().unwrap();
+        assert!(!margins.is_empty());
+    }
+    for name in robust["robust"]["margins_in_sigma"]
+        .as_object()
+        .unwrap()
+        .keys()
+    {
+        assert!(
+            html.contains(&format!("margin of <code>{name}</code>")),
+            "{name}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

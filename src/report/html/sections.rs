@@ -532,7 +532,7 @@ fn robust_comparison(r: &Value) -> Markup {
         let interval = list(side, "yield_interval");
         format!(
             "{} ({} .. {})",
-            percent(side.and_then(|s| s.get("yield_fraction"))),
+            percent(side.and_then(|s| s.get("yield"))),
             percent(interval.first()),
             percent(interval.get(1))
         )
