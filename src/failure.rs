@@ -72,3 +72,12 @@ pub fn print_json(value: &impl serde::Serialize) -> Result<(), Failure> {
         .map_err(|e| Failure::write_failed(format!("cannot format the result: {e}")))?;
     emit(&format!("{s}\n"))
 }
+
+impl From<flexopt::report::html::ReportError> for Failure {
+    fn from(e: flexopt::report::html::ReportError) -> Self {
+        match e {
+            flexopt::report::html::ReportError::BadInput(m) => Failure::bad_input(m),
+            flexopt::report::html::ReportError::Write(w) => Failure::write_failed(w),
+        }
+    }
+}

@@ -23,7 +23,7 @@ use flexopt::pareto::ParetoSpec;
 use flexopt::problem::design::{default_design, design_from_optimum, parse_around, parse_design};
 use flexopt::problem::refine::FIDELITIES;
 use flexopt::problem::{fit, Problem};
-use flexopt::report::html::{write_report, ProblemText, ReportError};
+use flexopt::report::html::{write_report, ProblemText};
 use flexopt::report::part::write_part_set;
 use flexopt::report::summary::Wrote;
 use flexopt::report::sweep::write_sweep;
@@ -167,10 +167,7 @@ fn run(command: Command) -> Result<(), Failure> {
                         })
                 })
                 .transpose()?;
-            let written = write_report(&dir, text.as_ref()).map_err(|e| match e {
-                ReportError::BadInput(m) => Failure::bad_input(m),
-                ReportError::Write(e) => Failure::write_failed(e),
-            })?;
+            let written = write_report(&dir, text.as_ref())?;
             emit(&format!("wrote {}\n", written.display()))
         }
         Command::Tolerance {

@@ -182,6 +182,10 @@ pub(crate) fn run_study(
     }
     if problem.search.robust.is_some() && study.any_feasible && !study.interrupted {
         crate::tolerance_command::compare_robust(problem, options, &study, dir)?;
+        // robust.json joins the set after it: the page is made again to show it
+        if let Some(text) = report {
+            flexopt::report::html::write_report(dir, text.as_ref())?;
+        }
     }
     if study.interrupted {
         Err(Failure::interrupted(format!(

@@ -336,3 +336,142 @@ fn report_command_adds_the_page_to_the_set_and_refuses_what_is_not_the_run() {
     assert!(!listed.iter().any(|n| n == "report.html"), "{listed:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A tolerance check of the run's optimum beside the run (`tolerance --out DIR/tolerance`,
+/// its default): the report shows its yield, each output's spread and the histogram of each
+/// constrained output, and lists its files; Chromium shows it whole at A4 width. A check of
+/// another design there is named as such, not shown as the optimum's.
+#[test]
+fn the_report_shows_the_tolerance_check_of_its_optimum_and_only_of_it() {
+    let dir = fresh("tolerance");
+    let out = dir.join("out");
+    assert!(run(WEI2017, &out, &[]).status.success());
+    let o = out.to_str().unwrap();
+    let check = out.join("tolerance");
+    let c = check.to_str().unwrap();
+    let optimum = out.join("optimum.json");
+    let samples = ["--samples", "2000"];
+    flexopt_ok(
+        &[
+            &[
+                "tolerance",
+                WEI2017,
+                "--optimum",
+                optimum.to_str().unwrap(),
+                "--out",
+                c,
+            ][..],
+            &samples,
+        ]
+        .concat(),
+    );
+    flexopt_ok(&["report", o]);
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let tolerance: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(check.join("tolerance.json")).unwrap())
+            .unwrap();
+    assert!(html.contains("Machining tolerances and yield"));
+    let yield_text = format!(
+        "<strong>{:.2} %</strong>",
+        100.0 * tolerance["yield"].as_f64().unwrap()
+    );
+    assert!(html.contains(&yield_text), "no {yield_text}");
+    let sources = image_sources(&html);
+    let mut histograms = 0;
+    for out_ in tolerance["outputs"].as_array().unwrap() {
+        let name = out_["name"].as_str().unwrap();
+        assert!(html.contains(&format!("<code>{name}</code>")), "{name}");
+        if out_["role"] == "constraint" {
+            let png = std::fs::read(check.join(format!("histogram_{name}.png"))).unwrap();
+            let uri = format!(
+                "data:image/png;base64,{}",
+                base64::engine::general_purpose::STANDARD.encode(png)
+            );
+            assert!(sources.contains(&uri.as_str()), "histogram of {name}");
+            histograms += 1;
+        }
+    }
+    assert_eq!(histograms, 5);
+    let listed: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(check.join("manifest.json")).unwrap())
+            .unwrap();
+    for f in listed["files"].as_array().unwrap() {
+        if let Some(hash) = f["fnv1a64"].as_str() {
+            assert!(html.contains(hash), "{f}");
+        }
+    }
+    if chromium().is_some() {
+        let checked = dir.join("checked.html");
+        std::fs::write(
+            &checked,
+            html.replace("</body>", &format!("{CHECK}</body>")),
+        )
+        .unwrap();
+        let dom = headless(&dir.join("profile"), &checked, 794, &["--dump-dom"]);
+        let seen = layout_check(&String::from_utf8_lossy(&dom.stdout));
+        let widths = seen["widths"].as_array().unwrap();
+        assert_eq!(widths.len(), sources.len(), "{seen}");
+        assert!(widths.iter().all(|w| w.as_u64().unwrap() > 0), "{seen}");
+        assert_eq!(seen["over"], serde_json::json!([]), "overflow");
+    }
+
+    // the check of another design in the same folder
+    let other = "l2=2,delta2=4,t2=0.4,l3=8,delta3=4,l4=2,delta4=4,t4=0.4";
+    flexopt_ok(
+        &[
+            &["tolerance", WEI2017, "--design", other, "--out", c][..],
+            &samples,
+        ]
+        .concat(),
+    );
+    flexopt_ok(&["report", o]);
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("tolerance check of another design than this optimum"));
+    assert!(
+        !html.contains("histogram_"),
+        "another design's histograms shown"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A robust run's report puts its optimum beside the nominal one, as `robust.json` holds
+/// them: both objectives, both yields, the margins in standard deviations.
+#[test]
+fn a_robust_runs_report_shows_both_optima_and_their_yields() {
+    let dir = fresh("robust");
+    let text = std::fs::read_to_string(WEI2017).unwrap();
+    let file = dir.join("robust.toml");
+    std::fs::write(
+        &file,
+        text.replace("[search]\n", "[search]\nrobust = { yield = 0.99 }\n"),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let ran = run(file.to_str().unwrap(), &out, &["--report"]);
+    assert!(ran.status.success(), "{ran:?}");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let robust: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("robust.json")).unwrap()).unwrap();
+    assert!(html.contains("The robust optimum beside the nominal one"));
+    assert!(html.contains("for a yield of 99.00 %"));
+    for side in ["nominal", "robust"] {
+        let y = format!(
+            "{:.2} %",
+            100.0 * robust[side]["yield"].as_f64().unwrap()
+        );
+        assert!(html.contains(&y), "{side}'s yield {y}");
+        let margins = robust[side]["margins_in_sigma"].as_object().unwrap();
+        assert!(!margins.is_empty());
+    }
+    for name in robust["robust"]["margins_in_sigma"]
+        .as_object()
+        .unwrap()
+        .keys()
+    {
+        assert!(
+            html.contains(&format!("margin of <code>{name}</code>")),
+            "{name}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

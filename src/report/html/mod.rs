@@ -1,6 +1,6 @@
 //! `report.html`: a run's set of files as one self-contained page for a design review: the
 //! problem, the optimum and its zone, every constraint, the part, the FE check, the
-//! refinement, the files with their hashes and what reproduces them. It reads the set's JSON
+//! refinement, the tolerances and the robust optimum, the files with their hashes and what reproduces them. It reads the set's JSON
 //! files and embeds its pictures (base64 data URIs): nothing is recomputed, nothing is
 //! fetched, no script runs, and the page carries no time, so that the same set gives the same
 //! bytes.
@@ -25,6 +25,9 @@ pub const REPORT: &str = "report.html";
 /// The folder of `run --verify`'s check (and of a `verify --out DIR/verify` beside a run).
 const VERIFY: &str = "verify";
 
+/// The folder of `flexopt tolerance --optimum DIR/optimum.json`'s check (its default `--out`).
+const TOLERANCE: &str = "tolerance";
+
 /// The problem file a report states, as its text.
 pub struct ProblemText {
     /// As the user named it.
@@ -47,6 +50,12 @@ struct Set {
     verify: Option<(Value, Vec<Entry>)>,
     /// Why a `verify/` folder there is not shown, when it is not.
     verify_skipped: Option<String>,
+    /// The tolerance check in `tolerance/`, with its own files; only of the optimum's design.
+    tolerance: Option<(Value, Vec<Entry>)>,
+    /// Why a `tolerance/` folder there is not shown, when it is not.
+    tolerance_skipped: Option<String>,
+    /// A robust run's optimum beside the nominal one (`robust.json`).
+    robust: Option<Value>,
     /// The keys of the maps the report walks, in the order the files hold them (a parsed
     /// `Value` sorts them): the design's variables, the optimum's outputs, the FE outputs.
     order: Order,
@@ -109,8 +118,11 @@ impl Set {
             part: optional("part.json")?,
             refined_part: optional("refined_part.json")?,
             refined: optional("refined.json")?,
+            robust: optional("robust.json")?,
             verify: None,
             verify_skipped: None,
+            tolerance: None,
+            tolerance_skipped: None,
             optimum,
             files,
         };
@@ -136,6 +148,20 @@ impl Set {
                 ));
             }
         }
+        let check = dir.join(TOLERANCE);
+        if check.join("tolerance.json").is_file() {
+            let v = read_json(&check.join("tolerance.json"))?;
+            if v.get("design") == set.optimum.get("design") {
+                let own = folder::listed(&check).unwrap_or_default();
+                set.tolerance = Some((v, own));
+            } else {
+                set.tolerance_skipped = Some(format!(
+                    "{TOLERANCE}/ holds the tolerance check of another design than this \
+                     optimum; run `flexopt tolerance PROBLEM --optimum optimum.json --out \
+                     {TOLERANCE}` to check this one"
+                ));
+            }
+        }
         Ok(set)
     }
 
@@ -145,6 +171,10 @@ impl Set {
         let in_set = match name.split_once('/') {
             Some((VERIFY, inner)) => self
                 .verify
+                .as_ref()
+                .is_some_and(|(_, own)| own.iter().any(|e| e.name == inner)),
+            Some((TOLERANCE, inner)) => self
+                .tolerance
                 .as_ref()
                 .is_some_and(|(_, own)| own.iter().any(|e| e.name == inner)),
             _ => self.files.iter().any(|e| e.name == name),
@@ -179,6 +209,7 @@ fn render(set: &Set, problem: Option<&ProblemText>) -> Markup {
                     (sections::part(set))
                     (sections::fe_check(set))
                     (sections::refinement(set))
+                    (sections::tolerances(set))
                     (sections::files(set))
                     (sections::reproduce(set, problem))
                     (sections::problem_file(problem))

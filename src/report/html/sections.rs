@@ -4,7 +4,7 @@
 use maud::{html, Markup};
 use serde_json::Value;
 
-use super::{ProblemText, Set, VERIFY};
+use super::{ProblemText, Set, TOLERANCE, VERIFY};
 use crate::problem::display::{human, significant};
 use crate::vocab::units::{tables, Unit};
 
@@ -495,6 +495,131 @@ pub(super) fn refinement(set: &Set) -> Markup {
     }
 }
 
+/// A fraction as a percentage, to two decimals.
+fn percent(v: Option<&Value>) -> String {
+    v.and_then(Value::as_f64)
+        .map_or("–".into(), |f| format!("{:.2} %", 100.0 * f))
+}
+
+/// An output's unit as shown beside its value (none for a ratio).
+fn unit_of(out: &Value) -> &str {
+    match text(out, "unit") {
+        "1" | "–" => "",
+        unit => unit,
+    }
+}
+
+/// The tolerance that drives most of an output's variance, with its share.
+fn largest_share(out: &Value) -> String {
+    let shares = out.get("shares").and_then(Value::as_object);
+    let top = shares.and_then(|m| {
+        m.iter()
+            .filter_map(|(k, v)| Some((k, v.as_f64()?)))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+    });
+    top.map_or("–".into(), |(k, v)| format!("{k} {:.1} %", 100.0 * v))
+}
+
+/// A robust run's two optima side by side (`robust.json`).
+fn robust_comparison(r: &Value) -> Markup {
+    let nominal = r.get("nominal");
+    let robust = r.get("robust");
+    let target = match r.get("target_yield").and_then(Value::as_f64) {
+        Some(y) => format!("a yield of {:.2} %", 100.0 * y),
+        None => format!("{} standard deviations", num(r.get("k_sigma"))),
+    };
+    let yield_of = |side: Option<&Value>| {
+        let interval = list(side, "yield_interval");
+        format!(
+            "{} ({} .. {})",
+            percent(side.and_then(|s| s.get("yield"))),
+            percent(interval.first()),
+            percent(interval.get(1))
+        )
+    };
+    let margins = robust
+        .and_then(|s| s.get("margins_in_sigma"))
+        .and_then(Value::as_object);
+    html! {
+        h3 { "The robust optimum beside the nominal one" }
+        p { "Each constraint tightened by its first-order spread at the design, for " (target)
+            "; yields by Monte Carlo on " (num(r.get("samples"))) " samples (seed " (num(r.get("seed"))) ")." }
+        table {
+            thead { tr { th { "" } th.num { "nominal" } th.num { "robust" } } }
+            tbody {
+                tr { td { "objective" } td.num { (num(nominal.and_then(|s| s.get("objective")))) } td.num { (num(robust.and_then(|s| s.get("objective")))) } }
+                tr { td { "yield (95 % interval)" } td.num { (yield_of(nominal)) } td.num { (yield_of(robust)) } }
+                @if let Some(m) = margins {
+                    @for (name, v) in m {
+                        tr { td { "margin of " code { (name) } ", standard deviations" }
+                             td.num { (num(nominal.and_then(|s| s.get("margins_in_sigma")).and_then(|n| n.get(name)))) }
+                             td.num { (num(Some(v))) } }
+                    }
+                }
+            }
+        }
+    }
+}
+
+pub(super) fn tolerances(set: &Set) -> Markup {
+    if set.tolerance.is_none() && set.robust.is_none() && set.tolerance_skipped.is_none() {
+        return html! {};
+    }
+    let t = set.tolerance.as_ref().map(|(v, _)| v);
+    let outputs = list(t, "outputs");
+    let interval = list(t, "yield_interval");
+    html! {
+        section #tolerances {
+            h2 { "Machining tolerances and yield" }
+            @if let Some(r) = &set.robust { (robust_comparison(r)) }
+            @if let Some(note) = &set.tolerance_skipped { p.note { (note) } }
+            @if let Some(t) = t {
+                p {
+                    "The optimum under its tolerances: " strong { (percent(t.get("yield"))) }
+                    " of " (num(t.get("samples"))) " Monte Carlo parts meet every constraint ("
+                    (text(t, "interval_method")) " interval " (percent(interval.first())) " .. "
+                    (percent(interval.get(1))) "; seed " (num(t.get("seed"))) ")."
+                }
+                p.small { "σ: the standard deviation, to first order from the exact gradients and by Monte \
+                    Carlo (MC); in limits: the share of parts within the output's limits (– for the \
+                    objective); the variance share: the tolerance that drives most of the output's spread." }
+                table {
+                    thead { tr { th { "tolerance" } th.num { "±" } th.num { "σ" } th { "unit" } th { "distribution" } th { "from" } } }
+                    tbody {
+                        @for tol in list(Some(t), "tolerances") {
+                            tr { td { code { (text(tol, "name")) } } td.num { (num(tol.get("plus_minus"))) }
+                                 td.num { (num(tol.get("sigma"))) } td { (text(tol, "unit")) }
+                                 td { (text(tol, "distribution")) } td { (text(tol, "origin")) } }
+                        }
+                    }
+                }
+                table {
+                    thead { tr { th { "output" } th.num { "nominal" } th.num { "σ 1st order" }
+                                 th.num { "σ MC" } th.num { "in limits: 1st order, MC" }
+                                 th { "largest variance share" } } }
+                    tbody {
+                        @for out in outputs {
+                            tr {
+                                td { code { (text(out, "name")) } }
+                                td.num { (num(out.get("nominal"))) " " (unit_of(out)) }
+                                td.num { (num(out.get("std"))) }
+                                td.num { (num(out.get("monte_carlo").and_then(|m| m.get("std")))) }
+                                td.num { (percent(out.get("first_order_yield"))) ", "
+                                    (percent(out.get("monte_carlo_yield"))) }
+                                td { (largest_share(out)) }
+                            }
+                        }
+                    }
+                }
+                @for out in outputs.iter().filter(|o| o.get("role").and_then(Value::as_str) == Some("constraint")) {
+                    (figure(set, &format!("{TOLERANCE}/histogram_{}.png", text(out, "name")),
+                        &format!("{} over the Monte Carlo parts, its limits marked", text(out, "name"))))
+                }
+            }
+        }
+    }
+}
+
 pub(super) fn files(set: &Set) -> Markup {
     let check = set
         .verify
@@ -502,6 +627,11 @@ pub(super) fn files(set: &Set) -> Markup {
         .map(|(_, own)| own.as_slice())
         .unwrap_or(&[]);
     let in_set = set.files.iter().any(|e| e.name == VERIFY && e.folder);
+    let tolerance = set
+        .tolerance
+        .as_ref()
+        .map(|(_, own)| own.as_slice())
+        .unwrap_or(&[]);
     html! {
         section #files {
             h2 { "The files of the set" }
@@ -512,13 +642,16 @@ pub(super) fn files(set: &Set) -> Markup {
                     @for e in set.files.iter().filter(|e| !e.folder) {
                         tr { td { code { (e.name) } } td.num { (e.bytes.map_or(String::new(), |b| b.to_string())) } td { code { (e.fnv1a64.as_deref().unwrap_or("")) } } }
                     }
-                    @for e in check {
-                        tr { td { code { (VERIFY) "/" (e.name) } } td.num { (e.bytes.map_or(String::new(), |b| b.to_string())) } td { code { (e.fnv1a64.as_deref().unwrap_or("")) } } }
+                    @for (folder, e) in check.iter().map(|e| (VERIFY, e)).chain(tolerance.iter().map(|e| (TOLERANCE, e))) {
+                        tr { td { code { (folder) "/" (e.name) } } td.num { (e.bytes.map_or(String::new(), |b| b.to_string())) } td { code { (e.fnv1a64.as_deref().unwrap_or("")) } } }
                     }
                 }
             }
             @if !check.is_empty() && !in_set {
                 p.small { code { (VERIFY) "/" } " is a set of its own (written by " code { "flexopt verify" } "), listed by its own manifest." }
+            }
+            @if !tolerance.is_empty() {
+                p.small { code { (TOLERANCE) "/" } " is a set of its own (written by " code { "flexopt tolerance" } "), listed by its own manifest." }
             }
         }
     }
