@@ -455,10 +455,7 @@ fn a_robust_runs_report_shows_both_optima_and_their_yields() {
     assert!(html.contains("The robust optimum beside the nominal one"));
     assert!(html.contains("for a yield of 99.00 %"));
     for side in ["nominal", "robust"] {
-        let y = format!(
-            "{:.2} %",
-            100.0 * robust[side]["yield"].as_f64().unwrap()
-        );
+        let y = format!("{:.2} %", 100.0 * robust[side]["yield"].as_f64().unwrap());
         assert!(html.contains(&y), "{side}'s yield {y}");
         let margins = robust[side]["margins_in_sigma"].as_object().unwrap();
         assert!(!margins.is_empty());
