@@ -4,7 +4,9 @@
 use std::path::Path;
 
 use flexopt::fe::verify::{verify_design, VerifySettings};
+use flexopt::refine::study::refine_design;
 use flexopt::report::part::write_part_set;
+use flexopt::report::refine::RefinedReport;
 use flexopt::report::tolerance::ToleranceReport;
 use flexopt::report::verify::VerifyReport;
 use flexopt::report::{check_writable, DesignReport};
@@ -111,4 +113,32 @@ pub fn verify(
     let v = verify_design(problem.mechanism(), x, &settings)
         .map_err(|e| Error::bad_input(p.file(), "", format!("cannot check this design: {e}")))?;
     Ok(VerifyReport::new(problem, x, &v))
+}
+
+/// The report of `run --refine fe` (`refined.json`) for the design `x` (SI) refined against
+/// the finite elements of its part, with `[refine]`'s settings and `max_fe` in place of its
+/// budget where given.
+pub fn refine(p: &Problem, x: &[f64], max_fe: Option<i64>) -> Result<RefinedReport, Error> {
+    let mut problem = (*p.inner).clone();
+    // asked for, as `--refine fe` asks for it whatever the file's `[refine] enabled`
+    problem.refine.enabled = true;
+    if let Some(n) = max_fe {
+        let (lo, hi) = flexopt::problem::refine::MAX_FE;
+        if !(lo..=hi).contains(&n) {
+            let what = format!("must lie between {lo} and {hi}, got {n}");
+            return Err(Error::bad_input(p.file(), "max_fe", what));
+        }
+        problem.refine.max_fe = n as usize;
+    }
+    problem
+        .mechanism()
+        .part_or_error(x)
+        .map_err(|e| cannot_be_made(p, e))?;
+    let r = refine_design(&problem, x);
+    Ok(RefinedReport::new(
+        &problem,
+        &problem.refine,
+        &r.all,
+        r.chosen,
+    ))
 }

@@ -494,6 +494,20 @@ impl Problem {
         to_python(py, &report)
     }
 
+    /// `refined.json` of `run --refine fe` for `design` refined against the finite elements
+    /// of its part (at most `max_fe` FE checks; `[refine] max_fe` by default), as a dict.
+    #[pyo3(signature = (design, max_fe = None))]
+    fn refine<'py>(
+        &self,
+        py: Python<'py>,
+        design: &Bound<'py, PyAny>,
+        max_fe: Option<i64>,
+    ) -> PyResult<Py<PyAny>> {
+        let x = self.design(py, design)?;
+        let report = py.detach(|| commands::refine(self, &x, max_fe))?;
+        to_python(py, &report)
+    }
+
     /// Time of `n` evaluations by Rust alone at `design` (free variables, the file's units),
     /// seconds per evaluation: the yardstick of the Python call's overhead.
     fn _bench_evaluate(&self, py: Python<'_>, design: Vec<f64>, n: usize) -> PyResult<f64> {

@@ -167,3 +167,30 @@ def test_a_part_that_cannot_be_made_raises_with_exit_code_5(wei2017, cli, tmp_pa
     with pytest.raises(flexopt.FlexoptError, match="no part that can be made") as e:
         wei2017.verify(short)
     assert e.value.code == 5
+
+
+def test_refine_equals_run_refine_fes_refined_json(wei2017, cli, tmp_path):
+    done = cli("run", str(WEI2017), "--refine", "fe", "--max-fe", "2", "--quiet",
+               "--out", str(tmp_path))
+    assert done.returncode in (0, 3, 4), done.stderr
+    design = json.loads((tmp_path / "optimum.json").read_text())["design"]
+    got = wei2017.refine(design, max_fe=2)
+    # the run refines the study's design in SI, this one the file's digits of it read back
+    # (a last bit apart); the FE meshes follow the geometry, so the two searches part by
+    # about 1e-7 of the objective, and the error estimates (differences of meshes) by 1 %
+    refined = json.loads((tmp_path / "refined.json").read_text())
+    for key in ("problem", "fidelity", "status", "converged", "feasible", "measurements"):
+        assert got[key] == refined[key], key
+    assert got["settings"] == dict(refined["settings"], enabled=True)
+    for side in ("refined", "analytic_optimum"):
+        assert got[side]["design"].keys() == refined[side]["design"].keys()
+        for k, v in refined[side]["design"].items():
+            assert got[side]["design"][k] == pytest.approx(v, rel=1e-5), (side, k)
+    assert got["refined"]["objective"] == pytest.approx(refined["refined"]["objective"], rel=1e-5)
+    assert got["measurements"] <= 2
+
+
+def test_refine_refusals_name_the_key(wei2017):
+    with pytest.raises(flexopt.FlexoptError, match="key `max_fe`: must lie between 2 and 200") as e:
+        wei2017.refine(TABLE1, max_fe=1)
+    assert e.value.key == "max_fe"

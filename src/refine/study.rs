@@ -41,9 +41,18 @@ fn starts(problem: &Problem, study: &Study) -> Vec<(usize, Vec<f64>)> {
 
 /// Refines the optimum (or each zone's) of a feasible `study`.
 pub fn refine_study(problem: &Problem, study: &Study) -> StudyRefinement {
+    refine_designs(problem, starts(problem, study))
+}
+
+/// Refines one design `x` (SI, every parameter), as `run` refines a study's optimum.
+pub fn refine_design(problem: &Problem, x: &[f64]) -> StudyRefinement {
+    refine_designs(problem, vec![(0, x.to_vec())])
+}
+
+/// Refines each design (with its zone's rank) and picks the one to report.
+fn refine_designs(problem: &Problem, starts: Vec<(usize, Vec<f64>)>) -> StudyRefinement {
     let mechanism = problem.mechanism();
     let settings = &problem.refine;
-    let starts = starts(problem, study);
     // the modes only when a frequency is asked: the part's check says which outputs are
     let analysis = starts.iter().find_map(|(_, x)| analysis_at(mechanism, x));
     let modal = analysis.is_some_and(|a| {
