@@ -150,13 +150,13 @@ fn set_trial(sqp: &mut Sqp, alpha: f64) {
 
 fn evaluate_trial_values(sqp: &mut Sqp) -> bool {
     sqp.evaluations += 1;
-    sqp.line_search.trial.evaluate_values(sqp.problem)
+    sqp.line_search.trial.evaluate_values(&sqp.problem)
 }
 
 /// The trial point with gradients, once it is accepted.
 fn evaluate_trial(sqp: &mut Sqp) -> bool {
     sqp.evaluations += 1;
-    sqp.line_search.trial.evaluate(sqp.problem)
+    sqp.line_search.trial.evaluate(&sqp.problem)
 }
 
 /// Moves to the trial point, updating the model.

@@ -46,7 +46,7 @@ use super::dense::{inf_norm, max_violation};
 use super::problem::{clamp_into, Problem, Solution, Status};
 use curvature::Curvature;
 use line_search::{LineSearch, Outcome};
-use scaling::{objective_scale, ScaledObjective};
+use scaling::ScaledObjective;
 use subproblem::{QpKind, Step, Subproblem};
 
 /// Settings of the SQP solver.
@@ -80,20 +80,7 @@ const REFRESH_UNTIL_KKT: f64 = 1e-4;
 /// Solves `problem` from `x0` (moved into the bounds first), its objective scaled where
 /// its gradient there is large ([`scaling`]).
 pub fn solve(problem: &dyn Problem, x0: &[f64], settings: &SqpSettings) -> Solution {
-    let (lower, upper) = problem.bounds();
-    let mut start = x0.to_vec();
-    clamp_into(&mut start, lower, upper);
-    let scale = objective_scale(problem, &start);
-    if scale == 1.0 {
-        let mut s = Sqp::new(problem, &start).run(settings);
-        s.evaluations += 1;
-        return s;
-    }
-    let scaled = ScaledObjective { problem, scale };
-    let mut s = Sqp::new(&scaled, &start).run(settings);
-    s.objective /= scale;
-    s.evaluations += 1;
-    s
+    Sqp::new(problem, x0).run(settings)
 }
 
 /// A point with the problem's values and gradients there.
@@ -152,7 +139,8 @@ struct Shape<'p> {
 /// One solve: the iterate, the QP step and its multipliers, the quadratic model, the
 /// subproblem's workspaces and the count of evaluations.
 struct Sqp<'p> {
-    problem: &'p dyn Problem,
+    /// The problem, its objective scaled once the start is evaluated ([`scaling`]).
+    problem: ScaledObjective<'p>,
     shape: Shape<'p>,
     point: Iterate,
     step: Step,
@@ -168,7 +156,10 @@ impl<'p> Sqp<'p> {
         let m = problem.constraint_count();
         let (lower, upper) = problem.bounds();
         Sqp {
-            problem,
+            problem: ScaledObjective {
+                problem,
+                scale: 1.0,
+            },
             shape: Shape {
                 n,
                 m,
@@ -210,7 +201,7 @@ impl<'p> Sqp<'p> {
             ..
         } = self.shape;
         clamp_into(&mut self.point.x, lower, upper);
-        let start_ok = self.point.evaluate(self.problem);
+        let start_ok = self.point.evaluate(&self.problem);
         self.evaluations += 1;
         if !start_ok {
             return self.finish(
@@ -219,6 +210,11 @@ impl<'p> Sqp<'p> {
                 None,
             );
         }
+        // the start's own evaluation sets the scale, and is scaled as the later ones will be
+        let scale = scaling::objective_scale(&self.point.g);
+        self.problem.scale = scale;
+        self.point.f *= scale;
+        self.point.g.iter_mut().for_each(|g| *g *= scale);
         // Powell's penalty weights, one per constraint: they follow the multipliers down as
         // well as up, so that the large multipliers of an elastic phase do not leave the
         // merit function all violation
@@ -237,7 +233,7 @@ impl<'p> Sqp<'p> {
                 && kkt > REFRESH_UNTIL_KKT
             {
                 self.evaluations += self.curvature.refresh(
-                    self.problem,
+                    &self.problem,
                     &self.shape,
                     &self.point,
                     &self.step.lambda,
@@ -336,7 +332,7 @@ impl<'p> Sqp<'p> {
         Solution {
             status,
             x: self.point.x.clone(),
-            objective: self.point.f,
+            objective: self.point.f / self.problem.scale,
             constraints: self.point.c.clone(),
             max_violation: max_violation(&self.point.c, self.shape.meq),
             kkt_residual: kkt,

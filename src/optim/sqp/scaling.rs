@@ -20,23 +20,17 @@ use crate::optim::Problem;
 /// The largest objective gradient the SQP sees at its start.
 pub(super) const MAX_GRADIENT: f64 = 1e4;
 
-/// `problem` with its objective multiplied by `scale`.
+/// `problem` with its objective multiplied by `scale` (1 until the start is evaluated).
 pub(super) struct ScaledObjective<'p> {
     pub problem: &'p dyn Problem,
     pub scale: f64,
 }
 
-/// The factor that brings the objective's gradient at `x` down to [`MAX_GRADIENT`], with
-/// the evaluation it took; 1 where it is already below, or where `x` cannot be evaluated.
-pub(super) fn objective_scale(problem: &dyn Problem, x: &[f64]) -> f64 {
-    let n = problem.dimension();
-    let m = problem.constraint_count();
-    let mut c = vec![0.0; m];
-    let mut g = vec![0.0; n];
-    let mut jac = vec![0.0; m * n];
-    let f = problem.evaluate_with_gradient(x, &mut c, &mut g, &mut jac);
-    let size = inf_norm(&g);
-    if f.is_finite() && size.is_finite() && size > MAX_GRADIENT {
+/// The factor that brings an objective gradient `g` (the start's) down to
+/// [`MAX_GRADIENT`]; 1 where it is already below.
+pub(super) fn objective_scale(g: &[f64]) -> f64 {
+    let size = inf_norm(g);
+    if size > MAX_GRADIENT {
         MAX_GRADIENT / size
     } else {
         1.0

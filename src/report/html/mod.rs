@@ -165,18 +165,24 @@ impl Set {
         Ok(set)
     }
 
+    /// The files of the check shown from `folder` (`verify/` or `tolerance/`); none where it
+    /// is not shown.
+    fn check_files(&self, folder: &str) -> &[Entry] {
+        let check = match folder {
+            VERIFY => self.verify.as_ref(),
+            TOLERANCE => self.tolerance.as_ref(),
+            _ => None,
+        };
+        check.map_or(&[], |(_, own)| own.as_slice())
+    }
+
     /// A picture of the set as a data URI, if the set holds it.
     fn picture(&self, name: &str) -> Option<String> {
         let path = self.dir.join(name);
         let in_set = match name.split_once('/') {
-            Some((VERIFY, inner)) => self
-                .verify
-                .as_ref()
-                .is_some_and(|(_, own)| own.iter().any(|e| e.name == inner)),
-            Some((TOLERANCE, inner)) => self
-                .tolerance
-                .as_ref()
-                .is_some_and(|(_, own)| own.iter().any(|e| e.name == inner)),
+            Some((folder @ (VERIFY | TOLERANCE), inner)) => {
+                self.check_files(folder).iter().any(|e| e.name == inner)
+            }
             _ => self.files.iter().any(|e| e.name == name),
         };
         let bytes = std::fs::read(path).ok().filter(|_| in_set)?;

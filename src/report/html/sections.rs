@@ -621,17 +621,9 @@ pub(super) fn tolerances(set: &Set) -> Markup {
 }
 
 pub(super) fn files(set: &Set) -> Markup {
-    let check = set
-        .verify
-        .as_ref()
-        .map(|(_, own)| own.as_slice())
-        .unwrap_or(&[]);
+    let check = set.check_files(VERIFY);
     let in_set = set.files.iter().any(|e| e.name == VERIFY && e.folder);
-    let tolerance = set
-        .tolerance
-        .as_ref()
-        .map(|(_, own)| own.as_slice())
-        .unwrap_or(&[]);
+    let tolerance = set.check_files(TOLERANCE);
     html! {
         section #files {
             h2 { "The files of the set" }
