@@ -68,7 +68,7 @@ fn main() {
     }
     let r = last.unwrap();
     let chosen = &r.all[r.chosen].1;
-    let refined = RefinedReport::new(&problem, &problem.refine, &r.all, r.chosen);
+    let refined = RefinedReport::new(&problem, &problem.refine, &r);
     let medians = [median(&job), median(&alone), median(&check)];
     let report = Report {
         job_over_fe_check: medians[0] / medians[2],

@@ -271,6 +271,14 @@ pub enum Command {
         /// Folder to write into (default: results/<problem name>/tolerance).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Check the spread on the part too: the first --fe-samples of the Monte Carlo's
+        /// samples, each checked by finite elements (the file's [refine] idealization, in
+        /// parallel), the FE's spread and the part's yield beside the model's.
+        #[arg(long)]
+        fe: bool,
+        /// Samples checked by FE with --fe (3 to 200).
+        #[arg(long, default_value_t = 12, requires = "fe")]
+        fe_samples: usize,
     },
 }
 

@@ -177,12 +177,17 @@ fn run(command: Command) -> Result<(), Failure> {
             seed,
             threads,
             out,
+            fe,
+            fe_samples,
         } => {
             let (problem_loaded, x) = chosen_design(&problem, &design)?;
             let settings = tolerance_command::settings(&problem_loaded, samples, seed, threads)?;
+            let fe = fe
+                .then(|| tolerance_command::fe_samples(&problem_loaded, fe_samples, settings))
+                .transpose()?;
             let dir = out.unwrap_or_else(|| problem_loaded.default_output_dir().join("tolerance"));
             check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
-            tolerance_command::run(&problem_loaded, &x, settings, &dir)
+            tolerance_command::run(&problem_loaded, &x, settings, fe, &dir)
         }
         Command::Pareto {
             problem,

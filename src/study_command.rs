@@ -135,7 +135,7 @@ pub(crate) fn run_study(
                 );
             }
             let r = refine_study(problem, &study);
-            let report = RefinedReport::new(problem, &problem.refine, &r.all, r.chosen);
+            let report = RefinedReport::new(problem, &problem.refine, &r);
             let design = r.all[r.chosen].1.result.as_ref().map(|c| c.x.clone());
             let part = design.and_then(|x| problem.mechanism().part(&x)?.ok());
             (report, part)

@@ -5,6 +5,9 @@ use std::path::Path;
 
 use crate::failure::{emit, Failure};
 use flexopt::problem::Problem;
+use flexopt::refine::spread::{measure_spread, SpreadError, SpreadSettings, MIN_SAMPLES};
+use flexopt::refine::study::spread_fidelity;
+use flexopt::report::tolerance::FeReport;
 use flexopt::report::tolerance::{
     write_robust, write_tolerance_set, RobustTable, ToleranceReport, ToleranceTable,
 };
@@ -39,11 +42,62 @@ pub fn settings(
     })
 }
 
-pub fn run(problem: &Problem, x: &[f64], settings: Settings, dir: &Path) -> Result<(), Failure> {
+/// The most samples `--fe` checks: each is an FE check of a second or more.
+const FE_SAMPLES: (usize, usize) = (MIN_SAMPLES, 200);
+
+/// The settings of `--fe`'s samples: the Monte Carlo's seed and threads.
+pub fn fe_samples(
+    problem: &Problem,
+    samples: usize,
+    settings: Settings,
+) -> Result<SpreadSettings, Failure> {
+    if !(FE_SAMPLES.0..=FE_SAMPLES.1).contains(&samples) {
+        return Err(Failure::bad_input(format!(
+            "{}: key `--fe-samples`: must lie between {} and {}, got {samples}",
+            problem.file.display(),
+            FE_SAMPLES.0,
+            FE_SAMPLES.1
+        )));
+    }
+    if problem.mechanism.part_maker.is_none() {
+        return Err(Failure::bad_input(format!(
+            "{}: key `--fe`: the {} model has no part to check by finite elements",
+            problem.file.display(),
+            problem.model().name()
+        )));
+    }
+    Ok(SpreadSettings {
+        samples,
+        seed: settings.seed,
+        threads: settings.threads,
+    })
+}
+
+pub fn run(
+    problem: &Problem,
+    x: &[f64],
+    settings: Settings,
+    fe: Option<SpreadSettings>,
+    dir: &Path,
+) -> Result<(), Failure> {
     let analysis = analyze(problem, x, settings).map_err(|e| {
         Failure::bad_input(format!("{}: key `tolerances`: {e}", problem.file.display()))
     })?;
-    let report = ToleranceReport::new(problem, x, &analysis);
+    let mut report = ToleranceReport::new(problem, x, &analysis);
+    if let Some(fe_settings) = fe {
+        let high = spread_fidelity(problem, x);
+        let spread = measure_spread(problem, x, &analysis, &high, fe_settings).map_err(|e| {
+            let message = format!(
+                "{}: key `--fe`: the FE check of the samples: {e}",
+                problem.file.display()
+            );
+            match e {
+                SpreadError::Input(_) => Failure::bad_input(message),
+                SpreadError::Measure(_) => Failure::cannot_be_made(message),
+            }
+        })?;
+        report.fe = Some(FeReport::new(problem, &spread));
+    }
     let files =
         write_tolerance_set(dir, &report, &analysis, problem).map_err(Failure::write_failed)?;
     emit(&ToleranceTable(&report))?;

@@ -135,10 +135,5 @@ pub fn refine(p: &Problem, x: &[f64], max_fe: Option<i64>) -> Result<RefinedRepo
         .part_or_error(x)
         .map_err(|e| cannot_be_made(p, e))?;
     let r = refine_design(&problem, x);
-    Ok(RefinedReport::new(
-        &problem,
-        &problem.refine,
-        &r.all,
-        r.chosen,
-    ))
+    Ok(RefinedReport::new(&problem, &problem.refine, &r))
 }

@@ -4,13 +4,14 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use super::corrected::Corrected;
+use super::corrected::{Corrected, CorrectedScaling};
 use super::{Check, Correction, HighFidelity, PENALTY};
 use crate::optim::problem::{Problem as _, Status};
 use crate::optim::sqp::{self, SqpSettings};
 use crate::problem::epigraph::Epigraph;
 use crate::problem::nlp::{merit, DesignNlp, FEASIBILITY_TOLERANCE};
 use crate::problem::Problem;
+use crate::tolerance::{first_order, Outputs};
 
 /// What every step needs.
 pub(super) struct Context<'a> {
@@ -24,6 +25,8 @@ pub(super) struct Context<'a> {
     pub(super) scale: f64,
     /// How far inside each measured limit the surrogate aims (relative).
     pub(super) margin: f64,
+    /// A robust problem's standard deviations of margin (0: not robust).
+    pub(super) robust_k: f64,
 }
 
 impl Context<'_> {
@@ -66,12 +69,19 @@ impl Context<'_> {
                 margins[k] = *margin;
             }
         }
+        let spreads = self
+            .spreads(x)
+            .into_iter()
+            .enumerate()
+            .map(|(k, s)| measured[k].map_or(s, |m| s * m / analytic[k]))
+            .collect();
         let c = Check {
             x: x.to_vec(),
             analytic,
             measured,
             errors,
             margins,
+            spreads,
             objective: 0.0,
             violations: Vec::new(),
             feasible: false,
@@ -86,7 +96,7 @@ impl Context<'_> {
     /// constraint met by its output's margin, or violated.
     pub(super) fn rescore(&self, mut c: Check) -> Check {
         let values: Vec<f64> = (0..self.outputs.len()).map(|k| c.value(k)).collect();
-        let (objective, violations, phi) = self.score(&values, &c.margins);
+        let (objective, violations, phi) = self.score(&values, &c.margins, &c.spreads);
         c.feasible = violations.iter().all(|&v| v <= FEASIBILITY_TOLERANCE);
         c.objective = objective;
         c.violations = violations;
@@ -97,7 +107,21 @@ impl Context<'_> {
     /// The merit of `c`'s values with the margins `margins`.
     pub(super) fn merit_with(&self, c: &Check, margins: &[f64]) -> f64 {
         let values: Vec<f64> = (0..self.outputs.len()).map(|k| c.value(k)).collect();
-        self.score(&values, margins).2
+        self.score(&values, margins, &c.spreads).2
+    }
+
+    /// The model's first-order standard deviation of each watched output at `x` in a
+    /// robust problem (empty otherwise).
+    pub(super) fn spreads(&self, x: &[f64]) -> Vec<f64> {
+        if self.robust_k == 0.0 {
+            return Vec::new();
+        }
+        let outputs = Outputs::new(self.problem);
+        debug_assert_eq!(outputs.wanted, self.outputs);
+        first_order(&outputs, &self.problem.tolerances, x)
+            .iter()
+            .map(|f| f.std)
+            .collect()
     }
 
     pub(super) fn slot(&self, output: usize) -> usize {
@@ -109,8 +133,14 @@ impl Context<'_> {
 
     /// The stated objective, each constraint's relative violation and the merit of
     /// output values in the order of `outputs`, each limit tightened by its output's
-    /// relative margin `margins` (0 for none).
-    pub(super) fn score(&self, values: &[f64], margins: &[f64]) -> (f64, Vec<f64>, f64) {
+    /// relative margin `margins` (0 for none) and, in a robust problem, by `k` of its
+    /// standard deviations `spreads` (empty otherwise).
+    pub(super) fn score(
+        &self,
+        values: &[f64],
+        margins: &[f64],
+        spreads: &[f64],
+    ) -> (f64, Vec<f64>, f64) {
         let o = &self.problem.objective;
         let objective = if o.absolute {
             values[0].abs()
@@ -125,12 +155,13 @@ impl Context<'_> {
             .map(|c| {
                 let k = self.slot(c.index);
                 let (v, m) = (values[k], margins[k]);
+                let keep = self.robust_k * spreads.get(k).copied().unwrap_or(0.0);
                 let below = c
                     .lower
-                    .map_or(0.0, |lo| (lo + m * scale(lo) - v) / scale(lo));
+                    .map_or(0.0, |lo| (lo + m * scale(lo) + keep - v) / scale(lo));
                 let above = c
                     .upper
-                    .map_or(0.0, |hi| (v - hi + m * scale(hi)) / scale(hi));
+                    .map_or(0.0, |hi| (v - hi + m * scale(hi) + keep) / scale(hi));
                 below.max(above).max(0.0)
             })
             .collect();
@@ -172,12 +203,17 @@ impl Context<'_> {
         margins: &[f64],
     ) -> f64 {
         let mut values = self.analytic(self.problem.model(), x);
-        for (v, c) in values.iter_mut().zip(corrections) {
+        let mut spreads = self.spreads(x);
+        for (k, (v, c)) in values.iter_mut().zip(corrections).enumerate() {
             if let Some(c) = c {
-                *v *= c.factor(x);
+                let f = c.factor(x);
+                *v *= f;
+                if let Some(s) = spreads.get_mut(k) {
+                    *s *= f;
+                }
             }
         }
-        self.score(&values, margins).2
+        self.score(&values, margins, &spreads).2
     }
 
     /// The corrected problem within the trust region of half-width `delta` around the
@@ -196,10 +232,16 @@ impl Context<'_> {
             .filter_map(|(&o, c)| c.clone().map(|c| (o, c)))
             .collect();
         let mut p = self.problem.clone();
-        p.mechanism = self.problem.mechanism.with_physics(Arc::new(Corrected::new(
-            self.problem.mechanism.physics.clone(),
-            &pairs,
-        )));
+        let corrected = Corrected::new(self.problem.mechanism.physics.clone(), &pairs);
+        // a robust problem's surrogate keeps its spreads, scaled by the corrections
+        let scaling = match (&self.problem.search.robust, &self.problem.mechanism.modulus) {
+            (Some(_), Some(m)) => Some(Arc::new(CorrectedScaling::new(m.clone(), &corrected))),
+            _ => None,
+        };
+        p.mechanism = self.problem.mechanism.with_physics(Arc::new(corrected));
+        if let Some(s) = scaling {
+            p.mechanism = p.mechanism.with_modulus_scaling(s);
+        }
         // aim inside each measured limit by its margin and a little more, so that a
         // measurement a little off the surrogate's prediction still meets it
         for c in &mut p.constraints {

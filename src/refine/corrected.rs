@@ -24,6 +24,7 @@ use std::sync::Arc;
 
 use super::Correction;
 use crate::model::material::Material;
+use crate::model::mechanism::ModulusScaling;
 use crate::model::{Model, OutputInfo, ParameterInfo};
 
 /// The analytic model `inner` with `corrections` (by output index) applied.
@@ -115,5 +116,94 @@ impl Model for Corrected {
     /// mirror image are corrected by different factors.
     fn mirror(&self, _x: &mut [f64]) -> bool {
         false
+    }
+}
+
+/// A corrected model under the tolerances (a robust refinement's surrogate): the analytic
+/// model's spread scaled by the correction's factor at the design. The factor is the
+/// model's error on the part, which a machining error of microns does not move: it is held
+/// at the nominal design's value while the tolerances vary the inputs, so an output's
+/// first-order spread is `f(x) sigma_a(x)`, and the "Hessian" this gives is the derivative
+/// by the design `x_p` of each input derivative `f g_j`, `f H_jp + g_j h_p` (`h` the
+/// factor's slope), which is what the spreads' gradients read
+/// ([`crate::problem::nlp`]'s `Spreads`).
+#[derive(Debug)]
+pub struct CorrectedScaling {
+    pub inner: Arc<dyn ModulusScaling>,
+    pub by_output: Vec<Option<Correction>>,
+}
+
+impl CorrectedScaling {
+    /// The scaling of `corrected`'s outputs, `inner` its analytic model's.
+    pub fn new(inner: Arc<dyn ModulusScaling>, corrected: &Corrected) -> Self {
+        CorrectedScaling {
+            inner,
+            by_output: corrected.by_output.clone(),
+        }
+    }
+}
+
+impl ModulusScaling for CorrectedScaling {
+    fn evaluate_scaled(&self, x: &[f64], modulus: f64, wanted: &[usize], out: &mut [f64]) {
+        self.inner.evaluate_scaled(x, modulus, wanted, out);
+        for (v, &o) in out.iter_mut().zip(wanted) {
+            if let Some(c) = &self.by_output[o] {
+                *v *= c.factor(x);
+            }
+        }
+    }
+
+    fn evaluate_scaled_with_gradient(
+        &self,
+        x: &[f64],
+        modulus: f64,
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        self.inner
+            .evaluate_scaled_with_gradient(x, modulus, wanted, out, jacobian);
+        let n = x.len() + 1;
+        for (k, (v, &o)) in out.iter_mut().zip(wanted).enumerate() {
+            if let Some(c) = &self.by_output[o] {
+                let f = c.factor(x);
+                *v *= f;
+                for d in &mut jacobian[k * n..(k + 1) * n] {
+                    *d *= f;
+                }
+            }
+        }
+    }
+
+    fn evaluate_with_hessian(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    ) {
+        self.inner
+            .evaluate_with_hessian(x, wanted, out, jacobian, hessian);
+        let (np, n) = (x.len(), x.len() + 1);
+        for (k, (v, &o)) in out.iter_mut().zip(wanted).enumerate() {
+            let Some(c) = &self.by_output[o] else {
+                continue;
+            };
+            let f = c.factor(x);
+            *v *= f;
+            let g = &mut jacobian[k * n..(k + 1) * n];
+            let h = &mut hessian[k * n * n..(k + 1) * n * n];
+            for j in 0..n {
+                for p in 0..n {
+                    // the slope runs over the design's parameters, not the modulus's factor
+                    let slope = if p < np { c.slope[p] } else { 0.0 };
+                    h[j * n + p] = f * h[j * n + p] + g[j] * slope;
+                }
+            }
+            for d in g.iter_mut() {
+                *d *= f;
+            }
+        }
     }
 }

@@ -6,7 +6,7 @@ use serde_json::json;
 
 use super::{HighFidelity, Measurement};
 use crate::fe::element::SOLID_RULE;
-use crate::fe::verify::{verify_design, Verification, VerifySettings};
+use crate::fe::verify::{verify_design_at_modulus, Verification, VerifySettings};
 use crate::fe::Fidelity;
 use crate::model::Mechanism;
 use crate::part::analysis::{Analysis, FeCounterpart, Quantity};
@@ -147,7 +147,17 @@ impl HighFidelity for FeFidelity<'_> {
     }
 
     fn measure(&self, x: &[f64], outputs: &[usize]) -> Result<Measurement, String> {
-        let v = verify_design(self.mechanism, x, &self.settings).map_err(|e| e.to_string())?;
+        self.measure_at_modulus(x, 1.0, outputs)
+    }
+
+    fn measure_at_modulus(
+        &self,
+        x: &[f64],
+        modulus: f64,
+        outputs: &[usize],
+    ) -> Result<Measurement, String> {
+        let v = verify_design_at_modulus(self.mechanism, x, &self.settings, modulus)
+            .map_err(|e| e.to_string())?;
         let fidelity = self.idealization.unwrap_or_else(|| v.fidelity_for_part());
         if v.outputs(fidelity).is_none() {
             return Err(format!(

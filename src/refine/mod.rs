@@ -39,6 +39,7 @@
 mod context;
 pub mod corrected;
 pub mod fe;
+pub mod spread;
 pub mod study;
 
 use std::time::Instant;
@@ -69,6 +70,24 @@ pub trait HighFidelity: Sync {
     fn measures(&self, x: &[f64], output: usize) -> bool;
     /// Measures `outputs` (model output indices it measures) at the design `x` (SI).
     fn measure(&self, x: &[f64], outputs: &[usize]) -> Result<Measurement, String>;
+
+    /// As [`HighFidelity::measure`], the material's moduli `modulus` times the nominal
+    /// ones (a tolerance on `E`); a high fidelity that cannot vary them says so.
+    fn measure_at_modulus(
+        &self,
+        x: &[f64],
+        modulus: f64,
+        outputs: &[usize],
+    ) -> Result<Measurement, String> {
+        if modulus == 1.0 {
+            self.measure(x, outputs)
+        } else {
+            Err(format!(
+                "{} cannot vary the material's modulus",
+                self.describe()
+            ))
+        }
+    }
 }
 
 /// What one measurement gives.
@@ -142,6 +161,11 @@ pub struct Check {
     /// ... the relative margin it must meet its limits by ([`Measurement::margins`]; 0
     /// for an output not measured).
     pub margins: Vec<f64>,
+    /// ... in a robust problem, each output's first-order standard deviation under the
+    /// tolerances, the model's scaled by the measurement's ratio to it, of which each limit
+    /// keeps `k` inside (empty otherwise).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub spreads: Vec<f64>,
     /// The objective as the problem states it, measured where measured.
     pub objective: f64,
     /// Each constraint's relative violation (0 when met), measured where measured.
@@ -267,6 +291,11 @@ pub fn refine(
             .collect(),
         scale: start_objective[0].abs().max(1e-300),
         margin: MARGIN * settings.tolerance,
+        robust_k: problem
+            .search
+            .robust
+            .filter(|_| problem.mechanism.modulus.is_some())
+            .map_or(0.0, |r| r.k_sigma),
     };
     let mut centre = match ctx.check(x0) {
         Ok(c) => c,

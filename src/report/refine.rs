@@ -7,11 +7,14 @@ use std::fmt::{self, Display};
 use indexmap::IndexMap;
 use serde::Serialize;
 
+use super::tolerance::FeReport;
 use super::ConstraintReport;
 use crate::problem::nlp::ACTIVE_TOLERANCE;
 use crate::problem::refine::RefineSettings;
 use crate::problem::units::Unit;
 use crate::problem::Problem;
+use crate::refine::spread::FeSpread;
+use crate::refine::study::StudyRefinement;
 use crate::refine::{Check, RefineStatus, Refinement};
 
 /// One output the objective or constraints use, at one design.
@@ -149,6 +152,79 @@ pub struct RefinedReport {
     /// With `from = "zones"`: each zone's refinement, the chosen one included.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub zones: Vec<ZoneRefinement>,
+    /// A robust problem's refined design under the tolerances, checked by FE.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust_check: Option<RobustCheck>,
+}
+
+/// A robust refinement's design under the tolerances: the FE's spread on a few of the Monte
+/// Carlo's samples ([`crate::refine::spread`]), the part's yield and each constraint's FE
+/// margin in the FE's standard deviations.
+#[derive(Debug, Clone, Serialize)]
+pub struct RobustCheck {
+    /// The standard deviations each limit keeps, and the yield they stand for.
+    pub k_sigma: f64,
+    pub target_yield: Option<f64>,
+    /// Constraint output -> the FE value's distance to its nearest limit over the FE's
+    /// standard deviation.
+    pub margins_in_sigma: IndexMap<String, f64>,
+    /// Whether the part's yield (the Monte Carlo mapped onto the FE) reaches the target (or
+    /// every margin `k_sigma`, without a target).
+    pub meets_target: bool,
+    pub spread: Option<FeReport>,
+    /// Why the spread could not be measured.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+impl RobustCheck {
+    fn new(problem: &Problem, spread: &Result<FeSpread, String>) -> Option<Self> {
+        let robust = problem.search.robust?;
+        let mut check = RobustCheck {
+            k_sigma: robust.k_sigma,
+            target_yield: robust.target_yield,
+            margins_in_sigma: IndexMap::new(),
+            meets_target: false,
+            spread: None,
+            error: None,
+        };
+        let spread = match spread {
+            Ok(s) => s,
+            Err(e) => {
+                check.error = Some(e.clone());
+                return Some(check);
+            }
+        };
+        let name =
+            |c: &crate::problem::Constraint| problem.model().outputs()[c.index].name.to_string();
+        for c in &problem.constraints {
+            let Some(o) = spread.outputs.iter().find(|o| o.output == name(c)) else {
+                continue;
+            };
+            let margin = [
+                c.lower.map(|l| o.measured - l),
+                c.upper.map(|u| u - o.measured),
+            ]
+            .into_iter()
+            .flatten()
+            .fold(f64::INFINITY, f64::min);
+            let in_sigma = if o.std > 0.0 {
+                margin / o.std
+            } else {
+                margin.signum() * f64::INFINITY
+            };
+            check.margins_in_sigma.insert(c.output.clone(), in_sigma);
+        }
+        check.meets_target = match robust.target_yield {
+            Some(y) => spread.yield_fraction >= y,
+            None => check
+                .margins_in_sigma
+                .values()
+                .all(|&m| m >= robust.k_sigma),
+        };
+        check.spread = Some(FeReport::new(problem, spread));
+        Some(check)
+    }
 }
 
 /// One zone's refinement, in brief.
@@ -164,13 +240,10 @@ pub struct ZoneRefinement {
 }
 
 impl RefinedReport {
-    /// `chosen` among `all` (each with its zone's rank).
-    pub fn new(
-        problem: &Problem,
-        settings: &RefineSettings,
-        all: &[(usize, Refinement)],
-        chosen: usize,
-    ) -> Self {
+    /// The refinement `refinement` of a study's optimum (or of each zone's), its chosen one
+    /// reported.
+    pub fn new(problem: &Problem, settings: &RefineSettings, refinement: &StudyRefinement) -> Self {
+        let (all, chosen) = (&refinement.all, refinement.chosen);
         let r = &all[chosen].1;
         let measured = |c: &Option<Check>| c.as_ref().map(|c| MeasuredDesign::new(problem, r, c));
         RefinedReport {
@@ -219,6 +292,10 @@ impl RefinedReport {
             } else {
                 Vec::new()
             },
+            robust_check: refinement
+                .spread
+                .as_ref()
+                .and_then(|s| RobustCheck::new(problem, s)),
         }
     }
 }
@@ -308,6 +385,71 @@ impl Display for RefineSummary<'_> {
             .iter()
             .map(|(k, v)| format!("{k}={v:.6}"))
             .collect();
-        writeln!(s, "  refined design {}", design.join(","))
+        writeln!(s, "  refined design {}", design.join(","))?;
+        if let Some(c) = &r.robust_check {
+            write!(s, "{}", RobustCheckSummary(c))?;
+        }
+        Ok(())
+    }
+}
+
+/// A robust refinement's check under the tolerances, for the summary.
+struct RobustCheckSummary<'a>(&'a RobustCheck);
+
+impl Display for RobustCheckSummary<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let c = self.0;
+        let Some(fe) = &c.spread else {
+            return writeln!(
+                s,
+                "robust: the refined design's FE spread could not be measured: {}",
+                c.error.as_deref().unwrap_or("")
+            );
+        };
+        let target = c.target_yield.map_or(String::new(), |y| {
+            format!(", target {} %", limit(100.0 * y))
+        });
+        writeln!(
+            s,
+            "robust: the refined design under the tolerances, its spread checked by FE on {} of \
+             the Monte Carlo's samples: yield of the part {:.2} % ({:.2} .. {:.2} %){target}{}",
+            fe.samples,
+            100.0 * fe.yield_fraction,
+            100.0 * fe.yield_interval[0],
+            100.0 * fe.yield_interval[1],
+            if c.meets_target {
+                ""
+            } else {
+                ": BELOW THE TARGET"
+            }
+        )?;
+        let margins: Vec<String> = c
+            .margins_in_sigma
+            .iter()
+            .map(|(k, v)| format!("{k} {:.2}", v))
+            .collect();
+        writeln!(
+            s,
+            "  FE margins in FE standard deviations (each limit keeps {:.3}): {}",
+            c.k_sigma,
+            margins.join(", ")
+        )?;
+        let ratios: Vec<String> = fe
+            .outputs
+            .iter()
+            .map(|o| {
+                format!(
+                    "{} {:.3} +-{:.3}",
+                    o.name,
+                    o.beta_over_factor,
+                    o.beta_error / o.factor.abs()
+                )
+            })
+            .collect();
+        writeln!(
+            s,
+            "  FE spread over the corrected model's (1: as the refinement assumed): {}",
+            ratios.join(", ")
+        )
     }
 }

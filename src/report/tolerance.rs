@@ -15,6 +15,7 @@ use super::{write_json, WriteError};
 use crate::problem::display::{human, output_unit, significant};
 use crate::problem::tolerances::{Distribution, Input, Origin, Tolerance};
 use crate::problem::Problem;
+use crate::refine::spread::FeSpread;
 use crate::tolerance::monte_carlo::{Spread, CONFIDENCE};
 use crate::tolerance::robust::{Comparison, Side};
 use crate::tolerance::{normal_within, Analysis};
@@ -75,6 +76,133 @@ pub struct ToleranceReport {
     pub yield_interval: [f64; 2],
     pub yield_confidence: f64,
     pub interval_method: &'static str,
+    /// With `--fe`: the part's own spread from a few samples checked by FE.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fe: Option<FeReport>,
+}
+
+/// One output's measured spread ([`MeasuredSpread`]), in the output's unit.
+#[derive(Debug, Clone, Serialize)]
+pub struct FeLine {
+    pub name: String,
+    pub unit: String,
+    /// At the design: the model's value, the FE's and its estimated relative error.
+    pub model: f64,
+    pub fe: f64,
+    pub fe_error: Option<f64>,
+    /// The FE over the model.
+    pub factor: f64,
+    /// The FE's deviations over the model's on the samples, its standard error, and over
+    /// the factor (1: the model's spread scaled by the factor is the FE's).
+    pub beta: f64,
+    pub beta_error: f64,
+    pub beta_over_factor: f64,
+    /// The FE's standard deviation (`|beta|` times the model's first-order one), the
+    /// model's, and the samples' own with its 95 % interval.
+    pub std: f64,
+    pub model_std: f64,
+    pub sample_std: f64,
+    pub sample_std_interval: [f64; 2],
+}
+
+/// One sample checked by FE, in the file's units.
+#[derive(Debug, Clone, Serialize)]
+pub struct FeSampleLine {
+    /// Its index among the Monte Carlo's samples (the same draw).
+    pub index: usize,
+    pub design: IndexMap<String, f64>,
+    pub youngs_modulus_factor: f64,
+    /// Output -> [model, FE].
+    pub outputs: IndexMap<String, [f64; 2]>,
+}
+
+/// `tolerance.json`'s `fe`: the measured spread.
+#[derive(Debug, Clone, Serialize)]
+pub struct FeReport {
+    pub fidelity: String,
+    pub samples: usize,
+    pub method: &'static str,
+    pub outputs: Vec<FeLine>,
+    /// The Monte Carlo's samples mapped onto the FE: the fraction meeting every constraint,
+    /// its Wilson interval (the Monte Carlo's count alone), and per constraint.
+    #[serde(rename = "yield")]
+    pub yield_fraction: f64,
+    pub yield_interval: [f64; 2],
+    pub constraint_yields: IndexMap<String, f64>,
+    pub sample_records: Vec<FeSampleLine>,
+    pub seconds: f64,
+}
+
+impl FeReport {
+    pub fn new(problem: &Problem, spread: &FeSpread) -> Self {
+        let index = |name: &str| problem.model().output_index(name).unwrap_or(0);
+        let units: Vec<_> = spread
+            .outputs
+            .iter()
+            .map(|o| output_unit(problem, index(&o.output)))
+            .collect();
+        let outputs = spread
+            .outputs
+            .iter()
+            .zip(&units)
+            .map(|(o, unit)| {
+                let s = |v: f64| unit.from_si(v);
+                FeLine {
+                    name: o.output.clone(),
+                    unit: unit.name.clone(),
+                    model: s(o.analytic),
+                    fe: s(o.measured),
+                    fe_error: o.measured_error,
+                    factor: o.factor,
+                    beta: o.beta,
+                    beta_error: o.beta_error,
+                    beta_over_factor: o.beta_over_factor,
+                    std: s(o.std).abs(),
+                    model_std: s(o.analytic_std).abs(),
+                    sample_std: s(o.sample_std).abs(),
+                    sample_std_interval: o.sample_std_interval.map(|v| s(v).abs()),
+                }
+            })
+            .collect();
+        let sample_records = spread
+            .sample_records
+            .iter()
+            .map(|r| FeSampleLine {
+                index: r.index,
+                design: problem.design_in_file_units(&r.design),
+                youngs_modulus_factor: r.modulus,
+                outputs: spread
+                    .outputs
+                    .iter()
+                    .zip(&units)
+                    .enumerate()
+                    .map(|(k, (o, unit))| {
+                        (
+                            o.output.clone(),
+                            [unit.from_si(r.analytic[k]), unit.from_si(r.measured[k])],
+                        )
+                    })
+                    .collect(),
+            })
+            .collect();
+        FeReport {
+            fidelity: spread.fidelity.clone(),
+            samples: spread.samples,
+            method: "the Monte Carlo's first samples checked by FE; the FE's deviations \
+                     regressed on the model's (the model as control variate)",
+            outputs,
+            yield_fraction: spread.yield_fraction,
+            yield_interval: spread.yield_interval,
+            constraint_yields: problem
+                .constraints
+                .iter()
+                .zip(&spread.constraint_yields)
+                .map(|(c, &y)| (c.output.clone(), y))
+                .collect(),
+            sample_records,
+            seconds: spread.seconds,
+        }
+    }
 }
 
 impl ToleranceReport {
@@ -146,6 +274,7 @@ impl ToleranceReport {
             yield_interval: mc.yield_interval,
             yield_confidence: CONFIDENCE,
             interval_method: mc.interval_method,
+            fe: None,
         }
     }
 }
@@ -352,6 +481,69 @@ impl Display for ToleranceTable<'_> {
             r.interval_method.split(',').next().unwrap_or(""),
             pc(r.yield_interval[0]),
             pc(r.yield_interval[1]),
+        )?;
+        if let Some(fe) = &r.fe {
+            write!(s, "{}", FeTable(fe))?;
+        }
+        Ok(())
+    }
+}
+
+/// The measured spread's lines of the terminal's table.
+struct FeTable<'a>(&'a FeReport);
+
+impl Display for FeTable<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let fe = self.0;
+        writeln!(
+            s,
+            "by FE ({}), {} of the Monte Carlo's samples, {} s:",
+            fe.fidelity,
+            fe.samples,
+            significant(fe.seconds, 3)
+        )?;
+        writeln!(
+            s,
+            "{:<18} {:>11} {:>11} {:>8} {:>15} {:>11} {:>11} {:>25}  unit",
+            "output",
+            "FE",
+            "model",
+            "FE/model",
+            "beta/factor",
+            "std (FE)",
+            "std (model)",
+            "samples' std [95 %]"
+        )?;
+        for o in &fe.outputs {
+            let unit = if o.unit == "1" { "" } else { &o.unit };
+            writeln!(
+                s,
+                "{:<18} {:>11} {:>11} {:>8} {:>15} {:>11} {:>11} {:>25}  {unit}",
+                o.name,
+                human(o.fe),
+                human(o.model),
+                significant(o.factor, 4),
+                format!(
+                    "{} +-{}",
+                    significant(o.beta_over_factor, 3),
+                    significant(o.beta_error / o.factor.abs(), 2)
+                ),
+                human(o.std),
+                human(o.model_std),
+                format!(
+                    "{} [{} .. {}]",
+                    human(o.sample_std),
+                    human(o.sample_std_interval[0]),
+                    human(o.sample_std_interval[1])
+                ),
+            )?;
+        }
+        writeln!(
+            s,
+            "yield of the part (the Monte Carlo mapped onto the FE): {} ({} .. {})",
+            pc(fe.yield_fraction),
+            pc(fe.yield_interval[0]),
+            pc(fe.yield_interval[1]),
         )
     }
 }

@@ -67,6 +67,47 @@ fn draw(rng: &mut ChaCha8Rng, distribution: Distribution) -> f64 {
     }
 }
 
+/// Sample `i` of the tolerances around `x` from the seed `seed`: the design (every
+/// parameter, SI) and the modulus's factor. Every analysis that samples a design (the
+/// Monte Carlo here, the FE's few samples in [`crate::refine::spread`]) draws through this,
+/// so that its sample `i` is the Monte Carlo's. A factor at or below zero is an error.
+pub fn draw_sample(
+    tolerances: &[Tolerance],
+    x: &[f64],
+    seed: u64,
+    i: usize,
+) -> Result<(Vec<f64>, f64), String> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(i as u64);
+    let mut xi = x.to_vec();
+    let mut modulus = 1.0;
+    for t in tolerances {
+        let d = draw(&mut rng, t.distribution) * t.sigma;
+        match t.input {
+            Input::Parameter(j) => xi[j] += d,
+            Input::Modulus => modulus += d,
+        }
+    }
+    if modulus <= 0.0 {
+        let why = format!("youngs_modulus's factor {modulus} is not positive");
+        return Err(out_of_domain(tolerances, seed, i, &why));
+    }
+    Ok((xi, modulus))
+}
+
+/// The message of sample `i` (seed `seed`) leaving the model's domain for `why`.
+pub fn out_of_domain(tolerances: &[Tolerance], seed: u64, i: usize, why: &str) -> String {
+    format!(
+        "Monte Carlo sample {i} (seed {seed}) leaves the model's domain: {why}; the \
+         tolerances ({}) are too wide for this design",
+        tolerances
+            .iter()
+            .map(|t| t.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+}
+
 /// Samples the tolerances around `x` and evaluates the wanted outputs at each sample; an
 /// error names the first sample (by index) whose design leaves the model's domain.
 pub fn run(
@@ -79,33 +120,9 @@ pub fn run(
     let model = outputs.problem.model();
     let mut values = vec![0.0; settings.samples * m];
     let sample = |i: usize, row: &mut [f64]| -> Result<(), String> {
-        let mut rng = ChaCha8Rng::seed_from_u64(settings.seed);
-        rng.set_stream(i as u64);
-        let mut xi = x.to_vec();
-        let mut modulus = 1.0;
-        for t in tolerances {
-            let d = draw(&mut rng, t.distribution) * t.sigma;
-            match t.input {
-                Input::Parameter(j) => xi[j] += d,
-                Input::Modulus => modulus += d,
-            }
-        }
-        let out_of_domain = if modulus <= 0.0 {
-            Some(format!("youngs_modulus's factor {modulus} is not positive"))
-        } else {
-            model.domain_error(&xi)
-        };
-        if let Some(why) = out_of_domain {
-            return Err(format!(
-                "Monte Carlo sample {i} (seed {}) leaves the model's domain: {why}; the \
-                 tolerances ({}) are too wide for this design",
-                settings.seed,
-                tolerances
-                    .iter()
-                    .map(|t| t.name.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ));
+        let (xi, modulus) = draw_sample(tolerances, x, settings.seed, i)?;
+        if let Some(why) = model.domain_error(&xi) {
+            return Err(out_of_domain(tolerances, settings.seed, i, &why));
         }
         outputs.values(&xi, modulus, row);
         Ok(())
@@ -130,8 +147,10 @@ pub fn run(
     Ok(summarize(outputs, values, settings))
 }
 
-fn summarize(outputs: &Outputs, values: Vec<f64>, settings: Settings) -> MonteCarlo {
-    let (n, m) = (settings.samples, outputs.wanted.len());
+/// How many rows of `values` (the wanted outputs of each sample, row-major) meet each
+/// constraint, and how many meet every one.
+pub fn count_met(outputs: &Outputs, values: &[f64]) -> (Vec<usize>, usize) {
+    let m = outputs.wanted.len();
     let constraints = &outputs.problem.constraints;
     let columns: Vec<usize> = constraints
         .iter()
@@ -160,6 +179,12 @@ fn summarize(outputs: &Outputs, values: Vec<f64>, settings: Settings) -> MonteCa
         }
         all += usize::from(every);
     }
+    (met, all)
+}
+
+fn summarize(outputs: &Outputs, values: Vec<f64>, settings: Settings) -> MonteCarlo {
+    let (n, m) = (settings.samples, outputs.wanted.len());
+    let (met, all) = count_met(outputs, &values);
     let spreads = (0..m)
         .map(|j| {
             let mut column: Vec<f64> = values.iter().skip(j).step_by(m).copied().collect();

@@ -11,14 +11,18 @@ use std::sync::Arc;
 use common::{flexopt, MM};
 use flexopt::fe::verify::{verify_design, VerifySettings};
 use flexopt::fe::Fidelity;
+use flexopt::model::mechanism::ModulusScaling;
 use flexopt::model::Model;
 use flexopt::problem::refine::RefineSettings;
 use flexopt::problem::Problem;
-use flexopt::refine::corrected::Corrected;
+use flexopt::refine::corrected::{Corrected, CorrectedScaling};
 use flexopt::refine::fe::FeFidelity;
+use flexopt::refine::spread::{measure_spread, SpreadSettings};
 use flexopt::refine::study::refine_study;
 use flexopt::refine::{refine, Correction, HighFidelity, Measurement, RefineStatus};
 use flexopt::study::{self, StudyOptions};
+use flexopt::tolerance::analyze;
+use flexopt::tolerance::monte_carlo::Settings;
 
 fn wei2017() -> Problem {
     Problem::load(Path::new("problems/wei2017.toml")).unwrap()
@@ -55,10 +59,12 @@ fn analytic_optimum(p: &Problem) -> Vec<f64> {
         .to_vec()
 }
 
-/// A "measurement" that is a known model: `truth` evaluated.
+/// A "measurement" that is a known model: `truth` evaluated (at other moduli by
+/// `scaling`, where given).
 struct Synthetic {
     truth: Corrected,
     measured: Vec<usize>,
+    scaling: Option<CorrectedScaling>,
 }
 
 impl HighFidelity for Synthetic {
@@ -77,6 +83,17 @@ impl HighFidelity for Synthetic {
             margins: vec![0.0; outputs.len()],
             detail: serde_json::Value::Null,
         })
+    }
+    fn measure_at_modulus(
+        &self,
+        x: &[f64],
+        modulus: f64,
+        outputs: &[usize],
+    ) -> Result<Measurement, String> {
+        let mut m = self.measure(x, outputs)?;
+        let scaling = self.scaling.as_ref().ok_or("no modulus")?;
+        scaling.evaluate_scaled(x, modulus, outputs, &mut m.values);
+        Ok(m)
     }
 }
 
@@ -123,6 +140,7 @@ fn a_synthetic_fidelity_is_refined_to_its_own_optimum() {
     let high = Synthetic {
         truth,
         measured: corrections.iter().map(|(o, _)| *o).collect(),
+        scaling: None,
     };
     let settings = RefineSettings {
         enabled: true,
@@ -148,6 +166,131 @@ fn a_synthetic_fidelity_is_refined_to_its_own_optimum() {
         c.objective
     );
     assert!(r.measurements <= 15, "{} measurements", r.measurements);
+}
+
+/// A robust refinement against a synthetic truth whose factors are constant: the truth's
+/// spread is its factor times the model's, so the refined design keeps `k` of the truth's
+/// standard deviations inside each limit, and the measured spread on a few samples finds
+/// that factor exactly (the deviations regressed: `beta / factor = 1`, no error), and the
+/// part's yield, the Monte Carlo mapped onto the truth, is the truth's own Monte Carlo's.
+#[test]
+fn a_robust_refinement_keeps_k_of_the_truths_spreads_and_its_check_finds_them() {
+    let text = std::fs::read_to_string("problems/wei2017.toml").unwrap();
+    let text = text.replace("[search]\n", "[search]\nrobust = { yield = 0.99 }\n");
+    let p = Problem::parse(Path::new("robust.toml"), &text).unwrap();
+    let model = p.mechanism.physics.clone();
+    let x0 = analytic_optimum(&p);
+    let out = |name: &str| model.output_index(name).unwrap();
+    let constant = |rho: f64| Correction {
+        rho,
+        slope: vec![0.0; x0.len()],
+        centre: x0.clone(),
+    };
+    let corrections = [
+        (out("amplification"), constant(0.92)),
+        (out("k_in"), constant(0.81)),
+        (out("k_out"), constant(0.88)),
+        (out("stress_max"), constant(1.02)),
+    ];
+    let truth = Corrected::new(model.clone(), &corrections);
+    let scaling = CorrectedScaling::new(p.mechanism.modulus.clone().unwrap(), &truth);
+    let high = Synthetic {
+        measured: corrections.iter().map(|(o, _)| *o).collect(),
+        truth,
+        scaling: Some(scaling),
+    };
+    let settings = RefineSettings {
+        enabled: true,
+        tolerance: 1e-6,
+        max_fe: 40,
+        ..RefineSettings::default()
+    };
+    let r = refine(&p, &x0, &high, &settings);
+    assert_eq!(r.status, RefineStatus::Converged);
+    let c = r.result.as_ref().unwrap();
+    assert!(c.feasible);
+    // each active limit keeps k of the truth's spreads (the surrogate's aim a quarter of the
+    // tolerance inside)
+    let k = p.search.robust.unwrap().k_sigma;
+    let a = analyze(&p, &c.x, mc(100_000, 2)).unwrap();
+    let spread = measure_spread(
+        &p,
+        &c.x,
+        &a,
+        &high,
+        SpreadSettings {
+            samples: 6,
+            seed: 11,
+            threads: 2,
+        },
+    )
+    .unwrap();
+    let mut active = 0;
+    for con in &p.constraints {
+        let Some(o) = spread
+            .outputs
+            .iter()
+            .find(|o| o.output == model.outputs()[con.index].name)
+        else {
+            continue;
+        };
+        assert!((o.beta_over_factor - 1.0).abs() < 1e-9, "{}", o.output);
+        assert!(o.beta_error < 1e-9 * o.factor, "{}", o.output);
+        let margin = [
+            con.lower.map(|l| o.measured - l),
+            con.upper.map(|u| u - o.measured),
+        ]
+        .into_iter()
+        .flatten()
+        .fold(f64::INFINITY, f64::min);
+        let in_sigma = margin / o.std;
+        assert!(
+            in_sigma >= k * (1.0 - 1e-6),
+            "{}: {in_sigma} < {k}",
+            o.output
+        );
+        if in_sigma < k * 1.01 {
+            active += 1;
+        }
+    }
+    assert!(active >= 2, "k_in and k_out are active");
+    // the truth's own Monte Carlo: the model's samples scaled by the factors
+    let mut truth_problem = p.clone();
+    truth_problem.mechanism = p
+        .mechanism
+        .with_physics(Arc::new(Corrected::new(model.clone(), &corrections)))
+        .with_modulus_scaling(Arc::new(CorrectedScaling::new(
+            p.mechanism.modulus.clone().unwrap(),
+            &Corrected::new(model.clone(), &corrections),
+        )));
+    let t = analyze(&truth_problem, &c.x, mc(100_000, 2)).unwrap();
+    assert_eq!(spread.yield_fraction, t.monte_carlo.yield_fraction);
+    assert!(spread.yield_fraction >= 0.99, "{}", spread.yield_fraction);
+    // one thread or two: the same samples, the same figures
+    let one = measure_spread(
+        &p,
+        &c.x,
+        &a,
+        &high,
+        SpreadSettings {
+            samples: 6,
+            seed: 11,
+            threads: 1,
+        },
+    )
+    .unwrap();
+    assert_eq!(
+        serde_json::to_string(&one.outputs).unwrap(),
+        serde_json::to_string(&spread.outputs).unwrap()
+    );
+}
+
+fn mc(samples: usize, threads: usize) -> Settings {
+    Settings {
+        samples,
+        seed: 3,
+        threads,
+    }
 }
 
 #[test]
@@ -468,4 +611,30 @@ fn a_refinement_stopped_by_its_budget_with_a_feasible_design_says_so() {
     );
     assert_eq!(json["measurements"], 6);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Linear elasticity scales every stiffness by the modulus and leaves every ratio of
+/// displacements alone: the FE check at 1.03 E against the nominal one, on the same mesh.
+#[test]
+fn the_fe_check_at_a_scaled_modulus_scales_the_stiffnesses_exactly() {
+    let text = std::fs::read_to_string("problems/wei2017.toml").unwrap();
+    let text = format!("{text}\n[refine]\nfidelity = \"none\"\nidealization = \"plane-stress\"\n");
+    let p = Problem::parse(Path::new("plane-stress.toml"), &text).unwrap();
+    let x = analytic_optimum(&p);
+    let model = p.model();
+    let outputs: Vec<usize> = ["amplification", "k_in", "k_out"]
+        .iter()
+        .map(|n| model.output_index(n).unwrap())
+        .collect();
+    let fe = flexopt::refine::study::spread_fidelity(&p, &x);
+    let nominal = fe.measure_at_modulus(&x, 1.0, &outputs).unwrap();
+    let stiffer = fe.measure_at_modulus(&x, 1.03, &outputs).unwrap();
+    let ratio: Vec<f64> = (0..3)
+        .map(|i| stiffer.values[i] / nominal.values[i])
+        .collect();
+    // to round-off: the stiffness matrix's entries round differently at 1.03 E, and the
+    // solve amplifies that by its condition number (thin hinges in a stiff frame, ~1e7)
+    assert!((ratio[0] - 1.0).abs() < 1e-7, "amplification {ratio:?}");
+    assert!((ratio[1] - 1.03).abs() < 1e-7, "k_in {ratio:?}");
+    assert!((ratio[2] - 1.03).abs() < 1e-7, "k_out {ratio:?}");
 }

@@ -150,3 +150,91 @@ fn tolerance_refuses_too_few_samples() {
         "{err}"
     );
 }
+
+/// `tolerance --fe` on a plane-stress part (a second a check): the FE section of
+/// `tolerance.json` holds one record per sample, each sample's FE over model near the
+/// design's own factor, and the same figures for 1 and 2 threads.
+#[test]
+fn tolerance_fe_checks_samples_of_the_part_reproducibly() {
+    let dir = scratch("fe");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string("problems/wei2017.toml").unwrap();
+    let file = dir.join("wei2017.toml");
+    std::fs::write(
+        &file,
+        format!("{text}\n[refine]\nfidelity = \"none\"\nidealization = \"plane-stress\"\n"),
+    )
+    .unwrap();
+    let fe_section = |threads: &str| {
+        let out = dir.join(format!("out{threads}"));
+        flexopt_ok(&[
+            "tolerance",
+            file.to_str().unwrap(),
+            "--design",
+            OPTIMUM,
+            "--samples",
+            "2000",
+            "--fe",
+            "--fe-samples",
+            "3",
+            "--threads",
+            threads,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let json: Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("tolerance.json")).unwrap())
+                .unwrap();
+        let mut fe = json["fe"].clone();
+        fe.as_object_mut().unwrap().remove("seconds");
+        fe
+    };
+    let one = fe_section("1");
+    assert_eq!(one["samples"].as_u64(), Some(3));
+    assert!(
+        one["fidelity"].as_str().unwrap().contains("plane stress"),
+        "{}",
+        one["fidelity"]
+    );
+    let records = one["sample_records"].as_array().unwrap();
+    assert_eq!(records.len(), 3);
+    let k_in = one["outputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|o| o["name"] == "k_in")
+        .unwrap();
+    let factor = k_in["factor"].as_f64().unwrap();
+    assert!(factor > 0.5 && factor < 1.5, "k_in's factor {factor}");
+    for r in records {
+        let [model, fe] = [0, 1].map(|i| r["outputs"]["k_in"][i].as_f64().unwrap());
+        // tolerances move the hinge by a few per cent; the FE's ratio to the model moves
+        // far less
+        assert!(
+            ((fe / model) / factor - 1.0).abs() < 0.01,
+            "sample {}: {} against {factor}",
+            r["index"],
+            fe / model
+        );
+    }
+    let y = one["yield"].as_f64().unwrap();
+    assert!((0.0..=1.0).contains(&y));
+    assert_eq!(one, fe_section("2"), "the same for 1 and 2 threads");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn tolerance_fe_refuses_too_few_fe_samples() {
+    let o = flexopt(&[
+        "tolerance",
+        "problems/wei2017.toml",
+        "--design",
+        OPTIMUM,
+        "--fe",
+        "--fe-samples",
+        "2",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--fe-samples") && err.contains('2'), "{err}");
+}

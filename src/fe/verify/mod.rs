@@ -527,6 +527,17 @@ pub fn verify_design(
     x: &[f64],
     settings: &VerifySettings,
 ) -> Result<Verification, FeError> {
+    verify_design_at_modulus(mechanism, x, settings, 1.0)
+}
+
+/// As [`verify_design`], the material's Young's modulus `modulus` times its own (Poisson's
+/// ratio and density kept): a part of a bar whose modulus lies off the handbook's figure.
+pub fn verify_design_at_modulus(
+    mechanism: &crate::model::Mechanism,
+    x: &[f64],
+    settings: &VerifySettings,
+    modulus: f64,
+) -> Result<Verification, FeError> {
     let model = mechanism.physics.as_ref();
     let spec = match mechanism.part_spec(x) {
         None => {
@@ -547,7 +558,7 @@ pub fn verify_design(
         .material()
         .ok_or_else(|| FeError::Setup(format!("the {} model has no material", model.name())))?;
     let material = Elastic {
-        youngs_modulus: m.youngs_modulus,
+        youngs_modulus: m.youngs_modulus * modulus,
         poisson_ratio: m.poisson_ratio,
         density: m.density,
     };
