@@ -135,8 +135,13 @@ pub struct ConstraintReport {
     /// Relative margin: `margin` over the size of the nearest limit (or 1 when it is 0).
     pub relative_margin: Option<f64>,
     pub satisfied: bool,
-    /// Within the activity tolerance of a limit.
+    /// Within the activity tolerance of a limit; in a robust study, of the limit
+    /// tightened by `k` standard deviations.
     pub active: bool,
+    /// In a robust study: the margin in first-order standard deviations of the output
+    /// under the tolerances (the robust rows keep `k` of them).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub margin_in_sigma: Option<f64>,
     /// Where the model's value only stands in for what a higher fidelity measures
     /// ([`crate::model::OutputInfo::stand_in`]): what it is instead.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -173,6 +178,7 @@ impl ConstraintReport {
             relative_margin: relative,
             satisfied: relative.is_some_and(|r| r >= -FEASIBILITY_TOLERANCE),
             active: relative.is_some_and(|r| r.abs() <= active_tol),
+            margin_in_sigma: None,
             stand_in: None,
         }
     }
@@ -279,6 +285,7 @@ impl DesignReport {
             feasible: false,
             drawing: problem.depiction().drawing(x),
         };
+        robust_activity(problem, x, &mut report.constraints);
         for (v, &xi) in problem.variables.iter().zip(x) {
             report
                 .design_units
@@ -312,5 +319,41 @@ impl DesignReport {
             .filter(|(_, v)| v.is_none())
             .map(|(k, _)| k.as_str())
             .collect()
+    }
+}
+
+/// In a robust study, each constraint's margin in its output's first-order standard
+/// deviations, and active where it keeps just the `k` the robust rows ask: the nominal
+/// limits of a robust optimum are not what it stands on.
+fn robust_activity(problem: &Problem, x: &[f64], constraints: &mut [ConstraintReport]) {
+    let Some(robust) = problem.search.robust else {
+        return;
+    };
+    if problem.tolerances.is_empty() || problem.mechanism().modulus.is_none() {
+        return;
+    }
+    let outputs = crate::tolerance::Outputs::new(problem);
+    let spreads = crate::tolerance::first_order(&outputs, &problem.tolerances, x);
+    for (report, c) in constraints.iter_mut().zip(&problem.constraints) {
+        let Some(slot) = outputs.wanted.iter().position(|&w| w == c.index) else {
+            continue;
+        };
+        let f = &spreads[slot];
+        let nearest = [
+            c.lower.map(|lo| (f.nominal - lo, lo)),
+            c.upper.map(|hi| (hi - f.nominal, hi)),
+        ]
+        .into_iter()
+        .flatten()
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+        let Some((margin, limit)) = nearest else {
+            continue;
+        };
+        if !(f.std > 0.0) || !margin.is_finite() {
+            continue;
+        }
+        let scale = if limit == 0.0 { 1.0 } else { limit.abs() };
+        report.margin_in_sigma = Some(margin / f.std);
+        report.active = ((margin - robust.k_sigma * f.std) / scale).abs() <= ACTIVE_TOLERANCE;
     }
 }

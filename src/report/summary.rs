@@ -93,9 +93,21 @@ impl Display for StudySummary<'_> {
                         .map(|r| format!("part rule {} ({})", r.rule, r.description)),
                 )
                 .collect();
+            // a robust optimum stands on its limits tightened by k spreads
+            let at = match problem.search.robust {
+                Some(r)
+                    if report
+                        .constraints
+                        .iter()
+                        .any(|c| c.margin_in_sigma.is_some()) =>
+                {
+                    format!(" ({:.3} first-order standard deviations inside)", r.k_sigma)
+                }
+                _ => String::new(),
+            };
             writeln!(
                 s,
-                "  active: {}",
+                "  active{at}: {}",
                 if active.is_empty() {
                     "none".to_string()
                 } else {

@@ -161,6 +161,24 @@ fn the_robust_optimum_of_wei2017_meets_its_yield() {
         objective > 12.2 && objective < 12.8979,
         "amplification {objective}"
     );
+    // it stands on its tightened limits, not on the nominal ones: span_x, k_in and k_out
+    // keep k spreads each, and the report names them active
+    let k = p.search.robust.unwrap().k_sigma;
+    let report = flexopt::report::DesignReport::new(&p, &x);
+    let active: Vec<&str> = report
+        .constraints
+        .iter()
+        .filter(|c| c.active)
+        .map(|c| c.output.as_str())
+        .collect();
+    assert_eq!(active, ["span_x", "k_in", "k_out"]);
+    for c in &report.constraints {
+        let m = c.margin_in_sigma.unwrap();
+        assert!(m >= k * (1.0 - 1e-6), "{}: {m} sigma", c.output);
+        if c.active {
+            assert!((m / k - 1.0).abs() < 1e-4, "{}: {m} sigma", c.output);
+        }
+    }
 }
 
 /// The robust rows' Jacobian (second derivatives of the model through num-dual) against
