@@ -349,7 +349,7 @@ fn robust_activity(problem: &Problem, x: &[f64], constraints: &mut [ConstraintRe
         let Some((margin, limit)) = nearest else {
             continue;
         };
-        if !(f.std > 0.0) || !margin.is_finite() {
+        if f.std.is_nan() || f.std <= 0.0 || !margin.is_finite() {
             continue;
         }
         let scale = if limit == 0.0 { 1.0 } else { limit.abs() };
