@@ -11,6 +11,7 @@
 pub mod bridge;
 pub mod clearance;
 pub mod entry;
+pub mod expression;
 pub mod fit;
 pub mod hinge;
 pub mod material;
