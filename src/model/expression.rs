@@ -429,31 +429,29 @@ impl Parser<'_> {
     }
 
     fn sum(&mut self) -> Result<usize, ParseError> {
-        let mut left = self.product()?;
-        while let Some(op @ ('+' | '-')) = self.peek_symbol() {
-            self.at += 1;
-            let right = self.product()?;
-            let span = (self.span(left).0, self.span(right).1);
-            let kind = if op == '+' {
-                Kind::Add(left, right)
-            } else {
-                Kind::Sub(left, right)
-            };
-            left = self.push(kind, span);
-        }
-        Ok(left)
+        self.left_to_right(['+', '-'], Self::product)
     }
 
     fn product(&mut self) -> Result<usize, ParseError> {
-        let mut left = self.signed()?;
-        while let Some(op @ ('*' | '/')) = self.peek_symbol() {
+        self.left_to_right(['*', '/'], Self::signed)
+    }
+
+    /// Operands of `operand` joined by the two operators `ops`, from the left.
+    fn left_to_right(
+        &mut self,
+        ops: [char; 2],
+        operand: fn(&mut Self) -> Result<usize, ParseError>,
+    ) -> Result<usize, ParseError> {
+        let mut left = operand(self)?;
+        while let Some(op) = self.peek_symbol().filter(|c| ops.contains(c)) {
             self.at += 1;
-            let right = self.signed()?;
+            let right = operand(self)?;
             let span = (self.span(left).0, self.span(right).1);
-            let kind = if op == '*' {
-                Kind::Mul(left, right)
-            } else {
-                Kind::Div(left, right)
+            let kind = match op {
+                '+' => Kind::Add(left, right),
+                '-' => Kind::Sub(left, right),
+                '*' => Kind::Mul(left, right),
+                _ => Kind::Div(left, right),
             };
             left = self.push(kind, span);
         }
