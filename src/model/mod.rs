@@ -16,6 +16,7 @@ pub mod fit;
 pub mod hinge;
 pub mod material;
 pub mod mechanism;
+pub mod network;
 pub mod part_rules;
 pub mod prr3;
 pub mod pss3;

@@ -1,0 +1,589 @@
+//! Matrix structural analysis of a planar flexure network: rigid bodies joined to each other
+//! and to the ground by flexures, each flexure known by its 3x3 compliance at its free end
+//! with the other end clamped (the hinge library's [`Compliance`], paper 004 Eq. 1), in its
+//! own frame. Written over [`Scalar`], so the displacements come with their exact
+//! derivatives.
+//!
+//! The direct stiffness method (Przemieniecki, "Theory of Matrix Structural Analysis",
+//! McGraw-Hill 1968, Ch. 6; McGuire, Gallagher and Ziemian, "Matrix Structural Analysis",
+//! 2nd ed., Wiley 2000, Sec. 4.3-4.5), with each flexure's stiffness from its compliance as
+//! in the compliance-matrix method of flexure mechanisms (Lobontiu, "Compliant Mechanisms:
+//! Design of Flexure Hinges", CRC Press 2002, Ch. 4; Ling, Cao, Zeng, Lin and Inman, Smart
+//! Mater. Struct. 25 (2016) 075022, Eq. 1-9). Each body has three degrees of freedom at its
+//! reference point, `(u, v, theta)`; the ground has none. A flexure from point `P` (on its
+//! first body) along the unit axis `e` to `Q = P + l e` (on its second) gives, in its frame
+//! (`x` along `e`),
+//!
+//! ```text
+//! K = C^-1,   C = [c11 0 0; 0 c22 c23; 0 c23 c33]     free end Q, end P clamped
+//! d = u_Q - G u_P,   G = [1 0 0; 0 1 l; 0 0 1]          Q's motion relative to P's rigid one
+//! f_Q = K d,   f_P = -G^T f_Q                           equilibrium of the flexure
+//! ```
+//!
+//! each end's motion carried from its body's reference point `O` by the rigid transfer
+//! `u_P = T(P - O) u_O`, `T(r) = [1 0 -r_y; 0 1 r_x; 0 0 1]`, and the frame's rotation `R`
+//! (`theta` unchanged), so that the body's stiffness gathers `T^T R^T [G^T K G, -G^T K;
+//! -K G, K] R T`. A load `F` at a point `P` of a body is `T(P - O)^T F` at its reference
+//! point; a spring to the ground along a unit direction `n` at `P` (an actuator's
+//! stiffness) adds `k T^T (n n^T) T`.
+//!
+//! The stiffness is solved by `L D L^T` without pivoting (symmetric positive definite when
+//! every body is held): a pivot that vanishes against the diagonal's scale is a motion
+//! that nothing resists, reported with the body and the direction it moves in.
+
+use std::fmt;
+
+use crate::model::hinge::Compliance;
+use crate::model::scalar::Scalar;
+
+/// A body of the network, or the ground.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Body {
+    Ground,
+    /// The body of this index among the network's bodies.
+    Rigid(usize),
+}
+
+/// A flexure from `start` on `from` along `axis` (a unit vector) for `length`, ending on
+/// `to`; `compliance` is at its end on `to` with its start clamped, in its own frame.
+#[derive(Debug, Clone, Copy)]
+pub struct Flexure<D> {
+    pub from: Body,
+    pub to: Body,
+    pub start: [D; 2],
+    pub axis: [D; 2],
+    pub length: D,
+    pub compliance: Compliance<D>,
+}
+
+/// A spring between a point of a body and the ground, along a unit direction: an
+/// actuator's stiffness, or a load's.
+#[derive(Debug, Clone, Copy)]
+pub struct Spring<D> {
+    pub body: usize,
+    pub point: [D; 2],
+    pub direction: [D; 2],
+    pub stiffness: D,
+}
+
+/// A force and moment applied at a point of a body.
+#[derive(Debug, Clone, Copy)]
+pub struct Load<D> {
+    pub body: usize,
+    pub point: [D; 2],
+    pub force: [D; 2],
+    pub moment: D,
+}
+
+/// The network: its bodies' reference points, the flexures and the springs.
+#[derive(Debug, Clone)]
+pub struct Network<D> {
+    pub references: Vec<[D; 2]>,
+    pub flexures: Vec<Flexure<D>>,
+    pub springs: Vec<Spring<D>>,
+}
+
+/// What keeps a network from being solved.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NetworkError {
+    /// Flexure `flexure` joins a body (or the ground) to itself.
+    SelfJoined { flexure: usize },
+    /// Nothing resists the motion of `body` in `direction` (`"x"`, `"y"` or `"rotation"`,
+    /// with the bodies before it held).
+    Free {
+        body: usize,
+        direction: &'static str,
+    },
+}
+
+impl fmt::Display for NetworkError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            NetworkError::SelfJoined { flexure } => {
+                write!(f, "flexure {flexure} joins a body to itself")
+            }
+            NetworkError::Free { body, direction } => write!(
+                f,
+                "body {body} is free to move ({direction}): nothing holds it against the ground"
+            ),
+        }
+    }
+}
+
+/// A pivot below this fraction of the largest diagonal entry is a free motion. The
+/// stiffest and softest directions of a flexure network differ by about the ratio of a
+/// hinge's axial to its rotational stiffness over a lever squared (1e6 to 1e9 for
+/// notches of 0.1 to 1 mm over links of 10 mm); a free motion leaves round-off, 1e-16 of
+/// the diagonal.
+const FREE_PIVOT: f64 = 1e-13;
+
+/// The displacements of each body's reference point, `(u, v, theta)`.
+#[derive(Debug, Clone)]
+pub struct Displacements<D> {
+    pub bodies: Vec<[D; 3]>,
+    references: Vec<[D; 2]>,
+}
+
+impl<D: Scalar> Displacements<D> {
+    /// The motion of `point` of `body`: `(u, v, theta)` there.
+    pub fn at(&self, body: Body, point: [D; 2]) -> [D; 3] {
+        match body {
+            Body::Ground => [D::from(0.0); 3],
+            Body::Rigid(b) => transfer(sub(point, self.references[b]), self.bodies[b]),
+        }
+    }
+
+    /// The motion of `point` of `body` along the unit `direction`.
+    pub fn along(&self, body: Body, point: [D; 2], direction: [D; 2]) -> D {
+        let [u, v, _] = self.at(body, point);
+        u * direction[0] + v * direction[1]
+    }
+}
+
+impl<D: Scalar> Network<D> {
+    /// The stiffness matrix of the bodies' degrees of freedom, row-major, `3n x 3n`.
+    pub fn stiffness(&self) -> Result<Vec<D>, NetworkError> {
+        let n = 3 * self.references.len();
+        let mut k = vec![D::from(0.0); n * n];
+        for (i, f) in self.flexures.iter().enumerate() {
+            if f.from == f.to {
+                return Err(NetworkError::SelfJoined { flexure: i });
+            }
+            self.add_flexure(f, &mut k, n);
+        }
+        for s in &self.springs {
+            // the spring's force along n at the point, carried to the reference point:
+            // the row a = T^T n (3 entries), stiffness k a a^T
+            let r = sub(s.point, self.references[s.body]);
+            let [nx, ny] = s.direction;
+            let a = [nx, ny, -r[1] * nx + r[0] * ny];
+            let o = 3 * s.body;
+            for p in 0..3 {
+                for q in 0..3 {
+                    k[(o + p) * n + o + q] = k[(o + p) * n + o + q] + s.stiffness * a[p] * a[q];
+                }
+            }
+        }
+        Ok(k)
+    }
+
+    fn add_flexure(&self, f: &Flexure<D>, k: &mut [D], n: usize) {
+        let c = &f.compliance;
+        // K = C^-1: the axial entry, and the bending block's inverse
+        let det = c.c22 * c.c33 - c.c23 * c.c23;
+        let kb = [[c.c33 / det, -c.c23 / det], [-c.c23 / det, c.c22 / det]];
+        let local = [
+            [c.c11.recip(), D::from(0.0), D::from(0.0)],
+            [D::from(0.0), kb[0][0], kb[0][1]],
+            [D::from(0.0), kb[1][0], kb[1][1]],
+        ];
+        // each end's map from its body's reference motion to the end's motion in the
+        // flexure's frame, with the clamped end's rigid transfer G folded into the start
+        let [ex, ey] = f.axis;
+        let rotate = |m: [[D; 3]; 3]| -> [[D; 3]; 3] {
+            // R m, R = [ex ey 0; -ey ex 0; 0 0 1]
+            let mut out = m;
+            for j in 0..3 {
+                out[0][j] = ex * m[0][j] + ey * m[1][j];
+                out[1][j] = -ey * m[0][j] + ex * m[1][j];
+            }
+            out
+        };
+        let end = f.start_plus_length();
+        let map = |body: Body, point: [D; 2]| -> Option<(usize, [[D; 3]; 3])> {
+            let Body::Rigid(b) = body else { return None };
+            let r = sub(point, self.references[b]);
+            let one = D::from(1.0);
+            let zero = D::from(0.0);
+            Some((
+                b,
+                rotate([[one, zero, -r[1]], [zero, one, r[0]], [zero, zero, one]]),
+            ))
+        };
+        // d = A_to u_to - G A_from u_from: the two ends' maps with their signs
+        let mut ends: Vec<(usize, [[D; 3]; 3])> = Vec::with_capacity(2);
+        if let Some((b, m)) = map(f.from, f.start) {
+            // -G m, G = [1 0 0; 0 1 l; 0 0 1]
+            let mut g = m;
+            for j in 0..3 {
+                g[1][j] = m[1][j] + f.length * m[2][j];
+            }
+            ends.push((b, g.map(|row| row.map(|x| -x))));
+        }
+        if let Some(e) = map(f.to, end) {
+            ends.push(e);
+        }
+        for &(bi, ai) in &ends {
+            for &(bj, aj) in &ends {
+                let block = product(transpose(ai), product(local, aj));
+                for (p, row) in block.iter().enumerate() {
+                    for (q, &v) in row.iter().enumerate() {
+                        let idx = (3 * bi + p) * n + 3 * bj + q;
+                        k[idx] = k[idx] + v;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The bodies' displacements under `loads`.
+    pub fn solve(&self, loads: &[Load<D>]) -> Result<Displacements<D>, NetworkError> {
+        let n = 3 * self.references.len();
+        let mut k = self.stiffness()?;
+        let mut f = vec![D::from(0.0); n];
+        for l in loads {
+            let r = sub(l.point, self.references[l.body]);
+            let o = 3 * l.body;
+            f[o] = f[o] + l.force[0];
+            f[o + 1] = f[o + 1] + l.force[1];
+            f[o + 2] = f[o + 2] + l.moment + (r[0] * l.force[1] - r[1] * l.force[0]);
+        }
+        factor(&mut k, n)?;
+        let u = substitute(&k, n, f);
+        Ok(Displacements {
+            bodies: u.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
+            references: self.references.clone(),
+        })
+    }
+}
+
+impl<D: Scalar> Flexure<D> {
+    /// Its end on `to`.
+    pub fn start_plus_length(&self) -> [D; 2] {
+        [
+            self.start[0] + self.axis[0] * self.length,
+            self.start[1] + self.axis[1] * self.length,
+        ]
+    }
+}
+
+fn product<D: Scalar>(a: [[D; 3]; 3], b: [[D; 3]; 3]) -> [[D; 3]; 3] {
+    std::array::from_fn(|p| {
+        std::array::from_fn(|q| a[p][0] * b[0][q] + a[p][1] * b[1][q] + a[p][2] * b[2][q])
+    })
+}
+
+fn transpose<D: Scalar>(a: [[D; 3]; 3]) -> [[D; 3]; 3] {
+    std::array::from_fn(|p| std::array::from_fn(|q| a[q][p]))
+}
+
+fn sub<D: Scalar>(a: [D; 2], b: [D; 2]) -> [D; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+/// The motion at `r` from a point moving by `u`: `T(r) u`.
+fn transfer<D: Scalar>(r: [D; 2], u: [D; 3]) -> [D; 3] {
+    [u[0] - r[1] * u[2], u[1] + r[0] * u[2], u[2]]
+}
+
+/// `L D L^T` of the symmetric `k` in place (`L` below the diagonal, `D` on it).
+fn factor<D: Scalar>(k: &mut [D], n: usize) -> Result<(), NetworkError> {
+    let scale = (0..n).map(|i| k[i * n + i].re().abs()).fold(0.0, f64::max);
+    for j in 0..n {
+        let mut d = k[j * n + j];
+        for p in 0..j {
+            d = d - k[j * n + p] * k[j * n + p] * k[p * n + p];
+        }
+        if d.re().is_nan() || d.re() <= FREE_PIVOT * scale {
+            return Err(NetworkError::Free {
+                body: j / 3,
+                direction: ["x", "y", "rotation"][j % 3],
+            });
+        }
+        k[j * n + j] = d;
+        for i in j + 1..n {
+            let mut s = k[i * n + j];
+            for p in 0..j {
+                s = s - k[i * n + p] * k[j * n + p] * k[p * n + p];
+            }
+            k[i * n + j] = s / d;
+        }
+    }
+    Ok(())
+}
+
+fn substitute<D: Scalar>(l: &[D], n: usize, mut x: Vec<D>) -> Vec<D> {
+    for i in 0..n {
+        for p in 0..i {
+            x[i] = x[i] - l[i * n + p] * x[p];
+        }
+    }
+    for (i, xi) in x.iter_mut().enumerate() {
+        *xi = *xi / l[i * n + i];
+    }
+    for i in (0..n).rev() {
+        for p in i + 1..n {
+            x[i] = x[i] - l[p * n + i] * x[p];
+        }
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::hinge::HingeKind;
+    use crate::model::material::Material;
+    use crate::model::scalar::Jet;
+
+    fn strip<D: Scalar>(length: D, thickness: D) -> Compliance<D> {
+        HingeKind::Strip.compliance(&[length, thickness], 0.01, &Material::al7075_t6())
+    }
+
+    fn close(a: f64, b: f64, tol: f64) -> bool {
+        (a - b).abs() <= tol * a.abs().max(b.abs())
+    }
+
+    /// One flexure from the ground: its free end moves by its compliance, turned into the
+    /// flexure's frame and back, at every orientation.
+    #[test]
+    fn a_cantilever_moves_by_its_compliance_at_any_angle() {
+        let c = strip(0.004, 0.0005);
+        for k in 0..12 {
+            let phi = -3.0 + 0.5 * k as f64;
+            let (s, co) = phi.sin_cos();
+            let start = [0.003, -0.002];
+            let f = Flexure {
+                from: Body::Ground,
+                to: Body::Rigid(0),
+                start,
+                axis: [co, s],
+                length: 0.004,
+                compliance: c,
+            };
+            let end = f.start_plus_length();
+            let net = Network {
+                references: vec![end],
+                flexures: vec![f],
+                springs: vec![],
+            };
+            let (fx, fy, m) = (3.0, -2.0, 0.01);
+            let u = net
+                .solve(&[Load {
+                    body: 0,
+                    point: end,
+                    force: [fx, fy],
+                    moment: m,
+                }])
+                .unwrap();
+            let (n, v) = (co * fx + s * fy, -s * fx + co * fy);
+            let (dx, dy, th) = (c.c11 * n, c.c22 * v + c.c23 * m, c.c23 * v + c.c33 * m);
+            let expected = [co * dx - s * dy, s * dx + co * dy, th];
+            for (got, want) in u.bodies[0].iter().zip(expected) {
+                assert!(close(*got, want, 1e-9), "{phi}: {got} against {want}");
+            }
+        }
+    }
+
+    /// Two parallel strips from the ground to a stage (a parallelogram guide), loaded
+    /// sideways at the middle of their ends: the matrix method against the guide's closed
+    /// form, with the strips' axial compliance letting the stage tilt,
+    /// `F / v = 2 (a - b^2 / (c + k_a h^2 / 4))`, `[a b; b c]` the strips' bending block
+    /// inverted and `k_a` their axial stiffness; and against beam theory's guided beams,
+    /// `24 E I / l^3`, which leaves out the strips' shear and axial give.
+    #[test]
+    fn a_parallelogram_guide_has_the_guided_beams_stiffness() {
+        let (l, t, h) = (0.01, 0.0003, 0.02);
+        let c = strip(l, t);
+        let leaf = |y: f64| Flexure {
+            from: Body::Ground,
+            to: Body::Rigid(0),
+            start: [0.0, y],
+            axis: [1.0, 0.0],
+            length: l,
+            compliance: c,
+        };
+        let net = Network {
+            references: vec![[l, 0.0]],
+            flexures: vec![leaf(-h / 2.0), leaf(h / 2.0)],
+            springs: vec![],
+        };
+        let force = 1.0;
+        let u = net
+            .solve(&[Load {
+                body: 0,
+                point: [l, 0.0],
+                force: [0.0, force],
+                moment: 0.0,
+            }])
+            .unwrap();
+        let det = c.c22 * c.c33 - c.c23 * c.c23;
+        let (a, b, cc) = (c.c33 / det, -c.c23 / det, c.c22 / det);
+        let ka = 1.0 / c.c11;
+        let closed = 2.0 * (a - b * b / (cc + ka * h * h / 4.0));
+        let k = force / u.bodies[0][1];
+        assert!(close(k, closed, 1e-10), "{k} against {closed}");
+        assert!(
+            u.bodies[0][0].abs() < 1e-12 * u.bodies[0][1].abs(),
+            "no axial motion"
+        );
+        // beam theory: Euler-Bernoulli, 24 E I / l^3; with the strips' shear (the strip's
+        // c22 takes the shear deflection l / (G w t)), 2 / (l^3 / (12 E I) + l / (G w t));
+        // the stage's tilt on the strips' axial give is left, 3 (t/h)^2 / 4 of the bending
+        // block's coupling (2e-4 here)
+        let m = Material::al7075_t6();
+        let ei = m.youngs_modulus * (0.01 * t.powi(3) / 12.0);
+        let beam = 24.0 * ei / l.powi(3);
+        let shear = l / (m.shear_modulus() * 0.01 * t);
+        let timoshenko = 2.0 / (l.powi(3) / (12.0 * ei) + shear);
+        assert!(close(k, timoshenko, 3e-4), "{k} against {timoshenko}");
+        assert!(k < timoshenko && k < beam, "{k} against {beam}");
+    }
+
+    /// The stiffness is symmetric and positive definite; by Maxwell-Betti, the motion at
+    /// one point along one direction under a unit force at another equals the converse.
+    #[test]
+    fn the_stiffness_is_symmetric_and_reciprocal() {
+        let net = two_stage(0.0004);
+        let k = net.stiffness().unwrap();
+        let n = 6;
+        for i in 0..n {
+            for j in 0..n {
+                assert!(close(k[i * n + j], k[j * n + i], 1e-12) || k[i * n + j].abs() < 1e-6);
+            }
+        }
+        let (p, q) = ([0.012, 0.003], [0.02, -0.004]);
+        let (dp, dq) = ([0.6, 0.8], [0.0, 1.0]);
+        let unit = |body, point: [f64; 2], dir: [f64; 2]| Load {
+            body,
+            point,
+            force: dir,
+            moment: 0.0,
+        };
+        let a = net
+            .solve(&[unit(0, p, dp)])
+            .unwrap()
+            .along(Body::Rigid(1), q, dq);
+        let b = net
+            .solve(&[unit(1, q, dq)])
+            .unwrap()
+            .along(Body::Rigid(0), p, dp);
+        assert!(close(a, b, 1e-9), "{a} {b}");
+    }
+
+    /// Two bodies: the first held by two strips from the ground, the second joined to it
+    /// and to the ground by one strip each, with an actuator's spring on the first.
+    fn two_stage<D: Scalar>(t: D) -> Network<D> {
+        let c = |l: f64| strip(D::from(l), t);
+        let flexure = |from, to, start: [f64; 2], axis: [f64; 2], l: f64| Flexure {
+            from,
+            to,
+            start: start.map(D::from),
+            axis: axis.map(D::from),
+            length: D::from(l),
+            compliance: c(l),
+        };
+        Network {
+            references: vec![[D::from(0.01), D::from(0.0)], [D::from(0.02), D::from(0.0)]],
+            flexures: vec![
+                flexure(
+                    Body::Ground,
+                    Body::Rigid(0),
+                    [0.0, 0.002],
+                    [1.0, 0.0],
+                    0.004,
+                ),
+                flexure(
+                    Body::Ground,
+                    Body::Rigid(0),
+                    [0.0, -0.002],
+                    [0.8, -0.6],
+                    0.003,
+                ),
+                flexure(
+                    Body::Rigid(0),
+                    Body::Rigid(1),
+                    [0.012, 0.0],
+                    [0.6, 0.8],
+                    0.002,
+                ),
+                flexure(
+                    Body::Ground,
+                    Body::Rigid(1),
+                    [0.03, 0.01],
+                    [-0.6, -0.8],
+                    0.005,
+                ),
+            ],
+            springs: vec![Spring {
+                body: 0,
+                point: [D::from(0.01), D::from(0.001)],
+                direction: [D::from(1.0), D::from(0.0)],
+                stiffness: D::from(2e6),
+            }],
+        }
+    }
+
+    /// Exact derivatives through the solve: a `Jet` over the hinges' thickness against
+    /// central differences.
+    #[test]
+    fn displacements_have_exact_derivatives() {
+        let t = 0.0004;
+        let load = |body| Load {
+            body,
+            point: [0.01, 0.001],
+            force: [1.0, 0.5],
+            moment: 0.0,
+        };
+        let motion = |t: f64| {
+            let u = two_stage(t).solve(&[load(0)]).unwrap();
+            u.along(Body::Rigid(1), [0.02, 0.0], [0.0, 1.0])
+        };
+        let jet = {
+            let net = two_stage(Jet::<1>::variable(t, 0));
+            let loads = [Load {
+                body: 0,
+                point: [0.01, 0.001].map(Jet::from),
+                force: [1.0, 0.5].map(Jet::from),
+                moment: Jet::from(0.0),
+            }];
+            let u = net.solve(&loads).unwrap();
+            u.along(
+                Body::Rigid(1),
+                [0.02, 0.0].map(Jet::from),
+                [0.0, 1.0].map(Jet::from),
+            )
+        };
+        let h = 1e-9;
+        let fd = (motion(t + h) - motion(t - h)) / (2.0 * h);
+        // the same solve, its operations grouped differently in the dual number
+        assert!(close(jet.re, motion(t), 1e-12));
+        assert!(close(jet.grad[0], fd, 1e-6), "{} against {fd}", jet.grad[0]);
+    }
+
+    #[test]
+    fn a_free_body_and_a_self_joined_flexure_are_named() {
+        let mut net = two_stage(0.0004);
+        net.references.push([0.05, 0.0]);
+        assert_eq!(
+            net.stiffness().map(|_| ()),
+            Ok(()),
+            "the matrix is built; the solve finds the free body"
+        );
+        let err = net.solve(&[]).unwrap_err();
+        assert_eq!(
+            err,
+            NetworkError::Free {
+                body: 2,
+                direction: "x"
+            }
+        );
+        assert!(err.to_string().contains("body 2 is free to move (x)"));
+        // a body held by one strip along its axis only, hinged at the ground: it turns
+        let mut hinged = two_stage(0.0004);
+        hinged.flexures.truncate(1);
+        hinged.flexures[0].compliance.c33 = 1e12;
+        hinged.flexures[0].compliance.c23 = 0.0;
+        hinged.flexures[0].compliance.c22 = 1e12;
+        hinged.springs.clear();
+        hinged.references.truncate(1);
+        let err = hinged.solve(&[]).unwrap_err();
+        assert!(matches!(err, NetworkError::Free { body: 0, .. }), "{err:?}");
+        let mut joined = two_stage(0.0004);
+        joined.flexures[2].to = Body::Rigid(0);
+        assert_eq!(
+            joined.stiffness().map(|_| ()),
+            Err(NetworkError::SelfJoined { flexure: 2 })
+        );
+    }
+}
