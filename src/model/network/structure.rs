@@ -75,12 +75,23 @@ pub struct Load<D> {
     pub moment: D,
 }
 
-/// The network: its bodies' reference points, the flexures and the springs.
+/// One of a body's degrees of freedom at its reference point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dof {
+    X,
+    Y,
+    Rotation,
+}
+
+/// The network: its bodies' reference points, the flexures and the springs, and the
+/// degrees of freedom held (a body on a mirror axis of a symmetric mechanism keeps its
+/// motion across the axis and its rotation at zero).
 #[derive(Debug, Clone)]
 pub struct Network<D> {
     pub references: Vec<[D; 2]>,
     pub flexures: Vec<Flexure<D>>,
     pub springs: Vec<Spring<D>>,
+    pub held: Vec<(usize, Dof)>,
 }
 
 /// What keeps a network from being solved.
@@ -238,6 +249,17 @@ impl<D: Scalar> Network<D> {
             f[o + 1] = f[o + 1] + l.force[1];
             f[o + 2] = f[o + 2] + l.moment + (r[0] * l.force[1] - r[1] * l.force[0]);
         }
+        // a held degree of freedom: its row and column out, a unit pivot, no load
+        let scale = (0..n).map(|i| k[i * n + i].re().abs()).fold(0.0, f64::max);
+        for &(body, dof) in &self.held {
+            let j = 3 * body + dof as usize;
+            for i in 0..n {
+                k[i * n + j] = D::from(0.0);
+                k[j * n + i] = D::from(0.0);
+            }
+            k[j * n + j] = D::from(scale.max(1.0));
+            f[j] = D::from(0.0);
+        }
         factor(&mut k, n)?;
         let u = substitute(&k, n, f);
         Ok(Displacements {
@@ -356,6 +378,7 @@ mod tests {
                 references: vec![end],
                 flexures: vec![f],
                 springs: vec![],
+                held: vec![],
             };
             let (fx, fy, m) = (3.0, -2.0, 0.01);
             let u = net
@@ -397,6 +420,7 @@ mod tests {
             references: vec![[l, 0.0]],
             flexures: vec![leaf(-h / 2.0), leaf(h / 2.0)],
             springs: vec![],
+            held: vec![],
         };
         let force = 1.0;
         let u = net
@@ -511,6 +535,7 @@ mod tests {
                 direction: [D::from(1.0), D::from(0.0)],
                 stiffness: D::from(2e6),
             }],
+            held: vec![],
         }
     }
 
@@ -585,5 +610,65 @@ mod tests {
             joined.stiffness().map(|_| ()),
             Err(NetworkError::SelfJoined { flexure: 2 })
         );
+    }
+
+    /// A quarter of a rhombic bridge: one hinge from the input block (held on the output's
+    /// mirror axis: no vertical motion, no rotation) to the output block (on the input's
+    /// axis: no horizontal motion, no rotation). Its amplification is paper 004's rhombic
+    /// limit of Eq. 9 for any hinge, and Eq. 25 as printed for a hinge without shear
+    /// compliance ([`crate::model::reference::closed_forms`]).
+    #[test]
+    fn a_quarter_rhombus_amplifies_as_paper_004s_closed_form() {
+        use crate::model::reference::closed_forms::{rhombic, rhombic_general};
+        let mut worst = [0.0f64; 2];
+        for k in 0..40 {
+            let delta = 0.01 + 0.02 * k as f64;
+            let (length, t) = (0.004 + 0.0002 * k as f64, 0.0003 + 0.00001 * k as f64);
+            let mut bending_only = strip(length, t);
+            for (i, c) in [strip(length, t), {
+                bending_only.c22 = 4.0 * length.powi(3) / (72e9 * 0.01 * t.powi(3));
+                bending_only
+            }]
+            .into_iter()
+            .enumerate()
+            {
+                let (s, co) = delta.sin_cos();
+                let end = [length * co, length * s];
+                let net = Network {
+                    references: vec![[0.0, 0.0], end],
+                    flexures: vec![Flexure {
+                        from: Body::Rigid(0),
+                        to: Body::Rigid(1),
+                        start: [0.0, 0.0],
+                        axis: [co, s],
+                        length,
+                        compliance: c,
+                    }],
+                    springs: vec![],
+                    held: vec![
+                        (0, Dof::Y),
+                        (0, Dof::Rotation),
+                        (1, Dof::X),
+                        (1, Dof::Rotation),
+                    ],
+                };
+                let u = net
+                    .solve(&[Load {
+                        body: 0,
+                        point: [0.0, 0.0],
+                        force: [1.0, 0.0],
+                        moment: 0.0,
+                    }])
+                    .unwrap();
+                let da = u.bodies[1][1] / u.bodies[0][0];
+                let expected = if i == 0 {
+                    rhombic_general(&c, delta)
+                } else {
+                    rhombic(&c, delta)
+                };
+                worst[i] = worst[i].max((da - expected).abs() / expected.abs());
+            }
+        }
+        assert!(worst[0] < 1e-12 && worst[1] < 1e-12, "{worst:?}");
     }
 }
