@@ -33,7 +33,7 @@
 
 use std::fmt;
 
-use crate::model::hinge::Compliance;
+use crate::model::hinge::{Compliance, HingeLoads};
 use crate::model::scalar::Scalar;
 
 /// A body of the network, or the ground.
@@ -269,6 +269,29 @@ impl<D: Scalar> Network<D> {
     }
 }
 
+impl<D: Scalar> Network<D> {
+    /// The loads at flexure `i`'s end on its second body, in its own frame, under the
+    /// displacements `u`: `K (u_Q - G u_P)`, the axial force, shear and moment its
+    /// compliance relates to its deformation ([`crate::model::hinge::HingeLoads`], whose
+    /// stresses the hinge library gives).
+    pub fn flexure_loads(&self, i: usize, u: &Displacements<D>) -> HingeLoads<D> {
+        let f = &self.flexures[i];
+        let [ex, ey] = f.axis;
+        let local = |m: [D; 3]| [ex * m[0] + ey * m[1], -ey * m[0] + ex * m[1], m[2]];
+        let p = local(u.at(f.from, f.start));
+        let q = local(u.at(f.to, f.start_plus_length()));
+        // Q's motion relative to the rigid motion of P carried along the flexure
+        let d = [q[0] - p[0], q[1] - (p[1] + f.length * p[2]), q[2] - p[2]];
+        let c = &f.compliance;
+        let det = c.c22 * c.c33 - c.c23 * c.c23;
+        HingeLoads {
+            axial: d[0] / c.c11,
+            shear: (c.c33 * d[1] - c.c23 * d[2]) / det,
+            moment: (c.c22 * d[2] - c.c23 * d[1]) / det,
+        }
+    }
+}
+
 impl<D: Scalar> Flexure<D> {
     /// Its end on `to`.
     pub fn start_plus_length(&self) -> [D; 2] {
@@ -395,6 +418,11 @@ mod tests {
             for (got, want) in u.bodies[0].iter().zip(expected) {
                 assert!(close(*got, want, 1e-9), "{phi}: {got} against {want}");
             }
+            // the flexure carries the load, turned into its frame
+            let loads = net.flexure_loads(0, &u);
+            for (got, want) in [(loads.axial, n), (loads.shear, v), (loads.moment, m)] {
+                assert!(close(got, want, 1e-9), "{phi}: {got} against {want}");
+            }
         }
     }
 
@@ -437,6 +465,24 @@ mod tests {
         let closed = 2.0 * (a - b * b / (cc + ka * h * h / 4.0));
         let k = force / u.bodies[0][1];
         assert!(close(k, closed, 1e-10), "{k} against {closed}");
+        // the shears carry the load; about the stage's reference point, the strips' end
+        // moments and the couple of their axial forces across the guide balance
+        let theta = u.bodies[0][2];
+        for (i, y) in [(0, -h / 2.0), (1, h / 2.0)] {
+            let loads = net.flexure_loads(i, &u);
+            let axial = -ka * theta * y;
+            assert!(close(loads.axial, axial, 1e-6), "{} {axial}", loads.axial);
+            let (v, th) = (u.bodies[0][1], theta);
+            assert!(close(loads.shear, a * v + b * th, 1e-9));
+            assert!(close(loads.moment, b * v + cc * th, 1e-9));
+        }
+        let (l0, l1) = (net.flexure_loads(0, &u), net.flexure_loads(1, &u));
+        assert!(
+            close(l0.shear + l1.shear, force, 1e-9),
+            "the shears carry the load"
+        );
+        let arm = l0.moment + l1.moment + (l0.axial - l1.axial) * h / 2.0;
+        assert!(arm.abs() < 1e-9 * force * l, "the moments balance: {arm}");
         assert!(
             u.bodies[0][0].abs() < 1e-12 * u.bodies[0][1].abs(),
             "no axial motion"
