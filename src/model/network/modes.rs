@@ -1,0 +1,300 @@
+//! The natural modes of a flexure network: its bodies' masses and inertias against the
+//! stiffness of [`super::structure`], the flexures massless (their mass is a few per cent
+//! of the links' in a piezo stage, and the bodies carry it where the description puts it).
+//!
+//! `K phi = w^2 M phi` over the degrees of freedom not held, solved on the values by a
+//! Cholesky factor of `M` and a symmetric eigensolver (nalgebra). The derivatives come from
+//! the Rayleigh quotient `w^2 = phi^T K phi / phi^T M phi` evaluated in the scalar type at
+//! the eigenvector found: the quotient is stationary at an eigenvector, so its first
+//! derivative is exact for a simple eigenvalue without the eigenvector's (Fox and Kapoor,
+//! "Rates of change of eigenvalues and eigenvectors", AIAA J. 6 (1968) 2426-2429, Eq. 9).
+//! Its second derivatives would need the eigenvector's, which it does not carry: a robust
+//! study on a frequency must not read them from here.
+
+use nalgebra::{DMatrix, SymmetricEigen};
+
+use super::structure::{Network, NetworkError};
+use crate::model::scalar::Scalar;
+
+/// A body's mass (kg), its centroid (m) and its moment of inertia about the centroid
+/// (kg m^2), for motion in the plane.
+#[derive(Debug, Clone, Copy)]
+pub struct Inertia<D> {
+    pub mass: D,
+    pub centroid: [D; 2],
+    pub moment: D,
+}
+
+/// One mode: its frequency (Hz) and its shape, each body's `(u, v, theta)` at its
+/// reference point (held ones zero), scaled to unit modal mass.
+#[derive(Debug, Clone)]
+pub struct Mode<D> {
+    pub frequency: D,
+    pub shape: Vec<[f64; 3]>,
+}
+
+/// What keeps the modes from being found, beside the network's own errors.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ModeError {
+    Network(NetworkError),
+    /// Body `body` has no mass (or no inertia) where it can move.
+    Massless {
+        body: usize,
+    },
+}
+
+impl std::fmt::Display for ModeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ModeError::Network(e) => e.fmt(f),
+            ModeError::Massless { body } => write!(
+                f,
+                "body {body} has no mass or no inertia where it can move: give it an outline \
+                 or a mass"
+            ),
+        }
+    }
+}
+
+impl<D: Scalar> Network<D> {
+    /// The mass matrix of the bodies' degrees of freedom at their reference points,
+    /// row-major `3n x 3n`: each body's mass and inertia carried from its centroid by the
+    /// rigid transfer.
+    pub fn mass_matrix(&self, inertia: &[Inertia<D>]) -> Vec<D> {
+        let n = 3 * self.references.len();
+        let mut m = vec![D::from(0.0); n * n];
+        for (b, body) in inertia.iter().enumerate() {
+            let r = [
+                body.centroid[0] - self.references[b][0],
+                body.centroid[1] - self.references[b][1],
+            ];
+            let o = 3 * b;
+            let mass = body.mass;
+            let entries = [
+                (0, 0, mass),
+                (1, 1, mass),
+                (0, 2, -(mass * r[1])),
+                (1, 2, mass * r[0]),
+                (2, 2, body.moment + mass * (r[0] * r[0] + r[1] * r[1])),
+            ];
+            for (p, q, v) in entries {
+                m[(o + p) * n + o + q] = v;
+                m[(o + q) * n + o + p] = v;
+            }
+        }
+        m
+    }
+
+    /// The `count` lowest modes (fewer where the network has fewer degrees of freedom).
+    pub fn modes(&self, inertia: &[Inertia<D>], count: usize) -> Result<Vec<Mode<D>>, ModeError> {
+        let n = 3 * self.references.len();
+        let k = self.stiffness().map_err(ModeError::Network)?;
+        let m = self.mass_matrix(inertia);
+        // the degrees of freedom not held
+        let free: Vec<usize> = (0..n)
+            .filter(|&j| !self.held.iter().any(|&(b, d)| 3 * b + d as usize == j))
+            .collect();
+        let nf = free.len();
+        let pick = |a: &[D]| DMatrix::from_fn(nf, nf, |i, j| a[free[i] * n + free[j]].re());
+        let (kf, mf) = (pick(&k), pick(&m));
+        // a free motion is the structure's error, named as a solve would name it
+        self.solve(&[]).map_err(ModeError::Network)?;
+        let Some(chol) = mf.clone().cholesky() else {
+            let j = (0..nf).find(|&i| mf[(i, i)] <= 0.0).unwrap_or(0);
+            return Err(ModeError::Massless { body: free[j] / 3 });
+        };
+        let l = chol.l();
+        let l_inv = l
+            .clone()
+            .try_inverse()
+            .ok_or(ModeError::Massless { body: free[0] / 3 })?;
+        let a = &l_inv * &kf * l_inv.transpose();
+        let a = (&a + a.transpose()) * 0.5;
+        let eigen = SymmetricEigen::new(a);
+        let mut order: Vec<usize> = (0..nf).collect();
+        order.sort_by(|&i, &j| eigen.eigenvalues[i].total_cmp(&eigen.eigenvalues[j]));
+        let mut modes = Vec::new();
+        for &i in order.iter().take(count) {
+            // phi = L^-T y, unit modal mass since y has unit length
+            let phi = l_inv.transpose() * eigen.eigenvectors.column(i);
+            let mut full = vec![0.0; n];
+            for (p, &j) in free.iter().enumerate() {
+                full[j] = phi[p];
+            }
+            let quadratic = |a: &[D]| {
+                let mut s = D::from(0.0);
+                for (p, &fp) in full.iter().enumerate() {
+                    if fp == 0.0 {
+                        continue;
+                    }
+                    for (q, &fq) in full.iter().enumerate() {
+                        if fq != 0.0 {
+                            s = s + a[p * n + q] * (fp * fq);
+                        }
+                    }
+                }
+                s
+            };
+            let omega2 = quadratic(&k) / quadratic(&m);
+            modes.push(Mode {
+                frequency: omega2.sqrt() / (2.0 * std::f64::consts::PI),
+                shape: full.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
+            });
+        }
+        Ok(modes)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::structure::{Body, Dof, Flexure, Spring};
+    use super::*;
+    use crate::model::hinge::HingeKind;
+    use crate::model::material::Material;
+    use crate::model::scalar::Jet;
+
+    fn close(a: f64, b: f64, tol: f64) -> bool {
+        (a - b).abs() <= tol * a.abs().max(b.abs())
+    }
+
+    /// A body on three springs: one along x at its centroid, two along y at `+-a`. Its
+    /// modes are `k_x / m`, `2 k_y / m` and `2 k_y a^2 / J`, whatever the reference point.
+    #[test]
+    fn a_body_on_springs_has_its_three_exact_modes() {
+        let (m, j, a, kx, ky) = (0.05, 2e-5, 0.01, 3e5, 1e5);
+        let spring = |point: [f64; 2], direction: [f64; 2], stiffness| Spring {
+            body: 0,
+            point,
+            direction,
+            stiffness,
+        };
+        let net = Network {
+            references: vec![[0.004, -0.003]],
+            flexures: vec![],
+            springs: vec![
+                spring([0.0, 0.0], [1.0, 0.0], kx),
+                spring([a, 0.0], [0.0, 1.0], ky),
+                spring([-a, 0.0], [0.0, 1.0], ky),
+            ],
+            held: vec![],
+        };
+        let inertia = [Inertia {
+            mass: m,
+            centroid: [0.0, 0.0],
+            moment: j,
+        }];
+        let modes = net.modes(&inertia, 3).unwrap();
+        let mut expected = [kx / m, 2.0 * ky / m, 2.0 * ky * a * a / j]
+            .map(|w2: f64| w2.sqrt() / (2.0 * std::f64::consts::PI));
+        expected.sort_by(f64::total_cmp);
+        for (mode, f) in modes.iter().zip(expected) {
+            assert!(
+                close(mode.frequency, f, 1e-10),
+                "{} against {f}",
+                mode.frequency
+            );
+        }
+    }
+
+    /// A stage on a parallelogram guide: its sideways mode is the guide's stiffness over
+    /// the stage's mass (the stage held from turning), and the frequency's derivative by
+    /// the strips' thickness, through the Rayleigh quotient, matches central differences.
+    #[test]
+    fn a_guided_stage_moves_at_its_guide_frequency_with_exact_derivatives() {
+        let guide = |t: Jet<1>| {
+            let c =
+                HingeKind::Strip.compliance(&[Jet::from(0.01), t], 0.01, &Material::al7075_t6());
+            let leaf = |y: f64| Flexure {
+                from: Body::Ground,
+                to: Body::Rigid(0),
+                start: [Jet::from(0.0), Jet::from(y)],
+                axis: [Jet::from(1.0), Jet::from(0.0)],
+                length: Jet::from(0.01),
+                compliance: c,
+            };
+            Network {
+                references: vec![[Jet::from(0.01), Jet::from(0.0)]],
+                flexures: vec![leaf(-0.01), leaf(0.01)],
+                springs: vec![],
+                held: vec![(0, Dof::Rotation)],
+            }
+        };
+        let inertia = [Inertia {
+            mass: Jet::from(0.02),
+            centroid: [Jet::from(0.01), Jet::from(0.0)],
+            moment: Jet::from(1e-6),
+        }];
+        let t = 0.0003;
+        let net = guide(Jet::variable(t, 0));
+        let first = &net.modes(&inertia, 1).unwrap()[0];
+        // the guide's sideways stiffness, by a static solve of the same network
+        let u = net
+            .solve(&[super::super::structure::Load {
+                body: 0,
+                point: net.references[0],
+                force: [Jet::from(0.0), Jet::from(1.0)],
+                moment: Jet::from(0.0),
+            }])
+            .unwrap();
+        let k = 1.0 / u.bodies[0][1].re;
+        let f = (k / 0.02).sqrt() / (2.0 * std::f64::consts::PI);
+        assert!(
+            close(first.frequency.re, f, 1e-10),
+            "{} against {f}",
+            first.frequency.re
+        );
+        assert!(
+            first.shape[0][0].abs() < 1e-9 * first.shape[0][1].abs(),
+            "sideways"
+        );
+        let at = |t: f64| {
+            guide(Jet::from(t)).modes(&inertia, 1).unwrap()[0]
+                .frequency
+                .re
+        };
+        let h = 1e-9;
+        let fd = (at(t + h) - at(t - h)) / (2.0 * h);
+        assert!(
+            close(first.frequency.grad[0], fd, 1e-6),
+            "{} against {fd}",
+            first.frequency.grad[0]
+        );
+    }
+
+    #[test]
+    fn a_massless_body_is_named() {
+        let net: Network<f64> = Network {
+            references: vec![[0.0, 0.0]],
+            flexures: vec![],
+            springs: vec![
+                Spring {
+                    body: 0,
+                    point: [0.0, 0.0],
+                    direction: [1.0, 0.0],
+                    stiffness: 1e5,
+                },
+                Spring {
+                    body: 0,
+                    point: [0.01, 0.0],
+                    direction: [0.0, 1.0],
+                    stiffness: 1e5,
+                },
+                Spring {
+                    body: 0,
+                    point: [-0.01, 0.0],
+                    direction: [0.0, 1.0],
+                    stiffness: 1e5,
+                },
+            ],
+            held: vec![],
+        };
+        let none = [Inertia {
+            mass: 0.0,
+            centroid: [0.0, 0.0],
+            moment: 0.0,
+        }];
+        let err = net.modes(&none, 1).unwrap_err();
+        assert_eq!(err, ModeError::Massless { body: 0 });
+        assert!(err.to_string().contains("body 0 has no mass"));
+    }
+}
