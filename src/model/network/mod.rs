@@ -5,4 +5,5 @@
 //! its outputs and its part build on them.
 
 pub mod modes;
+pub mod ports;
 pub mod structure;
