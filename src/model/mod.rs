@@ -13,6 +13,7 @@ pub mod clearance;
 pub mod entry;
 pub mod fit;
 pub mod hinge;
+pub mod jet2;
 pub mod material;
 pub mod mechanism;
 pub mod part_rules;
