@@ -5,7 +5,8 @@
 //! only for the operations the models use, and is implemented for
 //!
 //! - `f64`, and num-dual's `Dual64` and `DualSVec64<N>`, and its second-order
-//!   `Dual2SVec64<N>` (the Hessians a robust study's spreads need), and
+//!   `Dual2SVec64<N>` (against which the tests check [`super::jet2::Jet2`], the Hessians a
+//!   robust study's spreads need), and
 //! - [`Jet<N>`], a first-order forward-mode number with a plain `[f64; N]` gradient.
 //!
 //! Why a type of our own beside num-dual: num-dual keeps each gradient as an
