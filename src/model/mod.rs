@@ -14,6 +14,7 @@ pub mod entry;
 pub mod expression;
 pub mod fit;
 pub mod hinge;
+pub mod jet2;
 pub mod material;
 pub mod mechanism;
 pub mod network;

@@ -5,7 +5,8 @@
 //! only for the operations the models use, and is implemented for
 //!
 //! - `f64`, and num-dual's `Dual64` and `DualSVec64<N>`, and its second-order
-//!   `Dual2SVec64<N>` (the Hessians a robust study's spreads need), and
+//!   `Dual2SVec64<N>` (against which the tests check [`super::jet2::Jet2`], the Hessians a
+//!   robust study's spreads need), and
 //! - [`Jet<N>`], a first-order forward-mode number with a plain `[f64; N]` gradient.
 //!
 //! Why a type of our own beside num-dual: num-dual keeps each gradient as an
@@ -44,7 +45,15 @@ pub trait Scalar:
     fn cos(self) -> Self {
         self.sin_cos().1
     }
-    fn abs(self) -> Self;
+    /// `-self` where the real part is negative: a forward-mode number's rule.
+    #[inline(always)]
+    fn abs(self) -> Self {
+        if self.re() < 0.0 {
+            -self
+        } else {
+            self
+        }
+    }
     fn sqrt(self) -> Self;
     fn powi(self, n: i32) -> Self;
     /// `self^n` for a real exponent (`self > 0`).
@@ -264,55 +273,57 @@ impl<const N: usize> Div for Jet<N> {
     }
 }
 
-impl<const N: usize> Neg for Jet<N> {
-    type Output = Self;
-    #[inline(always)]
-    fn neg(self) -> Self {
-        Jet {
-            re: -self.re,
-            grad: self.grad.map(|g| -g),
+/// A forward-mode number's negation and its operations with a constant, by its method
+/// `$scaled(re, scale)`: value `re`, every derivative times `scale`.
+macro_rules! constant_ops {
+    ($t:ident, $scaled:ident) => {
+        impl<const N: usize> std::ops::Neg for $t<N> {
+            type Output = Self;
+            #[inline(always)]
+            fn neg(self) -> Self {
+                self.$scaled(-self.re, -1.0)
+            }
         }
-    }
-}
 
-impl<const N: usize> Add<f64> for Jet<N> {
-    type Output = Self;
-    #[inline(always)]
-    fn add(self, o: f64) -> Self {
-        Jet {
-            re: self.re + o,
-            grad: self.grad,
+        impl<const N: usize> std::ops::Add<f64> for $t<N> {
+            type Output = Self;
+            #[inline(always)]
+            fn add(mut self, o: f64) -> Self {
+                self.re += o;
+                self
+            }
         }
-    }
-}
 
-impl<const N: usize> Sub<f64> for Jet<N> {
-    type Output = Self;
-    #[inline(always)]
-    fn sub(self, o: f64) -> Self {
-        Jet {
-            re: self.re - o,
-            grad: self.grad,
+        impl<const N: usize> std::ops::Sub<f64> for $t<N> {
+            type Output = Self;
+            #[inline(always)]
+            fn sub(mut self, o: f64) -> Self {
+                self.re -= o;
+                self
+            }
         }
-    }
-}
 
-impl<const N: usize> Mul<f64> for Jet<N> {
-    type Output = Self;
-    #[inline(always)]
-    fn mul(self, o: f64) -> Self {
-        self.chain(self.re * o, o)
-    }
-}
+        impl<const N: usize> std::ops::Mul<f64> for $t<N> {
+            type Output = Self;
+            #[inline(always)]
+            fn mul(self, o: f64) -> Self {
+                self.$scaled(self.re * o, o)
+            }
+        }
 
-impl<const N: usize> Div<f64> for Jet<N> {
-    type Output = Self;
-    #[inline(always)]
-    fn div(self, o: f64) -> Self {
-        let inv = 1.0 / o;
-        self.chain(self.re * inv, inv)
-    }
+        impl<const N: usize> std::ops::Div<f64> for $t<N> {
+            type Output = Self;
+            #[inline(always)]
+            fn div(self, o: f64) -> Self {
+                let inv = 1.0 / o;
+                self.$scaled(self.re * inv, inv)
+            }
+        }
+    };
 }
+pub(crate) use constant_ops;
+
+constant_ops!(Jet, chain);
 
 impl<const N: usize> Scalar for Jet<N> {
     fn re(&self) -> f64 {
@@ -327,14 +338,6 @@ impl<const N: usize> Scalar for Jet<N> {
     fn sin_cos(self) -> (Self, Self) {
         let (s, c) = sin_cos(self.re);
         (self.chain(s, c), self.chain(c, -s))
-    }
-    #[inline(always)]
-    fn abs(self) -> Self {
-        if self.re < 0.0 {
-            -self
-        } else {
-            self
-        }
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
@@ -358,18 +361,20 @@ impl<const N: usize> Scalar for Jet<N> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use num_dual::DualSVec64;
 
     /// A function that uses every operation of the trait.
-    fn f<D: Scalar>(x: D, y: D) -> D {
+    pub(crate) fn f<D: Scalar>(x: D, y: D) -> D {
         let (s, c) = (x * y).sin_cos();
         (s + c * 2.0 - 1.0) / (x.powi(3) + 3.0) * y.abs().sqrt() - (x / y).recip() / 2.0
             + -(x - y).cos()
             + (x * 0.5 - y).atan()
             + (x * x + 1.0).powf(0.45)
             + x.sin()
+            + (y * 0.3).powi(2) * x.powi(-2)
+            - x * 1.5
     }
 
     #[test]

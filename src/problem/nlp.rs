@@ -133,8 +133,40 @@ impl<'p> DesignNlp<'p> {
             .then(|| Self::with_rules(problem, part.first_rules()))
     }
 
+    /// The problems a start is solved in, in turn, each a relaxation of the next and the
+    /// last [`DesignNlp::new`]'s ([`crate::optim::staged`]): where the part keeps some of
+    /// its rules for the end, the problem without them first; in a robust study, the
+    /// nominal problem before the robust ones, as its spreads' gradients cost second
+    /// derivatives and they move its optimum only a little, so that most starts need few
+    /// robust iterations from the nominal end. A nominal end that breaks a limit is
+    /// robust-infeasible too, its margins being only stricter.
+    pub fn stages(problem: &'p DesignProblem) -> Vec<Self> {
+        let first = super::part_rules::enforced(problem)
+            .map(|p| (p.first_rules(), p.rules().len()))
+            .filter(|(first, all)| first < all)
+            .map(|(first, _)| first);
+        let mut stages = Vec::new();
+        if problem.search.robust.is_some() {
+            stages.push(Self::with_rules_robust(
+                problem,
+                first.unwrap_or(usize::MAX),
+                false,
+            ));
+        }
+        if let Some(f) = first {
+            stages.push(Self::with_rules(problem, f));
+        }
+        stages.push(Self::new(problem));
+        stages
+    }
+
     /// The problem with the first `limit` of the part's rules (all, where fewer).
     fn with_rules(problem: &'p DesignProblem, limit: usize) -> Self {
+        Self::with_rules_robust(problem, limit, true)
+    }
+
+    /// [`DesignNlp::with_rules`], robust where the problem asks for it and `robust` is set.
+    fn with_rules_robust(problem: &'p DesignProblem, limit: usize, robust: bool) -> Self {
         let free: Vec<_> = problem.free_variables().collect();
         let model = problem.model();
         let mut rows = Vec::new();
@@ -208,7 +240,7 @@ impl<'p> DesignNlp<'p> {
                 spread: None,
             });
         }
-        let spreads = spreads(problem);
+        let spreads = spreads(problem).filter(|_| robust);
         if spreads.is_some() {
             let first = wanted.len() + fits.len() + rules;
             for r in rows

@@ -175,7 +175,9 @@ pub fn run(problem: &Problem, options: &StudyOptions) -> Study {
 }
 
 fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -> Study {
-    let nlp = DesignNlp::new(problem);
+    // the problems each start is solved in, in turn, the study's own last
+    let stages = DesignNlp::stages(problem);
+    let nlp = stages.last().expect("a study solves its own problem last");
     let n = nlp.dimension();
     let sampling = match problem.search.sampling {
         Sampling::Uniform => StartSampling::Uniform,
@@ -206,16 +208,7 @@ fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -
         .then(|| Progress::new("local solves", range.len(), &label));
     let progress = progress.as_ref();
     let begin = Instant::now();
-    // the part's rules it keeps for the end of each start, if any (crate::optim::staged)
-    let first = DesignNlp::first_stage(problem);
-    let staged =
-        |whole: &dyn OptimProblem,
-         first: Option<&dyn OptimProblem>,
-         x0: &[f64],
-         solve: &dyn Fn(&dyn OptimProblem, &[f64]) -> Solution| match first {
-            Some(first) => staged::solve(first, whole, x0, FEASIBILITY_TOLERANCE, solve),
-            None => solve(whole, x0),
-        };
+    let plain: Vec<&dyn OptimProblem> = stages.iter().map(|s| s as _).collect();
     let solutions = match options.solver {
         Solver::Sqp => {
             let settings = SqpSettings {
@@ -226,14 +219,17 @@ fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -
             let sqp = |p: &dyn OptimProblem, x0: &[f64]| sqp::solve(p, x0, &settings);
             // a minimized maximum: its kinks removed by the epigraph form, whose extra
             // variable is dropped again below
-            match Epigraph::new(&nlp) {
+            match Epigraph::new(nlp) {
                 Some(ep) => {
-                    let ep_first = first.as_ref().and_then(Epigraph::new);
+                    let ep_stages: Vec<Epigraph> =
+                        stages.iter().filter_map(Epigraph::new).collect();
+                    let ep_stages: Vec<&dyn OptimProblem> =
+                        ep_stages.iter().map(|s| s as _).collect();
                     let starts: Vec<Vec<f64>> = starts.iter().map(|u| ep.start(u)).collect();
                     multistart::run_until(
                         &ep,
                         &starts,
-                        |p, x0| staged(p, ep_first.as_ref().map(|e| e as _), x0, &sqp),
+                        |_, x0| in_stages(&ep_stages, x0, &sqp),
                         options.threads,
                         progress,
                         &options.stop,
@@ -248,9 +244,9 @@ fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -
                     .collect()
                 }
                 None => multistart::run_until(
-                    &nlp,
+                    nlp,
                     starts,
-                    |p, x0| staged(p, first.as_ref().map(|f| f as _), x0, &sqp),
+                    |_, x0| in_stages(&plain, x0, &sqp),
                     options.threads,
                     progress,
                     &options.stop,
@@ -265,9 +261,9 @@ fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -
             };
             let nm = |p: &dyn OptimProblem, x0: &[f64]| nelder_mead::solve(p, x0, &settings);
             multistart::run_until(
-                &nlp,
+                nlp,
                 starts,
-                |p, x0| staged(p, first.as_ref().map(|f| f as _), x0, &nm),
+                |_, x0| in_stages(&plain, x0, &nm),
                 options.threads,
                 progress,
                 &options.stop,
@@ -296,6 +292,31 @@ fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -
     let mut study = from_runs(problem, options, runs, interrupted, range);
     study.elapsed = begin.elapsed();
     study
+}
+
+/// The solution from `x0` of the last of `stages`, each a relaxation of the next: the
+/// start solved in the first, its end taken on through the rest ([`staged::solve`] nested,
+/// the stages before the last solved as one relaxation of it).
+fn in_stages(
+    stages: &[&dyn OptimProblem],
+    x0: &[f64],
+    solve: &dyn Fn(&dyn OptimProblem, &[f64]) -> Solution,
+) -> Solution {
+    match stages {
+        [] => unreachable!("a start is solved in one stage at least"),
+        [whole] => solve(*whole, x0),
+        [.., relaxed, whole] => {
+            let before = &stages[..stages.len() - 1];
+            let stage = |p: &dyn OptimProblem, x: &[f64]| {
+                if std::ptr::addr_eq(p, *relaxed) {
+                    in_stages(before, x, solve)
+                } else {
+                    solve(p, x)
+                }
+            };
+            staged::solve(*relaxed, *whole, x0, FEASIBILITY_TOLERANCE, stage)
+        }
+    }
 }
 
 /// The study of the starts `range` from their runs (in the order of their starts; their

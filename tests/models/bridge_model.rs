@@ -333,3 +333,56 @@ fn the_quarter_as_a_flexure_network_has_appendix_as_coefficients() {
     // 2.4e-12 measured: round-off of the 9 x 9 solve and of the closed form's sums
     assert!(worst < 1e-10, "worst relative difference {worst:e}");
 }
+
+/// The Hessians a robust study's spreads use (`ModulusScaling::evaluate_with_hessian`, by
+/// flexopt's `Jet2`) against num-dual's second-order numbers through the same generic code,
+/// over the parameters and the moduli's factor.
+#[test]
+fn jet2_and_num_dual_give_the_same_hessians() {
+    use flexopt::model::bridge::Geometry;
+    use flexopt::model::mechanism::ModulusScaling;
+    use nalgebra::{Const, U1};
+    use num_dual::Dual2SVec64;
+    const N: usize = 9;
+    let model = wei2017();
+    let all: Vec<usize> = (0..BridgeOutput::ALL.len()).collect();
+    let m = all.len();
+    let mut r = rng(12);
+    let mut worst = 0.0f64;
+    for _ in 0..200 {
+        let x = random_design(&mut r);
+        let (mut out, mut jac, mut hess) = (vec![0.0; m], vec![0.0; m * N], vec![0.0; m * N * N]);
+        model.evaluate_with_hessian(&x, &all, &mut out, &mut jac, &mut hess);
+        let xd: [Dual2SVec64<N>; 8] =
+            std::array::from_fn(|i| Dual2SVec64::from_re(x[i]).derivative(i));
+        let modulus = Dual2SVec64::<N>::from_re(1.0).derivative(N - 1);
+        let mut nd = vec![Dual2SVec64::<N>::from_re(0.0); m];
+        model.evaluate_with_modulus(&Geometry::from_array(xd), Some(modulus), &all, &mut nd);
+        for (k, d) in nd.iter().enumerate() {
+            // the dynamic outputs' condensation costs a digit (see the gradients' test)
+            if k >= BridgeOutput::KOutActuated as usize {
+                continue;
+            }
+            let g = d.v1.unwrap_generic(U1, Const::<N>);
+            let h = d.v2.unwrap_generic(Const::<N>, Const::<N>);
+            let g_scale = g.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+            let h_scale = h.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+            let relative = |a: f64, b: f64, scale: f64| {
+                if scale > 0.0 {
+                    (a - b).abs() / scale
+                } else {
+                    (a - b).abs()
+                }
+            };
+            worst = worst.max(relative(out[k], d.re, d.re.abs()));
+            for i in 0..N {
+                worst = worst.max(relative(jac[k * N + i], g[i], g_scale));
+                for l in 0..N {
+                    worst = worst.max(relative(hess[(k * N + i) * N + l], h[(i, l)], h_scale));
+                }
+            }
+        }
+    }
+    eprintln!("Jet2 vs num-dual Hessians, worst relative difference: {worst:e}");
+    assert!(worst < 1e-12, "{worst:e}");
+}

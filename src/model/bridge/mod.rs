@@ -156,8 +156,8 @@ impl Bridge {
     }
 
     /// Values, gradients and Hessians of the outputs `wanted` at `x` and the nominal moduli,
-    /// with `N` = the number of parameters plus one, the modulus last: num-dual's
-    /// second-order numbers through the same generic code.
+    /// with `N` = the number of parameters plus one, the modulus last: second-order numbers
+    /// ([`super::jet2::Jet2`]) through the same generic code.
     fn hessians<const N: usize>(
         &self,
         x: &[f64],
@@ -166,12 +166,11 @@ impl Bridge {
         jacobian: &mut [f64],
         hessian: &mut [f64],
     ) {
-        use nalgebra::{Const, U1};
-        use num_dual::Dual2SVec64;
-        let seeded: Vec<Dual2SVec64<N>> = (0..N)
-            .map(|i| Dual2SVec64::from_re(if i + 1 < N { x[i] } else { 1.0 }).derivative(i))
+        use super::jet2::Jet2;
+        let seeded: Vec<Jet2<N>> = (0..N)
+            .map(|i| Jet2::variable(if i + 1 < N { x[i] } else { 1.0 }, i))
             .collect();
-        let mut y = vec![Dual2SVec64::<N>::from(0.0); wanted.len()];
+        let mut y = vec![Jet2::<N>::from(0.0); wanted.len()];
         let modulus = seeded[N - 1];
         self.evaluate_with_modulus(
             &self.layout.geometry(&seeded[..N - 1]),
@@ -179,16 +178,10 @@ impl Bridge {
             wanted,
             &mut y,
         );
-        for (i, yi) in y.into_iter().enumerate() {
+        for (i, yi) in y.iter().enumerate() {
             out[i] = yi.re;
-            let g = yi.v1.unwrap_generic(U1, Const::<N>);
-            let h = yi.v2.unwrap_generic(Const::<N>, Const::<N>);
-            for j in 0..N {
-                jacobian[i * N + j] = g[j];
-                for l in 0..N {
-                    hessian[(i * N + j) * N + l] = h[(j, l)];
-                }
-            }
+            jacobian[i * N..(i + 1) * N].copy_from_slice(&yi.grad);
+            yi.hessian(&mut hessian[i * N * N..(i + 1) * N * N]);
         }
     }
 
