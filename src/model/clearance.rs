@@ -98,12 +98,9 @@ pub fn clearance(a: Solid, b: Solid) -> (f64, Feature) {
 /// As [`clearance`], where it is below `bound`: none where the gap along an axis already
 /// shows it is not (the gap is a lower bound of the distance), at a fraction of the cost.
 pub fn clearance_below(a: Solid, b: Solid, bound: f64) -> Option<(f64, Feature)> {
-    let (gap, axis) = separation(a, b);
+    let (gap, axis) = separation(a, b, bound)?;
     if gap <= 0.0 {
         return Some((gap, axis));
-    }
-    if gap >= bound {
-        return None;
     }
     let mut best = (f64::INFINITY, axis);
     for (from_a, own, other) in [(true, a, b), (false, b, a)] {
@@ -145,8 +142,8 @@ fn to_segment(p: Pt<f64>, a: Pt<f64>, b: Pt<f64>) -> (f64, Option<usize>) {
 }
 
 /// The largest gap between the projections of `a` and `b` on the normal of any side of
-/// either, and its axis.
-fn separation(a: Solid, b: Solid) -> (f64, Feature) {
+/// either, and its axis; `None` as soon as an axis shows a gap of `bound` or more.
+fn separation(a: Solid, b: Solid, bound: f64) -> Option<(f64, Feature)> {
     let mut best = (f64::NEG_INFINITY, None);
     for (on_a, own) in [(true, a), (false, b)] {
         for &(i, j) in own.sides {
@@ -176,6 +173,9 @@ fn separation(a: Solid, b: Solid) -> (f64, Feature) {
                 (b_lo - a_hi, true, b_lo_k, a_hi_k),
                 (a_lo - b_hi, false, a_lo_k, b_hi_k),
             ] {
+                if gap >= bound {
+                    return None;
+                }
                 if gap > best.0 {
                     let f = Feature::Axis {
                         on_a,
@@ -191,7 +191,7 @@ fn separation(a: Solid, b: Solid) -> (f64, Feature) {
         }
     }
     let (gap, f) = best;
-    (gap, f.expect("a solid has at least two distinct corners"))
+    Some((gap, f.expect("a solid has at least two distinct corners")))
 }
 
 impl Feature {

@@ -190,11 +190,19 @@ impl Bridge {
     fn rule_gradients<const N: usize>(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
         let mut y = [Jet::<N>::from(0.0); part::rules::MAX_RULES];
         let y = &mut y[..out.len()];
-        part::rules::margins(&self.settings.part, &self.layout, &self.layout.seeded(x), y);
+        let mut values = [0.0; part::rules::MAX_RULES];
+        // the values as `rule_margins` computes them, to the last digit (a dual number's
+        // quotient rounds otherwise), and the clearances' nearest pairs found once, on them
+        part::rules::margins_seeded(
+            &self.settings.part,
+            &self.layout,
+            &self.layout.geometry(x),
+            &self.layout.seeded(x),
+            &mut values[..out.len()],
+            y,
+        );
         unseed(y, out, jacobian);
-        // the values as `rule_margins` computes them, to the last digit: a dual number's
-        // quotient rounds otherwise
-        self.rule_margins(x, out);
+        out.copy_from_slice(&values[..out.len()]);
     }
 }
 

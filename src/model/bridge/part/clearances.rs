@@ -31,7 +31,7 @@ use std::sync::OnceLock;
 
 use super::{across, band, rules::fillet, PartSettings, Quarter, P};
 use crate::model::bridge::{Geometry, Layout};
-use crate::model::clearance::{clearance_below, reach, Feature, Solid, ANY_ORDER, IN_ORDER};
+use crate::model::clearance::{clearance_below, reach, Feature, Reach, Solid, ANY_ORDER, IN_ORDER};
 use crate::model::part_rules::PartRule;
 use crate::model::scalar::{max, min, Scalar};
 
@@ -475,24 +475,43 @@ fn circle(p: &Piece<f64>) -> (P, f64) {
 /// are not in order around it where the link folds.
 const LINK: usize = 9;
 
-/// The clearance of `pair`'s shapes (the least over their pieces) less the slot it
-/// asks, or [`CAP`] where that is more: found on the real parts, then the nearest pieces
-/// over `D`.
-fn margin<D: Scalar>(
-    exact: &[Piece<D>; PIECES],
+/// What gives a clearance rule's margin at a design: the pieces and the feature of the
+/// nearest pair, with the slot it asks; `None` where every pair is farther than [`CAP`]
+/// beyond the rule.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Nearest {
+    pa: usize,
+    pb: usize,
+    feature: Feature,
+    need: f64,
+}
+
+/// What gives each clearance rule's margin at a design, found on the real parts once: the
+/// nearest pair of each rule of [`rows`], and the link width's two [`Reach`]es. The margins'
+/// values and, over dual numbers, their gradients follow from it ([`Selection::margins`]).
+pub struct Selection {
+    nearest: [Option<Nearest>; MAX_RULES],
+    link: [Reach; 2],
+}
+
+/// The least over `term`'s pairs of pieces of their clearance less the slot it asks, where
+/// that is below `least` (the rule's least margin so far, or [`CAP`]): the pair and its
+/// feature, or `None`. Pairs are taken in their order and a later one only where strictly
+/// nearer, so that a rule's nearest pair does not depend on the bound it was searched under.
+fn nearest(
     real: &[Piece<f64>; PIECES],
     circles: &[(P, f64); PIECES],
-    pair: Term,
+    term: Term,
     slot: f64,
-) -> D {
-    let need = if pair.slot { slot } else { 0.0 };
+    mut least: f64,
+) -> Option<(f64, Nearest)> {
+    let need = if term.slot { slot } else { 0.0 };
     let solid = |k: usize| Solid {
         corners: &real[k],
         sides: if k == LINK { &ANY_ORDER } else { &IN_ORDER },
     };
-    let mut best: Option<(usize, usize, Feature)> = None;
-    let mut least = CAP;
-    let (ra, rb) = (RANGES[pair.a], RANGES[pair.b]);
+    let mut best = None;
+    let (ra, rb) = (RANGES[term.a], RANGES[term.b]);
     for pa in ra.0..ra.0 + ra.1 {
         for pb in rb.0..rb.0 + rb.1 {
             // the bounding circles' gap, a lower bound of the clearance
@@ -501,49 +520,30 @@ fn margin<D: Scalar>(
             if (ca[0] - cb[0]).powi(2) + (ca[1] - cb[1]).powi(2) >= reach * reach {
                 continue;
             }
-            if let Some((c, f)) = clearance_below(solid(pa), solid(pb), least + need) {
+            if let Some((c, feature)) = clearance_below(solid(pa), solid(pb), least + need) {
                 if c - need < least {
                     least = c - need;
-                    best = Some((pa, pb, f));
+                    best = Some(Nearest {
+                        pa,
+                        pb,
+                        feature,
+                        need,
+                    });
                 }
             }
         }
     }
-    match best {
-        Some((pa, pb, f)) => f.value(&exact[pa], &exact[pb]) - need,
-        None => D::from(CAP),
-    }
+    best.map(|b| (least, b))
 }
 
-/// Each clearance rule's margin (m) at the design `g`, in the order of [`rules`], into
-/// `out` ([`count`] of them).
-pub fn margins<D: Scalar>(s: &PartSettings, layout: &Layout, g: &Geometry<D>, out: &mut [D]) {
-    let exact = pieces(s, layout, g);
-    let real = exact.map(|p| p.map(|q| q.map(|v| v.re())));
-    let circles = real.each_ref().map(circle);
-    let rows = rows(with_actuator(s));
-    for (o, row) in out.iter_mut().zip(rows) {
-        *o = row
-            .terms
-            .iter()
-            .map(|&t| margin(&exact, &real, &circles, t, s.min_slot))
-            .reduce(min)
-            .expect("a rule has a term");
-    }
-    out[rows.len()] = link_width(s, layout, g, &exact[LINK], &real[LINK]);
-}
-
-/// The middle link's width rule: a disc as wide as the thickest hinge the link carries
-/// travels inside it from hinge to hinge, meeting, at each, the round of the hinge's root
-/// width and fillets about the middle of its end (the face's centre), as the width check
-/// has it; the lesser of the two ends' [`reach`] margins.
-fn link_width<D: Scalar>(
+/// The link width's inputs at a design: the radius of the disc, and at each of the link's
+/// ends the face's centre it must reach within the allowance.
+fn link_ends<D: Scalar>(
     s: &PartSettings,
     layout: &Layout,
     g: &Geometry<D>,
     link: &Piece<D>,
-    real: &Piece<f64>,
-) -> D {
+) -> (D, [(P<D>, D); 2]) {
     let thickest = max(
         layout.hinge_b.least_thickness(g.b.dims()),
         layout.hinge_d.least_thickness(g.d.dims()),
@@ -551,24 +551,87 @@ fn link_width<D: Scalar>(
     let radius = thickest * 0.5;
     // the faces' centres: the middles of the link's two ends
     let centre = |a: P<D>, b: P<D>| [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5];
-    let ends = [
-        (
-            centre(link[0], link[1]),
-            layout.hinge_b.root_thickness(g.b.dims()),
-            fillet(s, layout.hinge_b),
-        ),
-        (
-            centre(link[2], link[3]),
-            layout.hinge_d.root_thickness(g.d.dims()),
-            fillet(s, layout.hinge_d),
-        ),
-    ];
-    let margins = ends.map(|(target, root, r)| {
-        let allowance = radius + root * 0.5 + r;
-        let (_, at) = reach(real, radius.re(), target.map(|v| v.re()), allowance.re());
-        at.value(link, radius, target, allowance)
-    });
-    min(margins[0], margins[1])
+    let end = |target: P<D>, root: D, r: f64| (target, radius + root * 0.5 + r);
+    (
+        radius,
+        [
+            end(
+                centre(link[0], link[1]),
+                layout.hinge_b.root_thickness(g.b.dims()),
+                fillet(s, layout.hinge_b),
+            ),
+            end(
+                centre(link[2], link[3]),
+                layout.hinge_d.root_thickness(g.d.dims()),
+                fillet(s, layout.hinge_d),
+            ),
+        ],
+    )
+}
+
+impl Selection {
+    /// Each clearance rule's margin (m) at the design `g` into `out` ([`count`] of them), in
+    /// the order of [`rules`], with what gives each. A rule's terms share the search's
+    /// bound: a term's pairs are looked at only below the least margin of the terms before
+    /// it, which leaves the least, and the first term that has it, as they were.
+    pub fn find(s: &PartSettings, layout: &Layout, g: &Geometry<f64>, out: &mut [f64]) -> Self {
+        let real = pieces(s, layout, g);
+        let circles = real.each_ref().map(circle);
+        let rows = rows(with_actuator(s));
+        let mut nearest = [None; MAX_RULES];
+        for ((o, row), chosen) in out.iter_mut().zip(rows).zip(&mut nearest) {
+            let mut least = CAP;
+            for &t in &row.terms {
+                if let Some((m, n)) = self::nearest(&real, &circles, t, s.min_slot, least) {
+                    least = m;
+                    *chosen = Some(n);
+                }
+            }
+            // the value as the feature gives it, the same arithmetic the gradient's
+            *o = chosen.map_or(CAP, |n| n.feature.value(&real[n.pa], &real[n.pb]) - n.need);
+        }
+        let (radius, ends) = link_ends(s, layout, g, &real[LINK]);
+        let link = ends.map(|(target, allowance)| reach(&real[LINK], radius, target, allowance).1);
+        let selection = Selection { nearest, link };
+        out[rows.len()] = selection.link_width(radius, ends, &real[LINK]);
+        selection
+    }
+
+    /// The margins at the design `g` over `D` (dual numbers whose real parts are the design
+    /// the selection was found at), each by what gives it there: [`CAP`] where no pair is
+    /// near.
+    pub fn margins<D: Scalar>(
+        &self,
+        s: &PartSettings,
+        layout: &Layout,
+        g: &Geometry<D>,
+        out: &mut [D],
+    ) {
+        let exact = pieces(s, layout, g);
+        let rules = rows(with_actuator(s)).len();
+        for (o, n) in out[..rules].iter_mut().zip(&self.nearest) {
+            *o = n.map_or(D::from(CAP), |n| {
+                n.feature.value(&exact[n.pa], &exact[n.pb]) - n.need
+            });
+        }
+        let (radius, ends) = link_ends(s, layout, g, &exact[LINK]);
+        out[rules] = self.link_width(radius, ends, &exact[LINK]);
+    }
+
+    /// The middle link's width rule: a disc as wide as the thickest hinge the link carries
+    /// travels inside it from hinge to hinge, meeting, at each, the round of the hinge's
+    /// root width and fillets about the middle of its end (the face's centre), as the width
+    /// check has it; the lesser of the two ends' [`reach`] margins.
+    fn link_width<D: Scalar>(&self, radius: D, ends: [(P<D>, D); 2], link: &Piece<D>) -> D {
+        let [a, b] = [0, 1].map(|k| self.link[k].value(link, radius, ends[k].0, ends[k].1));
+        min(a, b)
+    }
+}
+
+/// Each clearance rule's margin (m) at the design `g`, in the order of [`rules`], into
+/// `out` ([`count`] of them).
+pub fn margins(s: &PartSettings, layout: &Layout, g: &Geometry<f64>, out: &mut [f64]) {
+    Selection::find(s, layout, g, out);
 }
 
 #[cfg(test)]

@@ -112,7 +112,37 @@ pub fn fillet(s: &PartSettings, kind: HingeKind) -> f64 {
 
 /// Each rule's margin (m) at the design `g`, in the order of [`rules`]: the first
 /// `out.len()` of them (all, or the [`first_rules`]).
-pub fn margins<D: Scalar>(s: &PartSettings, layout: &Layout, g: &Geometry<D>, out: &mut [D]) {
+pub fn margins(s: &PartSettings, layout: &Layout, g: &Geometry<f64>, out: &mut [f64]) {
+    size_margins(s, layout, g, out);
+    let first = first_rules(s);
+    if out.len() > first {
+        clearances::margins(s, layout, g, &mut out[first..]);
+    }
+}
+
+/// [`margins`] at the design `real` into `values`, and over `D` at `g`, the same design
+/// over dual numbers, into `out`: the clearances' nearest pairs are searched for once, on
+/// the real design, and only their features evaluated over `D`.
+pub fn margins_seeded<D: Scalar>(
+    s: &PartSettings,
+    layout: &Layout,
+    real: &Geometry<f64>,
+    g: &Geometry<D>,
+    values: &mut [f64],
+    out: &mut [D],
+) {
+    size_margins(s, layout, real, values);
+    size_margins(s, layout, g, out);
+    let first = first_rules(s);
+    if out.len() > first {
+        let selection = clearances::Selection::find(s, layout, real, &mut values[first..]);
+        selection.margins(s, layout, g, &mut out[first..]);
+    }
+}
+
+/// The size rules' margins and the pocket's, the first `out.len()` of them (at most
+/// [`first_rules`]).
+fn size_margins<D: Scalar>(s: &PartSettings, layout: &Layout, g: &Geometry<D>, out: &mut [D]) {
     let t = g.trig();
     let (s2, c2, s4, c4) = (t.s[0], t.c[0], t.s[2], t.c[2]);
     let (rb, rd) = (fillet(s, layout.hinge_b), fillet(s, layout.hinge_d));
@@ -148,13 +178,9 @@ pub fn margins<D: Scalar>(s: &PartSettings, layout: &Layout, g: &Geometry<D>, ou
         slot_bottom + s4 / c4 * (2.0 * s.output_block_height),
         pocket,
     ];
-    // the pocket's rule after the size rules, where there is one, then the clearances
-    let first = first_rules(s);
-    let n = out.len().min(first);
+    // the pocket's rule after the size rules, where there is one
+    let n = out.len().min(first_rules(s));
     out[..n].copy_from_slice(&all[..n]);
-    if out.len() > first {
-        clearances::margins(s, layout, g, &mut out[first..]);
-    }
 }
 
 /// How many rules come before the clearances: the size rules and the pocket's. The study
