@@ -11,20 +11,22 @@
 
 use super::problem::{max_violation, Problem, Solution, Status};
 
-/// The solution of `whole` from `x0`: `solve` on `first` from `x0`, then, where its end
-/// meets `first`'s constraints within `tolerance` but not `whole`'s, `solve` on `whole` from
-/// that end. The iterations and evaluations of both stages are counted.
-pub fn solve<S>(
-    first: &dyn Problem,
+/// The solution of `whole` from `x0`: `relaxed`, the relaxation solved from `x0` (itself
+/// in stages, where it has its own relaxation), then, where its end meets the relaxation's
+/// constraints within `tolerance` but not `whole`'s, `solve` on `whole` from that end. The
+/// iterations and evaluations of both stages are counted.
+pub fn solve<R, S>(
     whole: &dyn Problem,
     x0: &[f64],
     tolerance: f64,
+    relaxed: R,
     solve: S,
 ) -> Solution
 where
-    S: Fn(&dyn Problem, &[f64]) -> Solution,
+    R: FnOnce(&[f64]) -> Solution,
+    S: FnOnce(&dyn Problem, &[f64]) -> Solution,
 {
-    let relaxed = solve(first, x0);
+    let relaxed = relaxed(x0);
     let mut c = vec![0.0; whole.constraint_count()];
     let objective = whole.evaluate(&relaxed.x, &mut c);
     let violation = max_violation(&c, whole.equality_count());

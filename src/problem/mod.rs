@@ -84,6 +84,42 @@ pub struct Constraint {
     pub unit: Unit,
 }
 
+/// The size a limit's relative margins and violations are measured against: the limit's
+/// own, or 1 for a limit of zero.
+pub fn limit_scale(limit: f64) -> f64 {
+    if limit == 0.0 {
+        1.0
+    } else {
+        limit.abs()
+    }
+}
+
+impl Constraint {
+    /// The distance from `value` to the nearest limit (positive inside) and that limit's
+    /// [`limit_scale`].
+    pub fn nearest_limit(&self, value: f64) -> Option<(f64, f64)> {
+        [
+            self.lower.map(|lo| (value - lo, lo)),
+            self.upper.map(|hi| (hi - value, hi)),
+        ]
+        .into_iter()
+        .flatten()
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(margin, limit)| (margin, limit_scale(limit)))
+    }
+
+    /// The distance from `value` to the nearest limit in standard deviations `std` of the
+    /// output (infinite, of the margin's sign, for an output nothing moves).
+    pub fn margin_in_sigma(&self, value: f64, std: f64) -> f64 {
+        let margin = self.nearest_limit(value).map_or(f64::INFINITY, |(m, _)| m);
+        if std > 0.0 {
+            margin / std
+        } else {
+            margin.signum() * f64::INFINITY
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Solver {

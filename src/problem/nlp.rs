@@ -184,7 +184,7 @@ impl<'p> DesignNlp<'p> {
             }
         }
         for (k, c) in problem.constraints.iter().enumerate() {
-            let scale = |l: f64| if l == 0.0 { 1.0 } else { l.abs() };
+            let scale = super::limit_scale;
             if let Some(lo) = c.lower {
                 rows.push(Row {
                     constraint: k,

@@ -10,7 +10,7 @@ use crate::optim::problem::{Problem as _, Status};
 use crate::optim::sqp::{self, SqpSettings};
 use crate::problem::epigraph::Epigraph;
 use crate::problem::nlp::{merit, DesignNlp, FEASIBILITY_TOLERANCE};
-use crate::problem::Problem;
+use crate::problem::{limit_scale, Problem};
 use crate::tolerance::{first_order, Outputs};
 
 /// What every step needs.
@@ -147,7 +147,7 @@ impl Context<'_> {
         } else {
             values[0]
         };
-        let scale = |l: f64| if l == 0.0 { 1.0 } else { l.abs() };
+        let scale = limit_scale;
         let violations: Vec<f64> = self
             .problem
             .constraints
@@ -248,12 +248,8 @@ impl Context<'_> {
             let k = self.slot(c.index);
             if self.corrected[k] {
                 let m = self.margin + centre.margins[k];
-                c.lower = c
-                    .lower
-                    .map(|lo| lo + m * if lo == 0.0 { 1.0 } else { lo.abs() });
-                c.upper = c
-                    .upper
-                    .map(|hi| hi - m * if hi == 0.0 { 1.0 } else { hi.abs() });
+                c.lower = c.lower.map(|lo| lo + m * limit_scale(lo));
+                c.upper = c.upper.map(|hi| hi - m * limit_scale(hi));
             }
         }
         for (v, (&xi, &r)) in p.variables.iter_mut().zip(x.iter().zip(&self.range)) {

@@ -28,7 +28,7 @@ use serde::Serialize;
 
 use super::HighFidelity;
 use crate::problem::Problem;
-use crate::tolerance::monte_carlo::{count_met, draw_sample, out_of_domain, wilson};
+use crate::tolerance::monte_carlo::{count_met, draw_sample, mean_and_std, out_of_domain, wilson};
 use crate::tolerance::Analysis;
 
 /// Why a measured spread could not be made.
@@ -197,7 +197,7 @@ pub fn measure_spread(
             let factor = m0 / a0;
             let (beta, beta_error) = regression(&da, &dm).unwrap_or((factor, 0.0));
             let measured: Vec<f64> = samples.iter().map(|s| s.measured[k]).collect();
-            let sample_std = std_dev(&measured);
+            let sample_std = mean_and_std(&measured).1;
             MeasuredSpread {
                 output: model.outputs()[wanted[j]].name.to_string(),
                 analytic: a0,
@@ -249,13 +249,6 @@ fn regression(x: &[f64], y: &[f64]) -> Option<(f64, f64)> {
     let residual: f64 = x.iter().zip(y).map(|(a, b)| (b - beta * a).powi(2)).sum();
     let se = (residual / (x.len() - 1) as f64 / xx).sqrt();
     Some((beta, se))
-}
-
-/// The sample standard deviation (`n - 1` in the denominator).
-fn std_dev(v: &[f64]) -> f64 {
-    let n = v.len() as f64;
-    let mean = v.iter().sum::<f64>() / n;
-    (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt()
 }
 
 /// The 95 % interval of a normal population's standard deviation from a sample's `s` with

@@ -153,19 +153,8 @@ impl ConstraintReport {
     pub fn new(c: &Constraint, value: f64, active_tol: f64) -> Self {
         let u = &c.unit;
         let finite = value.is_finite();
-        let margins = [
-            c.lower.map(|lo| (value - lo, lo)),
-            c.upper.map(|hi| (hi - value, hi)),
-        ];
-        let nearest = margins
-            .into_iter()
-            .flatten()
-            .min_by(|a, b| a.0.total_cmp(&b.0));
-        let (margin, relative) = match nearest {
-            Some((m, limit)) if finite => {
-                let scale = if limit == 0.0 { 1.0 } else { limit.abs() };
-                (Some(u.from_si(m)), Some(m / scale))
-            }
+        let (margin, relative) = match c.nearest_limit(value) {
+            Some((m, scale)) if finite => (Some(u.from_si(m)), Some(m / scale)),
             _ => (None, None),
         };
         ConstraintReport {
@@ -339,20 +328,12 @@ fn robust_activity(problem: &Problem, x: &[f64], constraints: &mut [ConstraintRe
             continue;
         };
         let f = &spreads[slot];
-        let nearest = [
-            c.lower.map(|lo| (f.nominal - lo, lo)),
-            c.upper.map(|hi| (hi - f.nominal, hi)),
-        ]
-        .into_iter()
-        .flatten()
-        .min_by(|a, b| a.0.total_cmp(&b.0));
-        let Some((margin, limit)) = nearest else {
+        let Some((margin, scale)) = c.nearest_limit(f.nominal) else {
             continue;
         };
         if f.std.is_nan() || f.std <= 0.0 || !margin.is_finite() {
             continue;
         }
-        let scale = if limit == 0.0 { 1.0 } else { limit.abs() };
         report.margin_in_sigma = Some(margin / f.std);
         report.active = ((margin - robust.k_sigma * f.std) / scale).abs() <= ACTIVE_TOLERANCE;
     }

@@ -201,19 +201,9 @@ impl RobustCheck {
             let Some(o) = spread.outputs.iter().find(|o| o.output == name(c)) else {
                 continue;
             };
-            let margin = [
-                c.lower.map(|l| o.measured - l),
-                c.upper.map(|u| u - o.measured),
-            ]
-            .into_iter()
-            .flatten()
-            .fold(f64::INFINITY, f64::min);
-            let in_sigma = if o.std > 0.0 {
-                margin / o.std
-            } else {
-                margin.signum() * f64::INFINITY
-            };
-            check.margins_in_sigma.insert(c.output.clone(), in_sigma);
+            check
+                .margins_in_sigma
+                .insert(c.output.clone(), c.margin_in_sigma(o.measured, o.std));
         }
         check.meets_target = match robust.target_yield {
             Some(y) => spread.yield_fraction >= y,

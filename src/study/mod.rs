@@ -305,17 +305,13 @@ fn in_stages(
     match stages {
         [] => unreachable!("a start is solved in one stage at least"),
         [whole] => solve(*whole, x0),
-        [.., relaxed, whole] => {
-            let before = &stages[..stages.len() - 1];
-            let stage = |p: &dyn OptimProblem, x: &[f64]| {
-                if std::ptr::addr_eq(p, *relaxed) {
-                    in_stages(before, x, solve)
-                } else {
-                    solve(p, x)
-                }
-            };
-            staged::solve(*relaxed, *whole, x0, FEASIBILITY_TOLERANCE, stage)
-        }
+        [before @ .., whole] => staged::solve(
+            *whole,
+            x0,
+            FEASIBILITY_TOLERANCE,
+            |x| in_stages(before, x, solve),
+            solve,
+        ),
     }
 }
 

@@ -182,19 +182,25 @@ pub fn count_met(outputs: &Outputs, values: &[f64]) -> (Vec<usize>, usize) {
     (met, all)
 }
 
+/// The mean of `v` and its sample standard deviation (`n - 1` in the denominator).
+pub fn mean_and_std(v: &[f64]) -> (f64, f64) {
+    let n = v.len();
+    let mean = v.iter().sum::<f64>() / n as f64;
+    let var = v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1).max(1) as f64;
+    (mean, var.sqrt())
+}
+
 fn summarize(outputs: &Outputs, values: Vec<f64>, settings: Settings) -> MonteCarlo {
     let (n, m) = (settings.samples, outputs.wanted.len());
     let (met, all) = count_met(outputs, &values);
     let spreads = (0..m)
         .map(|j| {
             let mut column: Vec<f64> = values.iter().skip(j).step_by(m).copied().collect();
-            let mean = column.iter().sum::<f64>() / n as f64;
-            let var =
-                column.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1).max(1) as f64;
+            let (mean, std) = mean_and_std(&column);
             column.sort_by(f64::total_cmp);
             Spread {
                 mean,
-                std: var.sqrt(),
+                std,
                 quantiles: QUANTILES.map(|q| [q, quantile(&column, q)]).to_vec(),
                 min: column[0],
                 max: column[n - 1],

@@ -5,8 +5,8 @@
 use indexmap::IndexMap;
 use serde::Serialize;
 
+use super::analyze;
 use super::monte_carlo::Settings;
-use super::{analyze, FirstOrder};
 use crate::problem::Problem;
 use crate::study::{self, StudyOptions};
 
@@ -90,7 +90,7 @@ fn side(problem: &Problem, x: &[f64], objective: f64, settings: Settings) -> Res
                 .unwrap_or(0);
             (
                 c.output.clone(),
-                margin_in_sigma(&a.first_order[j], c.lower, c.upper),
+                c.margin_in_sigma(a.first_order[j].nominal, a.first_order[j].std),
             )
         })
         .collect();
@@ -101,18 +101,4 @@ fn side(problem: &Problem, x: &[f64], objective: f64, settings: Settings) -> Res
         yield_interval: a.monte_carlo.yield_interval,
         margins_in_sigma: margins,
     })
-}
-
-/// The distance from an output's nominal value to its nearest limit over its first-order
-/// standard deviation (infinite for an output no tolerance moves).
-fn margin_in_sigma(f: &FirstOrder, lower: Option<f64>, upper: Option<f64>) -> f64 {
-    let margin = [lower.map(|l| f.nominal - l), upper.map(|u| u - f.nominal)]
-        .into_iter()
-        .flatten()
-        .fold(f64::INFINITY, f64::min);
-    if f.std > 0.0 {
-        margin / f.std
-    } else {
-        margin.signum() * f64::INFINITY
-    }
 }
