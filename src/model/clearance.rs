@@ -246,10 +246,21 @@ struct Side {
     left: bool,
 }
 
+/// The most corners a solid of [`reach`] has (the part's pieces are quadrilaterals), and
+/// so the most segments between them: the sides and lines live in arrays of this size, as
+/// a width is worked out at every evaluation of the study's rules.
+const MAX_CORNERS: usize = 4;
+const MAX_SIDES: usize = MAX_CORNERS * (MAX_CORNERS - 1) / 2;
+
 /// The sides of the convex hull of `corners`: the segments with every other corner on one
-/// side of them.
-fn sides(corners: &[Pt<f64>]) -> Vec<Side> {
-    let mut out = Vec::new();
+/// side of them, the first `count` of the array.
+fn sides(corners: &[Pt<f64>]) -> ([Side; MAX_SIDES], usize) {
+    assert!(
+        corners.len() <= MAX_CORNERS,
+        "a solid of at most {MAX_CORNERS} corners"
+    );
+    let mut out = [Side::default(); MAX_SIDES];
+    let mut count = 0;
     for i in 0..corners.len() {
         for j in i + 1..corners.len() {
             let d = sub(corners[j], corners[i]);
@@ -262,11 +273,12 @@ fn sides(corners: &[Pt<f64>]) -> Vec<Side> {
                 }
             }
             if left != right {
-                out.push(Side { i, j, left });
+                out[count] = Side { i, j, left };
+                count += 1;
             }
         }
     }
-    out
+    (out, count)
 }
 
 impl Side {
@@ -315,8 +327,12 @@ pub struct Reach {
 /// optimum is one of the points where the disc's constraint and up to two sides hold with
 /// equality, or three sides do, and the feasible one with the largest `s` is it.
 pub fn reach(corners: &[Pt<f64>], radius: f64, target: Pt<f64>, allowance: f64) -> (f64, Reach) {
-    let sides = sides(corners);
-    let lines: Vec<(Pt<f64>, f64)> = sides.iter().map(|s| s.line(corners, radius)).collect();
+    let (sides, count) = sides(corners);
+    let mut lines = [([0.0; 2], 0.0); MAX_SIDES];
+    for (l, s) in lines.iter_mut().zip(&sides[..count]) {
+        *l = s.line(corners, radius);
+    }
+    let lines = &lines[..count];
     let scale = allowance.abs().max(radius).max(1e-300);
     let feasible = |(p, s): (Pt<f64>, f64)| {
         let slack = 1e-9 * scale;
@@ -325,7 +341,7 @@ pub fn reach(corners: &[Pt<f64>], radius: f64, target: Pt<f64>, allowance: f64) 
     };
     let mut best = (f64::NEG_INFINITY, Active::AtTarget);
     let mut consider = |r: Active| {
-        if let Some((p, s)) = solve(r, &lines, target, allowance) {
+        if let Some((p, s)) = solve(r, lines, target, allowance) {
             if s > best.0 && feasible((p, s)) {
                 best = (s, r);
             }
@@ -344,14 +360,14 @@ pub fn reach(corners: &[Pt<f64>], radius: f64, target: Pt<f64>, allowance: f64) 
         }
     }
     // the sides the optimum stands on, renumbered to their place among them
-    let (active, named) = match best.1 {
-        Active::AtTarget => (Active::AtTarget, vec![]),
-        Active::OneSide(a) => (Active::OneSide(0), vec![a]),
-        Active::TwoSides(a, b, r) => (Active::TwoSides(0, 1, r), vec![a, b]),
-        Active::ThreeSides(a, b, c) => (Active::ThreeSides(0, 1, 2), vec![a, b, c]),
+    let (active, named, count) = match best.1 {
+        Active::AtTarget => (Active::AtTarget, [0; 3], 0),
+        Active::OneSide(a) => (Active::OneSide(0), [a, 0, 0], 1),
+        Active::TwoSides(a, b, r) => (Active::TwoSides(0, 1, r), [a, b, 0], 2),
+        Active::ThreeSides(a, b, c) => (Active::ThreeSides(0, 1, 2), [a, b, c], 3),
     };
     let mut chosen = [Side::default(); 3];
-    for (slot, &k) in chosen.iter_mut().zip(&named) {
+    for (slot, &k) in chosen.iter_mut().zip(&named[..count]) {
         *slot = sides[k];
     }
     let at = Reach {
@@ -371,11 +387,12 @@ impl Reach {
             Active::TwoSides(..) => 2,
             Active::ThreeSides(..) => 3,
         };
-        let lines: Vec<(Pt<D>, D)> = self.sides[..count]
-            .iter()
-            .map(|s| s.line(corners, radius))
-            .collect();
-        solve(self.active, &lines, target, allowance).map_or(D::from(f64::NAN), |(_, s)| s)
+        let zero = D::from(0.0);
+        let mut lines = [([zero; 2], zero); 3];
+        for (l, s) in lines.iter_mut().zip(&self.sides[..count]) {
+            *l = s.line(corners, radius);
+        }
+        solve(self.active, &lines[..count], target, allowance).map_or(D::from(f64::NAN), |(_, s)| s)
     }
 }
 
