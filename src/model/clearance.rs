@@ -238,6 +238,64 @@ impl Feature {
     }
 }
 
+impl Feature {
+    /// Where this feature measures the clearance of the solids with corners `a` and `b`
+    /// (real parts): `a`'s point, then `b`'s. Apart, a corner and its foot on the other's
+    /// segment, as far apart as the clearance; overlapping, the corner ahead along the
+    /// axis and its projection on the line across the axis through the corner behind, as
+    /// far apart as the overlap is deep.
+    pub fn witness(&self, a: &[Pt<f64>], b: &[Pt<f64>]) -> [Pt<f64>; 2] {
+        match *self {
+            Feature::CornerSegment {
+                from_a,
+                p,
+                i,
+                j,
+                clamp,
+            } => {
+                let (own, other) = if from_a { (a, b) } else { (b, a) };
+                let (q, s, e) = (own[p], other[i], other[j]);
+                let foot = match clamp {
+                    Some(0) => s,
+                    Some(_) => e,
+                    None => {
+                        let d = sub(e, s);
+                        let t = dot(sub(q, s), d) / dot(d, d);
+                        [s[0] + t * d[0], s[1] + t * d[1]]
+                    }
+                };
+                if from_a {
+                    [q, foot]
+                } else {
+                    [foot, q]
+                }
+            }
+            Feature::Axis {
+                on_a,
+                i,
+                j,
+                a_behind,
+                lo,
+                hi,
+            } => {
+                let own = if on_a { a } else { b };
+                let d = sub(own[j], own[i]);
+                let len = norm(d);
+                let n = [-d[1] / len, d[0] / len];
+                let (ahead, behind) = if a_behind { (b, a) } else { (a, b) };
+                let p = ahead[lo];
+                let gap = dot(n, p) - dot(n, behind[hi]);
+                let q = [p[0] - n[0] * gap, p[1] - n[1] * gap];
+                if a_behind {
+                    [q, p]
+                } else {
+                    [p, q]
+                }
+            }
+        }
+    }
+}
+
 /// A side of a convex solid: its corners `(i, j)` and whether the solid lies to its left.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct Side {
@@ -393,6 +451,28 @@ impl Reach {
             *l = s.line(corners, radius);
         }
         solve(self.active, &lines[..count], target, allowance).map_or(D::from(f64::NAN), |(_, s)| s)
+    }
+}
+
+impl Reach {
+    /// Where this optimum measures the width (real parts): the centre of the widest disc
+    /// and the point where it touches the first side it stands on, `radius` plus the margin
+    /// apart; `None` where it stands on no side (the disc at the target, far inside).
+    pub fn witness(
+        &self,
+        corners: &[Pt<f64>],
+        radius: f64,
+        target: Pt<f64>,
+        allowance: f64,
+    ) -> Option<[Pt<f64>; 2]> {
+        if matches!(self.active, Active::AtTarget) {
+            return None;
+        }
+        let lines = self.sides.map(|s| s.line(corners, radius));
+        let (p, _) = solve(self.active, &lines, target, allowance)?;
+        let (n, c) = self.sides[0].line(corners, 0.0);
+        let gap = c - dot(n, p);
+        Some([p, [p[0] + n[0] * gap, p[1] + n[1] * gap]])
     }
 }
 
