@@ -238,6 +238,64 @@ impl Feature {
     }
 }
 
+impl Feature {
+    /// Where this feature measures the clearance of the solids with corners `a` and `b`
+    /// (real parts): `a`'s point, then `b`'s. Apart, a corner and its foot on the other's
+    /// segment, as far apart as the clearance; overlapping, the corner ahead along the
+    /// axis and its projection on the line across the axis through the corner behind, as
+    /// far apart as the overlap is deep.
+    pub fn witness(&self, a: &[Pt<f64>], b: &[Pt<f64>]) -> [Pt<f64>; 2] {
+        match *self {
+            Feature::CornerSegment {
+                from_a,
+                p,
+                i,
+                j,
+                clamp,
+            } => {
+                let (own, other) = if from_a { (a, b) } else { (b, a) };
+                let (q, s, e) = (own[p], other[i], other[j]);
+                let foot = match clamp {
+                    Some(0) => s,
+                    Some(_) => e,
+                    None => {
+                        let d = sub(e, s);
+                        let t = dot(sub(q, s), d) / dot(d, d);
+                        [s[0] + t * d[0], s[1] + t * d[1]]
+                    }
+                };
+                if from_a {
+                    [q, foot]
+                } else {
+                    [foot, q]
+                }
+            }
+            Feature::Axis {
+                on_a,
+                i,
+                j,
+                a_behind,
+                lo,
+                hi,
+            } => {
+                let own = if on_a { a } else { b };
+                let d = sub(own[j], own[i]);
+                let len = norm(d);
+                let n = [-d[1] / len, d[0] / len];
+                let (ahead, behind) = if a_behind { (b, a) } else { (a, b) };
+                let p = ahead[lo];
+                let gap = dot(n, p) - dot(n, behind[hi]);
+                let q = [p[0] - n[0] * gap, p[1] - n[1] * gap];
+                if a_behind {
+                    [q, p]
+                } else {
+                    [p, q]
+                }
+            }
+        }
+    }
+}
+
 /// A side of a convex solid: its corners `(i, j)` and whether the solid lies to its left.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct Side {
@@ -246,10 +304,21 @@ struct Side {
     left: bool,
 }
 
+/// The most corners a solid of [`reach`] has (the part's pieces are quadrilaterals), and
+/// so the most segments between them: the sides and lines live in arrays of this size, as
+/// a width is worked out at every evaluation of the study's rules.
+const MAX_CORNERS: usize = 4;
+const MAX_SIDES: usize = MAX_CORNERS * (MAX_CORNERS - 1) / 2;
+
 /// The sides of the convex hull of `corners`: the segments with every other corner on one
-/// side of them.
-fn sides(corners: &[Pt<f64>]) -> Vec<Side> {
-    let mut out = Vec::new();
+/// side of them, the first `count` of the array.
+fn sides(corners: &[Pt<f64>]) -> ([Side; MAX_SIDES], usize) {
+    assert!(
+        corners.len() <= MAX_CORNERS,
+        "a solid of at most {MAX_CORNERS} corners"
+    );
+    let mut out = [Side::default(); MAX_SIDES];
+    let mut count = 0;
     for i in 0..corners.len() {
         for j in i + 1..corners.len() {
             let d = sub(corners[j], corners[i]);
@@ -262,11 +331,12 @@ fn sides(corners: &[Pt<f64>]) -> Vec<Side> {
                 }
             }
             if left != right {
-                out.push(Side { i, j, left });
+                out[count] = Side { i, j, left };
+                count += 1;
             }
         }
     }
-    out
+    (out, count)
 }
 
 impl Side {
@@ -315,8 +385,12 @@ pub struct Reach {
 /// optimum is one of the points where the disc's constraint and up to two sides hold with
 /// equality, or three sides do, and the feasible one with the largest `s` is it.
 pub fn reach(corners: &[Pt<f64>], radius: f64, target: Pt<f64>, allowance: f64) -> (f64, Reach) {
-    let sides = sides(corners);
-    let lines: Vec<(Pt<f64>, f64)> = sides.iter().map(|s| s.line(corners, radius)).collect();
+    let (sides, count) = sides(corners);
+    let mut lines = [([0.0; 2], 0.0); MAX_SIDES];
+    for (l, s) in lines.iter_mut().zip(&sides[..count]) {
+        *l = s.line(corners, radius);
+    }
+    let lines = &lines[..count];
     let scale = allowance.abs().max(radius).max(1e-300);
     let feasible = |(p, s): (Pt<f64>, f64)| {
         let slack = 1e-9 * scale;
@@ -325,7 +399,7 @@ pub fn reach(corners: &[Pt<f64>], radius: f64, target: Pt<f64>, allowance: f64) 
     };
     let mut best = (f64::NEG_INFINITY, Active::AtTarget);
     let mut consider = |r: Active| {
-        if let Some((p, s)) = solve(r, &lines, target, allowance) {
+        if let Some((p, s)) = solve(r, lines, target, allowance) {
             if s > best.0 && feasible((p, s)) {
                 best = (s, r);
             }
@@ -344,14 +418,14 @@ pub fn reach(corners: &[Pt<f64>], radius: f64, target: Pt<f64>, allowance: f64) 
         }
     }
     // the sides the optimum stands on, renumbered to their place among them
-    let (active, named) = match best.1 {
-        Active::AtTarget => (Active::AtTarget, vec![]),
-        Active::OneSide(a) => (Active::OneSide(0), vec![a]),
-        Active::TwoSides(a, b, r) => (Active::TwoSides(0, 1, r), vec![a, b]),
-        Active::ThreeSides(a, b, c) => (Active::ThreeSides(0, 1, 2), vec![a, b, c]),
+    let (active, named, count) = match best.1 {
+        Active::AtTarget => (Active::AtTarget, [0; 3], 0),
+        Active::OneSide(a) => (Active::OneSide(0), [a, 0, 0], 1),
+        Active::TwoSides(a, b, r) => (Active::TwoSides(0, 1, r), [a, b, 0], 2),
+        Active::ThreeSides(a, b, c) => (Active::ThreeSides(0, 1, 2), [a, b, c], 3),
     };
     let mut chosen = [Side::default(); 3];
-    for (slot, &k) in chosen.iter_mut().zip(&named) {
+    for (slot, &k) in chosen.iter_mut().zip(&named[..count]) {
         *slot = sides[k];
     }
     let at = Reach {
@@ -371,11 +445,34 @@ impl Reach {
             Active::TwoSides(..) => 2,
             Active::ThreeSides(..) => 3,
         };
-        let lines: Vec<(Pt<D>, D)> = self.sides[..count]
-            .iter()
-            .map(|s| s.line(corners, radius))
-            .collect();
-        solve(self.active, &lines, target, allowance).map_or(D::from(f64::NAN), |(_, s)| s)
+        let zero = D::from(0.0);
+        let mut lines = [([zero; 2], zero); 3];
+        for (l, s) in lines.iter_mut().zip(&self.sides[..count]) {
+            *l = s.line(corners, radius);
+        }
+        solve(self.active, &lines[..count], target, allowance).map_or(D::from(f64::NAN), |(_, s)| s)
+    }
+}
+
+impl Reach {
+    /// Where this optimum measures the width (real parts): the centre of the widest disc
+    /// and the point where it touches the first side it stands on, `radius` plus the margin
+    /// apart; `None` where it stands on no side (the disc at the target, far inside).
+    pub fn witness(
+        &self,
+        corners: &[Pt<f64>],
+        radius: f64,
+        target: Pt<f64>,
+        allowance: f64,
+    ) -> Option<[Pt<f64>; 2]> {
+        if matches!(self.active, Active::AtTarget) {
+            return None;
+        }
+        let lines = self.sides.map(|s| s.line(corners, radius));
+        let (p, _) = solve(self.active, &lines, target, allowance)?;
+        let (n, c) = self.sides[0].line(corners, 0.0);
+        let gap = c - dot(n, p);
+        Some([p, [p[0] + n[0] * gap, p[1] + n[1] * gap]])
     }
 }
 

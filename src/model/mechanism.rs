@@ -9,7 +9,7 @@
 
 use std::sync::Arc;
 
-use super::part_rules::PartRule;
+use super::part_rules::{PartRule, Witness};
 use super::{Drawing, Model, Skeleton};
 use crate::part::analysis::FeCounterpart;
 use crate::part::{Part, PartError, PartSpec};
@@ -90,6 +90,10 @@ pub trait PartMaker: Send + Sync + std::fmt::Debug {
     /// As [`PartMaker::rule_margins`], with their exact gradients over every parameter,
     /// row-major (`jacobian[i * x.len() + p]`).
     fn rule_margins_with_gradient(&self, _x: &[f64], _out: &mut [f64], _jacobian: &mut [f64]) {}
+
+    /// Where each rule is measured at the design `x` (SI), into `out` (one per rule, in
+    /// their order): `None` where the model does not say.
+    fn rule_witnesses(&self, _x: &[f64], _out: &mut [Option<Witness>]) {}
 }
 
 /// A mechanism: its physics and the capabilities it has.

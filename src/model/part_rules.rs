@@ -30,6 +30,17 @@ pub struct PartRule {
     pub description: Cow<'static, str>,
 }
 
+/// Where a rule is measured on the part (m, in the part's frame), for a drawing to mark it:
+/// two points, one on each feature the rule keeps apart (two solids, a solid and a hinge's
+/// keep-out band, a disc's centre and the side it touches), as far apart as the rule's
+/// margin plus `limit` (the slot it asks, the disc's radius; 0 for no overlap), or, where
+/// two solids overlap, as far as the overlap is deep.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Witness {
+    pub points: [[f64; 2]; 2],
+    pub limit: f64,
+}
+
 /// Whether a margin (m) breaks its rule, by the part's checks.
 pub fn broken(margin: f64) -> bool {
     margin < -TOLERANCE

@@ -26,6 +26,9 @@ pub struct RuleCheck {
     pub met: bool,
     /// On the rule's limit: within the study's activity tolerance of it.
     pub active: bool,
+    /// Where the part measures it (mm), for the drawing ([`crate::model::part_rules::Witness`]).
+    #[serde(skip)]
+    pub witness_mm: Option<[[f64; 2]; 2]>,
 }
 
 /// Every rule the problem's part states, at the design `x` (SI, every parameter); none for
@@ -37,10 +40,14 @@ pub fn checks(problem: &Problem, x: &[f64]) -> Vec<RuleCheck> {
     let rules = part.rules();
     let mut margins = vec![0.0; rules.len()];
     part.rule_margins(x, &mut margins);
+    let mut witnesses = vec![None; rules.len()];
+    part.rule_witnesses(x, &mut witnesses);
     rules
         .iter()
         .zip(margins)
-        .map(|(r, m)| RuleCheck {
+        .zip(witnesses)
+        .map(|((r, m), w)| RuleCheck {
+            witness_mm: w.map(|w| w.points.map(|p| p.map(|v| v * crate::part::MM))),
             rule: r.name.to_string(),
             description: r.description.to_string(),
             margin_mm: m * crate::part::MM,

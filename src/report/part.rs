@@ -98,6 +98,21 @@ fn closest(rules: &[RuleCheck]) -> Option<&RuleCheck> {
         .min_by(|a, b| a.margin_mm.total_cmp(&b.margin_mm))
 }
 
+/// The label on the drawing's mark of the rule nearest its limit: its name and margin.
+fn witness_label(r: &RuleCheck) -> String {
+    format!("{}: margin {:.4} mm", r.rule, shown_margin(r.margin_mm))
+}
+
+/// A margin as the drawing shows it: on its limit it reads zero, not the rounding it is
+/// within.
+fn shown_margin(margin_mm: f64) -> f64 {
+    if margin_mm.abs() < 5e-5 {
+        0.0
+    } else {
+        margin_mm
+    }
+}
+
 /// The drawing's line on the rule nearest its limit.
 fn rule_line(r: &RuleCheck) -> String {
     let state = if !r.met {
@@ -107,12 +122,7 @@ fn rule_line(r: &RuleCheck) -> String {
     } else {
         "met"
     };
-    // a margin on its limit reads zero, not the rounding it is within
-    let margin = if r.margin_mm.abs() < 5e-5 {
-        0.0
-    } else {
-        r.margin_mm
-    };
+    let margin = shown_margin(r.margin_mm);
     format!(
         "nearest part rule: {} ({state}, margin {margin:.4} mm): {}",
         r.rule, r.description
@@ -126,7 +136,8 @@ fn face_colour(k: usize) -> RGBColor {
 
 /// `part.png`: the outline at true proportions, the faces, the annotations (their labels
 /// moved off the part where they would cover it), the plate's thickness in the title, and
-/// below the drawing the part's rule nearest its limit, where it states rules.
+/// below the drawing the part's rule nearest its limit, where it states rules, marked on the
+/// drawing where the part says where it is measured.
 fn drawing_png(
     path: &Path,
     problem: &str,
@@ -223,6 +234,13 @@ fn drawing_png(
                 &mut placed,
             )?;
         }
+        if let Some((r, w)) = nearest.and_then(|r| Some((r, r.witness_mm?))) {
+            let labels = Labels {
+                material: &material,
+                per_mm,
+            };
+            draw_witness(&mut chart, w, &witness_label(r), &labels, &mut placed)?;
+        }
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::UpperRight)
@@ -303,15 +321,6 @@ fn draw_annotation(
     placed: &mut Vec<geo::Rect>,
 ) -> Result<(), super::plot::DrawError> {
     let style = RGBColor(40, 40, 40);
-    let font = TextStyle::from((FAMILY, 14).into_font());
-    // a label's box (mm), a little larger than its text
-    let size = |chart: &Chart<'_, '_>, label: &str| -> Result<(f64, f64), super::plot::DrawError> {
-        let (w, h) = chart.plotting_area().estimate_text_size(label, &font)?;
-        Ok((
-            (f64::from(w) + 6.0) / labels.per_mm,
-            (f64::from(h) + 4.0) / labels.per_mm,
-        ))
-    };
     match a {
         Annotation::Length {
             a,
@@ -356,29 +365,7 @@ fn draw_annotation(
             let mid = (0.5 * (pa.0 + pb.0), 0.5 * (pa.1 + pb.1));
             let side = if off < 0.0 { -1.0 } else { 1.0 };
             let dir = (side * n[0], side * n[1]);
-            let (at, rect, moved) = place_label(mid, dir, size(chart, label)?, labels, placed);
-            if moved {
-                chart.draw_series(std::iter::once(PathElement::new(
-                    vec![mid, at],
-                    style.mix(0.5).stroke_width(1),
-                )))?;
-            }
-            chart.draw_series(std::iter::once(Rectangle::new(
-                [(rect.min().x, rect.min().y), (rect.max().x, rect.max().y)],
-                WHITE.mix(0.85).filled(),
-            )))?;
-            placed.push(rect);
-            chart.draw_series(std::iter::once(Text::new(
-                label.clone(),
-                at,
-                (FAMILY, 14)
-                    .into_font()
-                    .color(&style)
-                    .pos(plotters::style::text_anchor::Pos::new(
-                        plotters::style::text_anchor::HPos::Center,
-                        plotters::style::text_anchor::VPos::Center,
-                    )),
-            )))?;
+            draw_label(chart, label, (mid, dir), style, false, labels, placed)?;
         }
         Annotation::Note {
             at,
@@ -387,7 +374,7 @@ fn draw_annotation(
         } => {
             let p = (at[0] * MM, at[1] * MM);
             let q = (label_at[0] * MM, label_at[1] * MM);
-            let (w, h) = size(chart, label)?;
+            let (w, h) = label_size(chart, label, labels.per_mm)?;
             placed.push(geo::Rect::new(
                 (q.0 - w / 2.0, q.1),
                 (q.0 + w / 2.0, q.1 + h),
@@ -413,6 +400,93 @@ fn draw_annotation(
     Ok(())
 }
 
+/// A label beside the point `from.0`, towards `from.1` (off the part and the labels
+/// placed), on a white box in `colour`; a leader from the point where it was moved, or
+/// always where `leader`.
+fn draw_label(
+    chart: &mut Chart<'_, '_>,
+    label: &str,
+    from: ((f64, f64), (f64, f64)),
+    colour: RGBColor,
+    leader: bool,
+    labels: &Labels,
+    placed: &mut Vec<geo::Rect>,
+) -> Result<(), super::plot::DrawError> {
+    let (mid, dir) = from;
+    let size = label_size(chart, label, labels.per_mm)?;
+    let (at, rect, moved) = place_label(mid, dir, size, labels, placed);
+    if moved || leader {
+        chart.draw_series(std::iter::once(PathElement::new(
+            vec![mid, at],
+            colour.mix(0.5).stroke_width(1),
+        )))?;
+    }
+    chart.draw_series(std::iter::once(Rectangle::new(
+        [(rect.min().x, rect.min().y), (rect.max().x, rect.max().y)],
+        WHITE.mix(0.85).filled(),
+    )))?;
+    placed.push(rect);
+    chart.draw_series(std::iter::once(Text::new(
+        label.to_string(),
+        at,
+        (FAMILY, 14)
+            .into_font()
+            .color(&colour)
+            .pos(plotters::style::text_anchor::Pos::new(
+                plotters::style::text_anchor::HPos::Center,
+                plotters::style::text_anchor::VPos::Center,
+            )),
+    )))?;
+    Ok(())
+}
+
+/// A label's box (mm), a little larger than its text.
+fn label_size(
+    chart: &Chart<'_, '_>,
+    label: &str,
+    per_mm: f64,
+) -> Result<(f64, f64), super::plot::DrawError> {
+    let font = TextStyle::from((FAMILY, 14).into_font());
+    let (w, h) = chart.plotting_area().estimate_text_size(label, &font)?;
+    Ok(((f64::from(w) + 6.0) / per_mm, (f64::from(h) + 4.0) / per_mm))
+}
+
+/// The mark of the rule nearest its limit: a line between the two points where the part
+/// measures it, each a dot, and its label with a leader from the line's middle (off the
+/// part and the other labels, as theirs are: the witness often stands in a narrow slot).
+fn draw_witness(
+    chart: &mut Chart<'_, '_>,
+    [a, b]: [[f64; 2]; 2],
+    label: &str,
+    labels: &Labels,
+    placed: &mut Vec<geo::Rect>,
+) -> Result<(), super::plot::DrawError> {
+    let colour = RGBColor(230, 110, 0);
+    let (pa, pb) = ((a[0], a[1]), (b[0], b[1]));
+    chart.draw_series(std::iter::once(PathElement::new(
+        vec![pa, pb],
+        colour.stroke_width(3),
+    )))?;
+    for p in [pa, pb] {
+        chart.draw_series(std::iter::once(Circle::new(p, 4, colour.filled())))?;
+    }
+    let mid = (0.5 * (pa.0 + pb.0), 0.5 * (pa.1 + pb.1));
+    // across the line, or upwards where its ends coincide
+    let len = (pb.0 - pa.0).hypot(pb.1 - pa.1);
+    let dir = if len > 0.0 {
+        let n = (-(pb.1 - pa.1) / len, (pb.0 - pa.0) / len);
+        if n.1 < 0.0 {
+            (-n.0, -n.1)
+        } else {
+            n
+        }
+    } else {
+        (0.0, 1.0)
+    };
+    draw_label(chart, label, (mid, dir), colour, true, labels, placed)?;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -423,6 +497,7 @@ mod tests {
     #[test]
     fn the_drawing_names_the_rule_nearest_its_limit() {
         let rule = |name: &str, margin_mm: f64, met: bool, active: bool| RuleCheck {
+            witness_mm: None,
             rule: name.into(),
             description: format!("what {name} asks"),
             margin_mm,

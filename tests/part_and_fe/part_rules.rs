@@ -524,3 +524,128 @@ fn the_least_stress_bridge_is_made_on_its_middle_links_width() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (b[0] - a[0]).hypot(b[1] - a[1])
+}
+
+/// The distance (m) from `p` to the part's outline, its arcs taken as chords.
+fn to_outline(part: &flexopt::part::Part, p: [f64; 2]) -> f64 {
+    let mut least = f64::INFINITY;
+    for l in &part.loops {
+        let pts = l.points(24);
+        for (k, &a) in pts.iter().enumerate() {
+            let b = pts[(k + 1) % pts.len()];
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let len2 = d[0] * d[0] + d[1] * d[1];
+            let t = if len2 > 0.0 {
+                (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            least = least.min(distance(p, [a[0] + t * d[0], a[1] + t * d[1]]));
+        }
+    }
+    least
+}
+
+#[test]
+fn each_rules_witness_points_stand_its_margin_plus_its_limit_apart_to_1e_9_mm() {
+    use flexopt::model::bridge::part::clearances::CAP;
+    let mut r = rng(523);
+    let (mut apart, mut overlapping, mut link) = (0, 0, 0);
+    for _ in 0..1000 {
+        let model = bridge(random_settings(&mut r));
+        let x = random_design(&mut r);
+        let rules = model.rules();
+        let n = rules.len();
+        let mut m = vec![0.0; n];
+        model.rule_margins(&x, &mut m);
+        let mut w = vec![None; n];
+        model.rule_witnesses(&x, &mut w);
+        for (i, (rule, w)) in rules.iter().zip(&w).enumerate() {
+            let Some(w) = w else {
+                // a clearance is measured wherever a pair comes within CAP of its rule
+                assert!(
+                    i < model.first_rules() || m[i] == CAP || rule.name == "link_width",
+                    "{}: margin {} m and no witness",
+                    rule.name,
+                    m[i]
+                );
+                continue;
+            };
+            // apart, the distance is the clearance; overlapping, the overlap's depth
+            let d = distance(w.points[0], w.points[1]);
+            assert!(
+                (d - (m[i] + w.limit).abs()).abs() <= 1e-12,
+                "{}: witness points {d} m apart, margin {} m, limit {} m",
+                rule.name,
+                m[i],
+                w.limit
+            );
+            if rule.name == "link_width" {
+                link += 1
+            } else if m[i] + w.limit >= 0.0 {
+                apart += 1
+            } else {
+                overlapping += 1
+            }
+        }
+    }
+    assert!(
+        apart >= 1000 && overlapping >= 100 && link >= 500,
+        "{apart} apart, {overlapping} overlapping, {link} link widths: the draws do not \
+         exercise the witnesses"
+    );
+}
+
+#[test]
+fn the_least_stress_optimums_binding_rule_is_measured_on_the_part() {
+    use flexopt::problem::Problem;
+    use flexopt::study::{self, StudyOptions};
+    let problem = Problem::load(std::path::Path::new("problems/wei2017_min_stress.toml")).unwrap();
+    let s = study::run(&problem, &StudyOptions::from_problem(&problem));
+    let x = s.reported_design().to_vec();
+    // the rule the drawing marks, the nearest its limit, is the link's width, active
+    let checks = flexopt::problem::part_rules::checks(&problem, &x);
+    let nearest = checks
+        .iter()
+        .min_by(|a, b| a.margin_mm.total_cmp(&b.margin_mm))
+        .unwrap();
+    assert_eq!(nearest.rule, "link_width");
+    assert!(nearest.active && nearest.witness_mm.is_some());
+    let part = problem.mechanism().part_maker.as_deref().unwrap();
+    let n = part.rules().len();
+    let (mut m, mut w) = (vec![0.0; n], vec![None; n]);
+    part.rule_margins(&x, &mut m);
+    part.rule_witnesses(&x, &mut w);
+    let k = part
+        .rules()
+        .iter()
+        .position(|r| r.name == "link_width")
+        .unwrap();
+    let w = w[k].unwrap();
+    let [centre, touch] = w.points;
+    let d = distance(centre, touch);
+    // the widest disc's radius: the thickest hinge's half thickness plus the margin
+    assert!(
+        (d - (m[k] + w.limit)).abs() <= 1e-12,
+        "{d} m against {} + {} m",
+        m[k],
+        w.limit
+    );
+    // the disc touches the part's outline there, and nothing of it nearer its centre
+    let built = problem.mechanism().part_or_error(&x).unwrap();
+    assert!(
+        to_outline(&built, touch) <= 1e-12,
+        "{}",
+        to_outline(&built, touch)
+    );
+    assert!(
+        to_outline(&built, centre) >= d - 1e-12,
+        "{} m to the outline, {d} m to the witness",
+        to_outline(&built, centre)
+    );
+    let mm = nearest.witness_mm.unwrap();
+    assert!((distance(mm[0], mm[1]) - d / MM).abs() <= 1e-9);
+}

@@ -388,4 +388,13 @@ impl PartMaker for Bridge {
     fn rule_margins_with_gradient(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
         per_count!(x.len(), self.rule_gradients::<+0>(x, out, jacobian))
     }
+
+    fn rule_witnesses(&self, x: &[f64], out: &mut [Option<crate::model::part_rules::Witness>]) {
+        part::rules::witnesses(
+            &self.settings.part,
+            &self.layout,
+            &self.layout.geometry(x),
+            out,
+        );
+    }
 }

@@ -32,7 +32,7 @@ use std::sync::OnceLock;
 use super::{across, band, rules::fillet, PartSettings, Quarter, P};
 use crate::model::bridge::{Geometry, Layout};
 use crate::model::clearance::{clearance_below, reach, Feature, Reach, Solid, ANY_ORDER, IN_ORDER};
-use crate::model::part_rules::PartRule;
+use crate::model::part_rules::{PartRule, Witness};
 use crate::model::scalar::{max, min, Scalar};
 
 /// The margin (m) a clearance rule reads when every pair is farther than this beyond it.
@@ -616,6 +616,39 @@ impl Selection {
         }
         let (radius, ends) = link_ends(s, layout, g, &exact[LINK]);
         out[rules] = self.link_width(radius, ends, &exact[LINK]);
+    }
+
+    /// Where each rule's margin is measured at the design `g` (the real one the selection
+    /// was found at), into `out` ([`count`] of them): the nearest pair's witness points,
+    /// the slot asked the limit; none where no pair is near ([`CAP`]). The link's width
+    /// at the end whose margin is the lesser: the disc's centre and the side it touches,
+    /// the disc's radius the limit.
+    pub fn witnesses(
+        &self,
+        s: &PartSettings,
+        layout: &Layout,
+        g: &Geometry<f64>,
+        out: &mut [Option<Witness>],
+    ) {
+        let real = pieces(s, layout, g);
+        let rules = rows(with_actuator(s)).len();
+        for (o, n) in out[..rules].iter_mut().zip(&self.nearest) {
+            *o = n.map(|n| Witness {
+                points: n.feature.witness(&real[n.pa], &real[n.pb]),
+                limit: n.need,
+            });
+        }
+        let (radius, ends) = link_ends(s, layout, g, &real[LINK]);
+        let link = &real[LINK];
+        let value = |k: usize| self.link[k].value(link, radius, ends[k].0, ends[k].1);
+        // the end link_width's value comes from: the first where the two tie, as `min`
+        let k = if value(1) < value(0) { 1 } else { 0 };
+        out[rules] = self.link[k]
+            .witness(link, radius, ends[k].0, ends[k].1)
+            .map(|points| Witness {
+                points,
+                limit: radius,
+            });
     }
 
     /// The middle link's width rule: a disc as wide as the thickest hinge the link carries

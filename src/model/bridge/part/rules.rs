@@ -25,7 +25,7 @@
 use super::{clearances, PartSettings};
 use crate::model::bridge::{Geometry, Layout};
 use crate::model::hinge::HingeKind;
-use crate::model::part_rules::PartRule;
+use crate::model::part_rules::{PartRule, Witness};
 use crate::model::scalar::{max, Scalar};
 
 /// The most rules a bridge part has.
@@ -137,6 +137,25 @@ pub fn margins_seeded<D: Scalar>(
     if out.len() > first {
         let selection = clearances::Selection::find(s, layout, real, &mut values[first..]);
         selection.margins(s, layout, g, &mut out[first..]);
+    }
+}
+
+/// Where each rule is measured at the design `g`, in the order of [`rules`] (`out` one per
+/// rule): the clearances' ([`clearances::Selection::witnesses`]); none for the size rules
+/// and the pocket's, which are sums of the settings and the hinges' sizes, measured
+/// nowhere on the drawing as one length.
+pub fn witnesses(
+    s: &PartSettings,
+    layout: &Layout,
+    g: &Geometry<f64>,
+    out: &mut [Option<Witness>],
+) {
+    out.fill(None);
+    let first = first_rules(s);
+    if out.len() > first {
+        let mut values = vec![0.0; out.len() - first];
+        let selection = clearances::Selection::find(s, layout, g, &mut values);
+        selection.witnesses(s, layout, g, &mut out[first..]);
     }
 }
 

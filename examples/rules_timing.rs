@@ -1,0 +1,54 @@
+//! Issue 23's benchmark as one process: the 300-start studies of wei2017 and
+//! wei2017_min_stress (two threads) with the part's rules enforced and with `[part] enforce
+//! = false`, alternating, medians of the argument's count (7); with each the counts that
+//! tell whether a change moved the iterates (starts at the best, iterations, evaluations).
+use std::path::Path;
+use std::time::Instant;
+
+use flexopt::problem::Problem;
+use flexopt::study::{self, StudyOptions};
+
+fn main() {
+    let reps: usize = std::env::args().nth(1).map_or(7, |s| s.parse().unwrap());
+    for file in ["problems/wei2017.toml", "problems/wei2017_min_stress.toml"] {
+        let text = std::fs::read_to_string(file).unwrap();
+        let free = text.replace("[search]", "[part]\nenforce = false\n\n[search]");
+        let mut times = [vec![], vec![]];
+        let mut summary = [String::new(), String::new()];
+        for _ in 0..reps {
+            for (k, t) in [&text, &free].into_iter().enumerate() {
+                let problem = Problem::parse(Path::new(file), t).unwrap();
+                let options = StudyOptions {
+                    threads: 2,
+                    ..StudyOptions::from_problem(&problem)
+                };
+                let begin = Instant::now();
+                let s = study::run(&problem, &options);
+                times[k].push(begin.elapsed().as_secs_f64() * 1e3);
+                let best = s.runs[s.best].objective;
+                let at_best = s
+                    .runs
+                    .iter()
+                    .filter(|r| r.feasible && ((r.objective - best).abs() <= 1e-6 * best.abs()))
+                    .count();
+                let iters: usize = s.runs.iter().map(|r| r.solution.iterations).sum();
+                let evals: usize = s.runs.iter().map(|r| r.solution.evaluations).sum();
+                summary[k] = format!(
+                    "best {best:.7} at_best {at_best} ends {:?} iters {iters} evals {evals}",
+                    s.ends
+                );
+            }
+        }
+        let med = |v: &mut Vec<f64>| {
+            v.sort_by(f64::total_cmp);
+            v[v.len() / 2]
+        };
+        let (a, b) = (med(&mut times[0]), med(&mut times[1]));
+        println!(
+            "{file}: enforced {a:.1} ms, not {b:.1} ms, ratio {:.2}",
+            a / b
+        );
+        println!("  enforced: {}", summary[0]);
+        println!("  not:      {}", summary[1]);
+    }
+}
