@@ -6,9 +6,10 @@
 //! The shape, and why (docs/guide/src/networks.md shows it whole):
 //!
 //! - `[network]`: `width` (out of plane), `unit` (the length unit of every expression,
-//!   default `"mm"`; angles in radians, `deg` = pi/180), `parameters` (each name with its
-//!   dimension, `"length"`, `"angle"` or `"ratio"`, in the order the model lists them; each
-//!   bound by a `[[variables]]` entry), `mirror` (the axes `"x"`, the line y = 0, and `"y"`,
+//!   default `"mm"`; angles in radians, `deg` = pi/180), `parameters` (a list of `[name,
+//!   dimension]` pairs, the dimension `"length"`, `"angle"` or `"ratio"`, in the order the
+//!   model lists them: a list because a table's keys reach the reader sorted; each bound by
+//!   a `[[variables]]` entry), `mirror` (the axes `"x"`, the line y = 0, and `"y"`,
 //!   the line x = 0, about which the whole is symmetric; only one side is described).
 //! - `[[network.bodies]]`: `name`, an optional `outline` (a polygon of expression pairs) or
 //!   `link` (`from`, `to`, `width`), and `on_axis`: the mirror axes the body lies across.
@@ -61,8 +62,8 @@ pub const DEG: &str = "deg";
 struct RawNetwork {
     width: Measured<PositiveLength>,
     unit: Option<String>,
-    #[schemars(with = "std::collections::BTreeMap<String, String>")]
-    parameters: IndexMap<String, String>,
+    /// Each parameter as `[name, dimension]`: a list, as a table's keys come in no order.
+    parameters: Vec<[String; 2]>,
     mirror: Option<Vec<String>>,
     #[serde(default)]
     bodies: Vec<RawBody>,
@@ -272,8 +273,14 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
         .to_si(1.0);
     // the parameters, each with its dimension
     let mut parameters = Vec::new();
-    for (name, dim) in &n.parameters {
-        let path = net(&[k("parameters"), k(name)]);
+    for (i, [name, dim]) in n.parameters.iter().enumerate() {
+        let path = net(&[k("parameters"), Segment::Index(i)]);
+        if parameters
+            .iter()
+            .any(|p: &ParameterInfo| p.name == name.as_str())
+        {
+            return Err(s.err(&path, format!("parameter \"{name}\" is given twice")));
+        }
         let dimension = [Dimension::Length, Dimension::Angle, Dimension::Ratio]
             .into_iter()
             .find(|&d| units::dimension_word(d) == dim || (d == Dimension::Ratio && dim == "ratio"))
