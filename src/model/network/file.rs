@@ -28,7 +28,8 @@
 //! - `[[network.measures]]`: named expressions reported as outputs (`name`, `dimension`,
 //!   `value`); one named `span_x` or `span_y` replaces the described part's extent (a
 //!   signed span, as the bridge's).
-//! - `[actuator]`: `nominal_stroke`, `preload`, optional `stiffness`, as the bridge's.
+//! - `[actuator]`: `nominal_stroke`, `preload`, optional `stiffness`, the bridge's section
+//!   (its `length` and `height`, the stack's size, are for the part, still to come).
 //!
 //! Flexible beams (frame elements between bodies) are not read yet: a strip hinge is the
 //! network's flexible member.
@@ -37,6 +38,7 @@ use indexmap::IndexMap;
 use serde::Deserialize;
 
 use super::model::{Actuator, NetworkModel};
+use crate::model::bridge::file::RawActuator;
 use crate::model::entry::SectionSchema;
 use crate::model::expression::Expression;
 use crate::model::hinge::HingeKind;
@@ -44,7 +46,7 @@ use crate::model::material::{Material, RawMaterial};
 use crate::model::{Dimension, Mechanism, ParameterInfo};
 use crate::vocab::error::Segment;
 use crate::vocab::reader::{k, quoted, Res};
-use crate::vocab::schema::{Measured, NonNegativeForce, PositiveLength, PositiveStiffness};
+use crate::vocab::schema::{Measured, PositiveLength};
 use crate::vocab::sections::Sections;
 use crate::vocab::units::{self, Unit};
 
@@ -66,27 +68,27 @@ struct RawNetwork {
     parameters: Vec<[String; 2]>,
     mirror: Option<Vec<String>>,
     #[serde(default)]
-    bodies: Vec<RawBody>,
+    bodies: Vec<RawNetworkBody>,
     #[serde(default)]
-    hinges: Vec<RawHinge>,
-    input: RawPort,
-    outputs: Vec<RawPort>,
+    hinges: Vec<RawNetworkHinge>,
+    input: RawNetworkPort,
+    outputs: Vec<RawNetworkPort>,
     #[serde(default)]
-    measures: Vec<RawMeasure>,
+    measures: Vec<RawNetworkMeasure>,
 }
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-struct RawBody {
+struct RawNetworkBody {
     name: String,
     outline: Option<Vec<[String; 2]>>,
-    link: Option<RawLink>,
+    link: Option<RawNetworkLink>,
     on_axis: Option<Vec<String>>,
 }
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-struct RawLink {
+struct RawNetworkLink {
     from: [String; 2],
     to: [String; 2],
     width: String,
@@ -95,7 +97,7 @@ struct RawLink {
 /// A hinge: its named keys, and the kind's dimensions among the rest (not denied: they are
 /// checked against the kind, with a message that lists the kind's own).
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
-struct RawHinge {
+struct RawNetworkHinge {
     name: String,
     #[schemars(extend("enum" = HingeKind::NAMES))]
     kind: String,
@@ -110,7 +112,7 @@ struct RawHinge {
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-struct RawPort {
+struct RawNetworkPort {
     /// The output's name (outputs only).
     name: Option<String>,
     body: String,
@@ -121,18 +123,10 @@ struct RawPort {
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-struct RawMeasure {
+struct RawNetworkMeasure {
     name: String,
     dimension: String,
     value: String,
-}
-
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-struct RawActuator {
-    nominal_stroke: Measured<PositiveLength>,
-    preload: Measured<NonNegativeForce>,
-    stiffness: Option<Measured<PositiveStiffness>>,
 }
 
 /// A mirror axis: `X` the line y = 0, `Y` the line x = 0.
@@ -156,6 +150,8 @@ pub type Point = [Keyed; 2];
 #[derive(Debug, Clone)]
 pub struct BodyDescription {
     pub name: String,
+    /// Its key in the file (`network.bodies[2]`).
+    pub key: String,
     pub points: Vec<Point>,
     pub on_axis: Vec<Axis>,
 }
@@ -399,6 +395,7 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
         }
         bodies.push(BodyDescription {
             name: b.name.clone(),
+            key: written(&path),
             points,
             on_axis,
         });
@@ -520,7 +517,7 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
         }
     }
     // the ports
-    let port = |path: Vec<Segment>, p: &RawPort, name: String| -> Res<PortDescription> {
+    let port = |path: Vec<Segment>, p: &RawNetworkPort, name: String| -> Res<PortDescription> {
         let sub = |key: &str| {
             let mut q = path.clone();
             q.push(k(key));

@@ -379,8 +379,9 @@ impl NetworkModel {
         let e = self.at(x, modulus)?;
         let free = |err: super::structure::NetworkError| match err {
             super::structure::NetworkError::Free { body, direction } => format!(
-                "body \"{}\" is free to move ({direction}): nothing holds it against the ground",
-                self.description.bodies[body].name
+                "body \"{}\" ({}) is free to move ({direction}): nothing holds it against the \
+                 ground",
+                self.description.bodies[body].name, self.description.bodies[body].key
             ),
             other => other.to_string(),
         };
