@@ -17,9 +17,9 @@ fn refused(edits: &[(&str, &str)]) -> (String, String) {
         assert!(text.contains(from), "fixture text {from:?} not in {FILE}");
         text = text.replacen(from, to, 1);
     }
-    let e = Problem::parse(Path::new("net.toml"), &text)
-        .err()
-        .expect("the description must be refused");
+    let Err(e) = Problem::parse(Path::new("net.toml"), &text) else {
+        panic!("the description must be refused");
+    };
     (e.key.clone(), e.to_string())
 }
 
