@@ -284,8 +284,7 @@ impl NetworkModel {
                 });
             }
             let plain: Vec<f64> = dd.iter().map(|v| v.re()).collect();
-            let names: Vec<String> = h.dimensions.iter().map(|e| e.key.clone()).collect();
-            let names: Vec<&str> = names.iter().map(String::as_str).collect();
+            let names: Vec<&str> = h.dimensions.iter().map(|e| e.key.as_str()).collect();
             if let Some(why) = h.kind.domain_error(&plain, &names) {
                 return Err(format!("hinge \"{}\": {why}", h.name));
             }
@@ -395,20 +394,33 @@ impl NetworkModel {
             needs(&|q| matches!(q, KOut | KOutActuated | KOutBlocked | BlockedForce));
         let unit_load = |i: usize| {
             let (body, point, direction) = e.ports[i];
-            e.network
-                .solve(&[Load {
-                    body,
-                    point,
-                    force: direction,
-                    moment: D::from(0.0),
-                }])
-                .map_err(free)
+            Load {
+                body,
+                point,
+                force: direction,
+                moment: D::from(0.0),
+            }
         };
         let along = |u: &Displacements<D>, i: usize| {
             let (body, point, direction) = e.ports[i];
             u.along(Body::Rigid(body), point, direction)
         };
-        let input: Option<Displacements<D>> = needs_input.then(|| unit_load(0)).transpose()?;
+        // the load cases wanted, from one factorization: the input's, the first output's
+        let (load_in, load_out) = ([unit_load(0)], [unit_load(1)]);
+        let mut cases: Vec<&[Load<D>]> = Vec::with_capacity(2);
+        if needs_input {
+            cases.push(&load_in);
+        }
+        if needs_output {
+            cases.push(&load_out);
+        }
+        let mut solved = if cases.is_empty() {
+            Vec::new()
+        } else {
+            e.network.solve_cases(&cases).map_err(free)?
+        };
+        let output: Option<Displacements<D>> = if needs_output { solved.pop() } else { None };
+        let input: Option<Displacements<D>> = if needs_input { solved.pop() } else { None };
         // W_ij = read_i C_ij share_j
         let w = |u: &Displacements<D>, i: usize, j: usize| along(u, i) * (e.read[i] * e.share[j]);
         let w_ii = input.as_ref().map(|u| w(u, 0, 0));
@@ -424,7 +436,6 @@ impl NetworkModel {
             let u = input.as_ref().expect("listed");
             w(u, o + 1, 0) / w(u, 0, 0)
         };
-        let output: Option<Displacements<D>> = needs_output.then(|| unit_load(1)).transpose()?;
         // the first output's stiffnesses: the input free, on the actuator, held
         let condensed = |actuator: Option<f64>| {
             let (u_in, u_out) = (
