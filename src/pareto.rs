@@ -83,7 +83,7 @@ pub fn pareto(
     };
     let model = problem.model();
     if model.output_index(&spec.output).is_none() {
-        let names: Vec<_> = model.outputs().iter().map(|o| o.name).collect();
+        let names: Vec<_> = model.outputs().iter().map(|o| o.name.as_ref()).collect();
         return Err(err(
             "--vary",
             format!(

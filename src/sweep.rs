@@ -144,7 +144,7 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
             .iter()
             .map(|name| {
                 let i = model.output_index(name).ok_or_else(|| {
-                    let names: Vec<_> = model.outputs().iter().map(|o| o.name).collect();
+                    let names: Vec<_> = model.outputs().iter().map(|o| o.name.as_ref()).collect();
                     err(
                         "--outputs",
                         format!(

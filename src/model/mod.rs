@@ -55,12 +55,13 @@ impl ParameterInfo {
     }
 }
 
-/// A named output of a model.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// A named output of a model. Names are owned where a model builds them at run time (a
+/// network names outputs after its ports and hinges).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct OutputInfo {
-    pub name: &'static str,
+    pub name: Cow<'static, str>,
     pub dimension: Dimension,
-    pub description: &'static str,
+    pub description: Cow<'static, str>,
     /// The unit a designer reads it in, where the dimension's usual one does not suit it
     /// (a stroke of micrometres among spans of millimetres).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -76,27 +77,31 @@ pub struct OutputInfo {
 impl OutputInfo {
     pub const fn new(name: &'static str, dimension: Dimension, description: &'static str) -> Self {
         OutputInfo {
-            name,
+            name: Cow::Borrowed(name),
             dimension,
-            description,
+            description: Cow::Borrowed(description),
             display: None,
             stand_in: None,
         }
     }
 
-    /// The same, read in `unit` (one of the dimension's units).
-    pub const fn shown_in(self, unit: &'static str) -> Self {
+    /// As [`OutputInfo::new`], read in `display` (one of the dimension's units) where the
+    /// dimension's usual one does not suit it, and given only by a higher fidelity where
+    /// `stand_in` says what the model's value is instead. One constructor rather than
+    /// builder methods: a const fn may not take apart a value with owned parts.
+    pub const fn full(
+        name: &'static str,
+        dimension: Dimension,
+        description: &'static str,
+        display: Option<&'static str>,
+        stand_in: Option<&'static str>,
+    ) -> Self {
         OutputInfo {
-            display: Some(unit),
-            ..self
-        }
-    }
-
-    /// The same, given only by a higher fidelity; `what` says what the model's value is.
-    pub const fn standing_in(self, what: &'static str) -> Self {
-        OutputInfo {
-            stand_in: Some(what),
-            ..self
+            name: Cow::Borrowed(name),
+            dimension,
+            description: Cow::Borrowed(description),
+            display,
+            stand_in,
         }
     }
 }

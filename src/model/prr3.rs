@@ -239,7 +239,7 @@ pub static PARAMETERS: [ParameterInfo; 10] = [
 ];
 
 /// The outputs of the 3-PRR model.
-pub const OUTPUTS: [OutputInfo; 5] = [
+pub static OUTPUTS: [OutputInfo; 5] = [
     OutputInfo::new(
         "f1",
         Dimension::Frequency,

@@ -113,7 +113,7 @@ pub static PARAMETERS: [ParameterInfo; 7] = [
 ];
 
 /// The outputs, in model order.
-pub const OUTPUTS: [OutputInfo; 8] = [
+pub static OUTPUTS: [OutputInfo; 8] = [
     OutputInfo::new(
         "f1",
         Dimension::Frequency,

@@ -6,7 +6,12 @@
 pub use super::entry::{ModelEntry, SectionSchema};
 
 /// Every model a problem file can select.
-pub const MODELS: &[ModelEntry] = &[super::bridge::ENTRY, super::prr3::ENTRY, super::pss3::ENTRY];
+pub const MODELS: &[ModelEntry] = &[
+    super::bridge::ENTRY,
+    super::prr3::ENTRY,
+    super::pss3::ENTRY,
+    super::network::ENTRY,
+];
 
 /// The entry named `name` among `models`.
 pub fn find<'m>(models: &'m [ModelEntry], name: &str) -> Option<&'m ModelEntry> {

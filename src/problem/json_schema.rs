@@ -174,7 +174,7 @@ fn model_keys(entry: &ModelEntry) -> Map<String, Value> {
     };
     let model = problem.model();
     let outputs = model.outputs();
-    let names: Vec<&str> = outputs.iter().map(|o| o.name).collect();
+    let names: Vec<&str> = outputs.iter().map(|o| o.name.as_ref()).collect();
     keys.insert(
         "objective".into(),
         json!({"properties": {"maximize": {"enum": names}, "minimize": {"enum": names}}}),
@@ -193,7 +193,7 @@ fn model_keys(entry: &ModelEntry) -> Map<String, Value> {
             let of_it: Vec<&str> = outputs
                 .iter()
                 .filter(|o| o.dimension == dimension)
-                .map(|o| o.name)
+                .map(|o| o.name.as_ref())
                 .collect();
             (!of_it.is_empty()).then(|| {
                 json!({

@@ -313,7 +313,13 @@ impl Validator<'_, '_> {
                 path,
                 format!(
                     "unknown output \"{name}\"; expected one of {}",
-                    quoted(&model.outputs().iter().map(|o| o.name).collect::<Vec<_>>())
+                    quoted(
+                        &model
+                            .outputs()
+                            .iter()
+                            .map(|o| o.name.as_ref())
+                            .collect::<Vec<_>>()
+                    )
                 ),
             )
         })?;

@@ -283,13 +283,13 @@ impl DesignReport {
         }
         for (&i, &v) in analytic.iter().zip(&values) {
             let info = &model.outputs()[i];
-            report.outputs.insert(info.name.into(), finite(v));
+            report.outputs.insert(info.name.to_string(), finite(v));
             report
                 .output_units
-                .insert(info.name.into(), info.dimension.si_unit().into());
+                .insert(info.name.to_string(), info.dimension.si_unit().into());
             report
                 .display_units
-                .insert(info.name.into(), display::output_unit(problem, i).name);
+                .insert(info.name.to_string(), display::output_unit(problem, i).name);
         }
         let fits_met = problem.search.fit_ranges != crate::problem::FitRanges::Constraint
             || report.fit_ranges.iter().all(|c| c.inside);

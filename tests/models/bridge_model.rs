@@ -189,7 +189,7 @@ fn exact_gradients_agree_with_finite_differences() {
                 let fd_grad = (8.0 * (f1[i] - fm1[i]) - (f2[i] - fm2[i])) / (12.0 * h);
                 let err = (fd_grad - jac[i * n + j]).abs() * ranges[j] / scale;
                 if err > worst.0 {
-                    worst = (err, OUTPUTS[i].name, parameters[j].name.as_ref());
+                    worst = (err, OUTPUTS[i].name.as_ref(), parameters[j].name.as_ref());
                 }
             }
         }

@@ -15,6 +15,7 @@ mod fit_ranges;
 mod hinges;
 mod layout;
 mod model_stability;
+mod network_bridge;
 mod paper001;
 mod paper004_tables;
 mod prr3;

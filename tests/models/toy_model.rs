@@ -30,7 +30,7 @@ static PARAMETERS: [ParameterInfo; 2] = [
     ParameterInfo::new("m", Dimension::Mass, "mass"),
 ];
 
-const OUTPUTS: [OutputInfo; 2] = [
+static OUTPUTS: [OutputInfo; 2] = [
     OutputInfo::new("frequency", Dimension::Frequency, "sqrt(k/m) / 2 pi"),
     OutputInfo::new("deflection", Dimension::Length, "preload / k"),
 ];

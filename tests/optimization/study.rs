@@ -351,3 +351,34 @@ fn no_start_of_the_least_stress_study_is_lost_to_its_qp() {
     let best = s.reported_objective();
     assert!((best / 38.96e6 - 1.0).abs() < 1e-3, "{best}");
 }
+
+/// wei2017 written as a flexure network (problems/wei2017_network.toml): its 300-start
+/// study finds the built-in bridge's optimum, 12.8979355, at the same design.
+#[test]
+fn the_network_form_of_wei2017_finds_the_bridges_optimum() {
+    let p = Problem::load(Path::new("problems/wei2017_network.toml")).unwrap();
+    let s = study::run(&p, &options(&p, Solver::Sqp));
+    assert_eq!(s.runs.len(), 300);
+    let best = &s.runs[s.best];
+    eprintln!("network: best {:.9} at {:?}", best.objective, best.x_end);
+    assert!(
+        (best.objective - 12.8979355).abs() < 1e-7,
+        "amplification {:.9}",
+        best.objective
+    );
+    assert_eq!(best.solution.status, Status::Converged);
+    let x = in_file_units(&best.x_end);
+    let sign = if x[4] < 0.0 { -1.0 } else { 1.0 };
+    for i in 0..8 {
+        let want = if ANGLES.contains(&i) {
+            sign * TABLE1[i]
+        } else {
+            TABLE1[i]
+        };
+        assert!(
+            (x[i] - want).abs() <= 0.1,
+            "parameter {i}: {} vs {want}",
+            x[i]
+        );
+    }
+}

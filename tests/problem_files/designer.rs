@@ -153,7 +153,7 @@ fn eval_prints_a_table_in_the_files_units() {
 #[test]
 fn init_writes_a_problem_that_runs_for_every_model() {
     let dir = temp_dir("init");
-    for model in ["bridge", "prr3", "pss3"] {
+    for model in ["bridge", "prr3", "pss3", "network"] {
         let file = dir.join(format!("{model}_start.toml"));
         let out = flexopt(&["init", "--model", model, file.to_str().unwrap()]);
         assert!(
@@ -228,7 +228,7 @@ fn the_schema_accepts_every_shipped_problem_and_refuses_unknown_keys() {
         assert!(errors.is_empty(), "{}: {errors:?}", f.display());
     }
     // and what init writes
-    for model in ["bridge", "prr3", "pss3"] {
+    for model in ["bridge", "prr3", "pss3", "network"] {
         let out = flexopt_ok(&["init", "--model", model]);
         assert!(validator.is_valid(&as_json(&String::from_utf8_lossy(&out.stdout))));
     }

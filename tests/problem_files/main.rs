@@ -10,6 +10,7 @@ mod cli;
 mod designer;
 mod init_choices;
 mod messages;
+mod network_errors;
 mod optimum_report;
 mod problem_errors;
 mod problem_fuzz;

@@ -52,14 +52,15 @@ struct RawOneHinge {
     kind: String,
 }
 
+/// `[actuator]`, which the network reads too (one schema for the section of that name).
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-struct RawActuator {
-    nominal_stroke: Measured<PositiveLength>,
-    preload: Measured<NonNegativeForce>,
-    stiffness: Option<Measured<PositiveStiffness>>,
-    length: Option<Measured<PositiveLength>>,
-    height: Option<Measured<PositiveLength>>,
+pub(crate) struct RawActuator {
+    pub(crate) nominal_stroke: Measured<PositiveLength>,
+    pub(crate) preload: Measured<NonNegativeForce>,
+    pub(crate) stiffness: Option<Measured<PositiveStiffness>>,
+    pub(crate) length: Option<Measured<PositiveLength>>,
+    pub(crate) height: Option<Measured<PositiveLength>>,
 }
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]

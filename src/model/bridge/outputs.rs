@@ -83,18 +83,18 @@ impl BridgeOutput {
 }
 
 /// Names, dimensions and meanings of the outputs, indexed like [`BridgeOutput::ALL`].
-pub const OUTPUTS: [OutputInfo; 26] = [
+pub static OUTPUTS: [OutputInfo; 26] = [
     OutputInfo::new("amplification", Dimension::Ratio, "displacement amplification da = a21/a11 (Eq. 9)"),
     OutputInfo::new("k_in", Dimension::Stiffness, "input stiffness 1/a11 (Eq. 10)"),
-    OutputInfo::new("k_out", Dimension::Stiffness, "output stiffness -1/a22 (Eq. 11)").shown_in("N/mm"),
+    OutputInfo::full("k_out", Dimension::Stiffness, "output stiffness -1/a22 (Eq. 11)", Some("N/mm"), None),
     OutputInfo::new("stress_max", Dimension::Stress, "largest stress in the hinges under the nominal stroke and preload (Eq. 12-17)"),
     OutputInfo::new("stress_b", Dimension::Stress, "largest stress in hinge b (Eq. 15-16)"),
     OutputInfo::new("stress_d", Dimension::Stress, "largest stress in hinge d (Eq. 17)"),
     OutputInfo::new("force_in_max", Dimension::Force, "largest actuator force: nominal stroke times k_in plus preload (Eq. 12, 14)"),
     OutputInfo::new("span_x", Dimension::Length, "extent of the quarter along x: l2 cos d2 + l3 cos d3 + l4 cos d4 (Sec. 3)"),
     OutputInfo::new("span_y", Dimension::Length, "extent of the quarter along y: l2 sin d2 + l3 sin d3 + l4 sin d4 (Sec. 3)"),
-    OutputInfo::new("stroke_in", Dimension::Length, "true actuator stroke under the bridge's load (Eq. 13)").shown_in("um"),
-    OutputInfo::new("stroke_out", Dimension::Length, "change of the distance between the output faces for the true stroke: amplification x stroke_in").shown_in("um"),
+    OutputInfo::full("stroke_in", Dimension::Length, "true actuator stroke under the bridge's load (Eq. 13)", Some("um"), None),
+    OutputInfo::full("stroke_out", Dimension::Length, "change of the distance between the output faces for the true stroke: amplification x stroke_in", Some("um"), None),
     OutputInfo::new("a11", Dimension::Compliance, "input compliance (Eq. 8, Appendix A)"),
     OutputInfo::new("a12", Dimension::Compliance, "input displacement per output force (Eq. 8, Appendix A)"),
     OutputInfo::new("a21", Dimension::Compliance, "output displacement per input force (Eq. 8, Appendix A)"),
@@ -103,7 +103,7 @@ pub const OUTPUTS: [OutputInfo; 26] = [
     OutputInfo::new("stress_node3", Dimension::Stress, "largest stress at node 3, the middle-link end of hinge b (Eq. 15-16)"),
     OutputInfo::new("stress_node4", Dimension::Stress, "largest stress at node 4, the middle-link end of hinge d (Eq. 17)"),
     OutputInfo::new("stress_node5", Dimension::Stress, "largest stress at node 5, the output-link end of hinge d (Eq. 17)"),
-    OutputInfo::new("k_out_actuated", Dimension::Stiffness, "face-to-face output stiffness with the actuator holding the input links (k_out for a free input; see model::bridge::dynamics)").shown_in("N/mm"),
+    OutputInfo::full("k_out_actuated", Dimension::Stiffness, "face-to-face output stiffness with the actuator holding the input links (k_out for a free input; see model::bridge::dynamics)", Some("N/mm"), None),
     OutputInfo::new("equivalent_mass", Dimension::Mass, "mass on the moving output face equivalent to the moving bridge and payload (Lagrange/Rayleigh, paper 001 Sec. 2.2)"),
     OutputInfo::new("natural_frequency", Dimension::Frequency, "the output mode's frequency, output_frequency (the name files used before it)"),
     OutputInfo::new("settling_time", Dimension::Time, "settling time into +-2 % after a step, for the damping ratio of [dynamics] (paper 001 Sec. 4.2)"),
@@ -113,7 +113,7 @@ pub const OUTPUTS: [OutputInfo; 26] = [
     // [dynamics] does not give, and the whole bridge's motion where the quarter model has
     // one quarter's: no closed form, so the model's value is the output mode's, which the
     // first mode does not exceed, and the refinement's correction carries the sideways mode
-    OutputInfo::new("first_frequency", Dimension::Frequency, "lowest natural frequency of the part, of either symmetry (the output block's sideways sway, or the output mode), as the FE measures it").standing_in("output_frequency, the output mode's frequency, at or above the part's first mode"),
+    OutputInfo::full("first_frequency", Dimension::Frequency, "lowest natural frequency of the part, of either symmetry (the output block's sideways sway, or the output mode), as the FE measures it", None, Some("output_frequency, the output mode's frequency, at or above the part's first mode")),
 ];
 
 impl Bridge {

@@ -1,9 +1,23 @@
 //! Planar compliant mechanisms described as networks of rigid bodies and flexures (issue
 //! 25): the structural analysis ([`structure`]) of bodies joined through the hinge
 //! library's compliances, and the natural modes of their masses on it ([`modes`]), over
-//! [`crate::model::scalar::Scalar`] for exact gradients. The problem file's description,
-//! its outputs and its part build on them.
+//! [`crate::model::scalar::Scalar`] for exact gradients; the problem file's description
+//! ([`file`]) and the model of its outputs ([`model`]). Its part is still to come.
 
+pub mod file;
+pub mod model;
 pub mod modes;
 pub mod ports;
 pub mod structure;
+
+use super::entry::ModelEntry;
+
+/// How a problem file selects a network (`model = "network"`).
+pub const ENTRY: ModelEntry = ModelEntry {
+    name: "network",
+    sections: file::SECTIONS,
+    build: file::build,
+    schema: file::schema,
+    template: include_str!("../templates/network.toml"),
+    hinge_layout: None,
+};

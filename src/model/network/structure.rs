@@ -239,16 +239,15 @@ impl<D: Scalar> Network<D> {
 
     /// The bodies' displacements under `loads`.
     pub fn solve(&self, loads: &[Load<D>]) -> Result<Displacements<D>, NetworkError> {
+        let mut all = self.solve_cases(&[loads])?;
+        Ok(all.remove(0))
+    }
+
+    /// The bodies' displacements under each of `cases`, from one factorization of the
+    /// stiffness.
+    pub fn solve_cases(&self, cases: &[&[Load<D>]]) -> Result<Vec<Displacements<D>>, NetworkError> {
         let n = 3 * self.references.len();
         let mut k = self.stiffness()?;
-        let mut f = vec![D::from(0.0); n];
-        for l in loads {
-            let r = sub(l.point, self.references[l.body]);
-            let o = 3 * l.body;
-            f[o] = f[o] + l.force[0];
-            f[o + 1] = f[o + 1] + l.force[1];
-            f[o + 2] = f[o + 2] + l.moment + (r[0] * l.force[1] - r[1] * l.force[0]);
-        }
         // a held degree of freedom: its row and column out, a unit pivot, no load
         let scale = (0..n).map(|i| k[i * n + i].re().abs()).fold(0.0, f64::max);
         for &(body, dof) in &self.held {
@@ -258,14 +257,29 @@ impl<D: Scalar> Network<D> {
                 k[j * n + i] = D::from(0.0);
             }
             k[j * n + j] = D::from(scale.max(1.0));
-            f[j] = D::from(0.0);
         }
         factor(&mut k, n)?;
-        let u = substitute(&k, n, f);
-        Ok(Displacements {
-            bodies: u.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
-            references: self.references.clone(),
-        })
+        Ok(cases
+            .iter()
+            .map(|loads| {
+                let mut f = vec![D::from(0.0); n];
+                for l in loads.iter() {
+                    let r = sub(l.point, self.references[l.body]);
+                    let o = 3 * l.body;
+                    f[o] = f[o] + l.force[0];
+                    f[o + 1] = f[o + 1] + l.force[1];
+                    f[o + 2] = f[o + 2] + l.moment + (r[0] * l.force[1] - r[1] * l.force[0]);
+                }
+                for &(body, dof) in &self.held {
+                    f[3 * body + dof as usize] = D::from(0.0);
+                }
+                let u = substitute(&k, n, f);
+                Displacements {
+                    bodies: u.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
+                    references: self.references.clone(),
+                }
+            })
+            .collect())
     }
 }
 

@@ -1,0 +1,615 @@
+//! The network's sections of a problem file (`model = "network"`): `[material]`,
+//! `[network]` with its bodies, hinges, ports and measures, and `[actuator]`, read and
+//! checked into a [`Description`] whose every coordinate and dimension is an
+//! [`Expression`] parsed once against the model's parameters.
+//!
+//! The shape, and why (docs/guide/src/networks.md shows it whole):
+//!
+//! - `[network]`: `width` (out of plane), `unit` (the length unit of every expression,
+//!   default `"mm"`; angles in radians, `deg` = pi/180), `parameters` (a list of `[name,
+//!   dimension]` pairs, the dimension `"length"`, `"angle"` or `"ratio"`, in the order the
+//!   model lists them: a list because a table's keys reach the reader sorted; each bound by
+//!   a `[[variables]]` entry), `mirror` (the axes `"x"`, the line y = 0, and `"y"`,
+//!   the line x = 0, about which the whole is symmetric; only one side is described).
+//! - `[[network.bodies]]`: `name`, an optional `outline` (a polygon of expression pairs) or
+//!   `link` (`from`, `to`, `width`), and `on_axis`: the mirror axes the body lies across.
+//!   Declared, not detected: a body's place is an expression of the design, and whether a
+//!   point lies on an axis cannot be told from a value that is zero at one design and not at
+//!   the next. Such a body keeps its motion across the axis and its rotation at zero.
+//! - `[[network.hinges]]`: `name`, `kind`, `from`, `to` (bodies; `"ground"` is the ground),
+//!   `start` (a point), `angle` (its axis from `from` to `to`), and each of the kind's
+//!   dimensions by the hinge library's stem (`l`, `t` of a strip; `r`, `t` of a circular
+//!   notch; as `flexopt hinge` names its flags).
+//! - `[network.input]` and `[[network.outputs]]`: `body`, `at`, `direction` (a vector,
+//!   normalised), and `across` (a mirror axis): the port acts between its point and its
+//!   mirror image about that axis, an actuator pushing the two apart or an output read as
+//!   the change of their distance. A port on a body across an axis shares its load with
+//!   the body's mirror half: the described part carries half of it per such axis.
+//! - `[[network.measures]]`: named expressions reported as outputs (`name`, `dimension`,
+//!   `value`); one named `span_x` or `span_y` replaces the described part's extent (a
+//!   signed span, as the bridge's).
+//! - `[actuator]`: `nominal_stroke`, `preload`, optional `stiffness`, the bridge's section
+//!   (its `length` and `height`, the stack's size, are for the part, still to come).
+//!
+//! Flexible beams (frame elements between bodies) are not read yet: a strip hinge is the
+//! network's flexible member.
+
+use indexmap::IndexMap;
+use serde::Deserialize;
+
+use super::model::{Actuator, NetworkModel};
+use crate::model::bridge::file::RawActuator;
+use crate::model::entry::SectionSchema;
+use crate::model::expression::Expression;
+use crate::model::hinge::HingeKind;
+use crate::model::material::{Material, RawMaterial};
+use crate::model::{Dimension, Mechanism, ParameterInfo};
+use crate::vocab::error::Segment;
+use crate::vocab::reader::{k, quoted, Res};
+use crate::vocab::schema::{Measured, PositiveLength};
+use crate::vocab::sections::Sections;
+use crate::vocab::units::{self, Unit};
+
+/// The sections the network reads.
+pub const SECTIONS: &[&str] = &["material", "network", "actuator"];
+
+/// The name of the ground among the bodies.
+pub const GROUND: &str = "ground";
+
+/// The constant `deg` beside the parameters: pi / 180.
+pub const DEG: &str = "deg";
+
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+struct RawNetwork {
+    width: Measured<PositiveLength>,
+    unit: Option<String>,
+    /// Each parameter as `[name, dimension]`: a list, as a table's keys come in no order.
+    parameters: Vec<[String; 2]>,
+    mirror: Option<Vec<String>>,
+    #[serde(default)]
+    bodies: Vec<RawNetworkBody>,
+    #[serde(default)]
+    hinges: Vec<RawNetworkHinge>,
+    input: RawNetworkPort,
+    outputs: Vec<RawNetworkPort>,
+    #[serde(default)]
+    measures: Vec<RawNetworkMeasure>,
+}
+
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+struct RawNetworkBody {
+    name: String,
+    outline: Option<Vec<[String; 2]>>,
+    link: Option<RawNetworkLink>,
+    on_axis: Option<Vec<String>>,
+}
+
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+struct RawNetworkLink {
+    from: [String; 2],
+    to: [String; 2],
+    width: String,
+}
+
+/// A hinge: its named keys, and the kind's dimensions among the rest (not denied: they are
+/// checked against the kind, with a message that lists the kind's own).
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+struct RawNetworkHinge {
+    name: String,
+    #[schemars(extend("enum" = HingeKind::NAMES))]
+    kind: String,
+    from: String,
+    to: String,
+    start: [String; 2],
+    angle: String,
+    #[serde(flatten)]
+    #[schemars(with = "std::collections::BTreeMap<String, String>")]
+    dimensions: IndexMap<String, String>,
+}
+
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+struct RawNetworkPort {
+    /// The output's name (outputs only).
+    name: Option<String>,
+    body: String,
+    at: [String; 2],
+    direction: [String; 2],
+    across: Option<String>,
+}
+
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+struct RawNetworkMeasure {
+    name: String,
+    dimension: String,
+    value: String,
+}
+
+/// A mirror axis: `X` the line y = 0, `Y` the line x = 0.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Axis {
+    X,
+    Y,
+}
+
+/// An expression and the key it was read from (for errors at a design).
+#[derive(Debug, Clone)]
+pub struct Keyed {
+    pub key: String,
+    pub expression: Expression,
+}
+
+pub type Point = [Keyed; 2];
+
+/// A body: its name, its geometry's points (outline vertices, or a link's ends) and the
+/// axes it lies across.
+#[derive(Debug, Clone)]
+pub struct BodyDescription {
+    pub name: String,
+    /// Its key in the file (`network.bodies[2]`).
+    pub key: String,
+    pub points: Vec<Point>,
+    pub on_axis: Vec<Axis>,
+}
+
+/// A hinge: which bodies it joins (`None` the ground), where, and its dimensions in the
+/// kind's order.
+#[derive(Debug, Clone)]
+pub struct HingeDescription {
+    pub name: String,
+    pub kind: HingeKind,
+    pub from: Option<usize>,
+    pub to: Option<usize>,
+    pub start: Point,
+    pub angle: Keyed,
+    pub dimensions: Vec<Keyed>,
+    /// The parameter each dimension is, where it is one alone (for the ranges of fit).
+    pub parameter_of: Vec<Option<usize>>,
+}
+
+/// A port: a point of a body and a direction, maybe across a mirror axis.
+#[derive(Debug, Clone)]
+pub struct PortDescription {
+    pub name: String,
+    pub body: usize,
+    pub at: Point,
+    pub direction: Point,
+    pub across: Option<Axis>,
+}
+
+/// A named expression reported as an output.
+#[derive(Debug, Clone)]
+pub struct MeasureDescription {
+    pub name: String,
+    pub dimension: Dimension,
+    pub value: Keyed,
+}
+
+/// The whole description, its expressions parsed against the parameters and `deg`.
+#[derive(Debug, Clone)]
+pub struct Description {
+    pub parameters: Vec<ParameterInfo>,
+    /// Metres per unit of the expressions' lengths.
+    pub unit: f64,
+    pub width: f64,
+    pub mirror: Vec<Axis>,
+    /// The bodies other than the ground, in the file's order.
+    pub bodies: Vec<BodyDescription>,
+    /// The ground's outline points, for the extent.
+    pub ground: Vec<Point>,
+    pub hinges: Vec<HingeDescription>,
+    pub input: PortDescription,
+    pub outputs: Vec<PortDescription>,
+    pub measures: Vec<MeasureDescription>,
+}
+
+/// The JSON Schema of each of the network's sections.
+pub fn schema(g: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
+    let one = |name, schema, required| SectionSchema {
+        name,
+        schema,
+        required,
+        rules: Vec::new(),
+    };
+    vec![
+        SectionSchema {
+            rules: crate::model::material::strength_rules("material"),
+            ..one("material", g.subschema_for::<RawMaterial>(), true)
+        },
+        one("network", g.subschema_for::<RawNetwork>(), true),
+        one("actuator", g.subschema_for::<RawActuator>(), true),
+    ]
+}
+
+/// Reads the network's sections and builds the model.
+pub fn build(s: &mut Sections) -> Res<Mechanism> {
+    let m: RawMaterial = s.required("material")?;
+    let n: RawNetwork = s.required("network")?;
+    let a: RawActuator = s.required("actuator")?;
+    let material = Material::from_section(s, &m)?;
+    let description = describe(s, &n)?;
+    let act = |key: &str| [k("actuator"), k(key)];
+    let actuator = Actuator {
+        nominal_stroke: s.measured(&act("nominal_stroke"), &a.nominal_stroke)?,
+        preload: s.measured(&act("preload"), &a.preload)?,
+        stiffness: a
+            .stiffness
+            .as_ref()
+            .map(|q| s.measured(&act("stiffness"), q))
+            .transpose()?,
+    };
+    let model = NetworkModel::new(description, material, actuator);
+    Ok(Mechanism::physics_only(std::sync::Arc::new(model)))
+}
+
+fn net(rest: &[Segment]) -> Vec<Segment> {
+    let mut p = vec![k("network")];
+    p.extend_from_slice(rest);
+    p
+}
+
+fn at(table: &str, i: usize) -> [Segment; 2] {
+    [k(table), Segment::Index(i)]
+}
+
+/// The key path as a problem file's reader writes it.
+fn written(path: &[Segment]) -> String {
+    crate::vocab::error::format_path(path)
+}
+
+fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
+    let width = s.measured(&net(&[k("width")]), &n.width)?;
+    let unit_name = n.unit.as_deref().unwrap_or("mm");
+    let unit = Unit::parse(unit_name, Dimension::Length)
+        .map_err(|e| s.err(&net(&[k("unit")]), e))?
+        .to_si(1.0);
+    // the parameters, each with its dimension
+    let mut parameters = Vec::new();
+    for (i, [name, dim]) in n.parameters.iter().enumerate() {
+        let path = net(&[k("parameters"), Segment::Index(i)]);
+        if parameters
+            .iter()
+            .any(|p: &ParameterInfo| p.name == name.as_str())
+        {
+            return Err(s.err(&path, format!("parameter \"{name}\" is given twice")));
+        }
+        let dimension = [Dimension::Length, Dimension::Angle, Dimension::Ratio]
+            .into_iter()
+            .find(|&d| units::dimension_word(d) == dim || (d == Dimension::Ratio && dim == "ratio"))
+            .ok_or_else(|| {
+                s.err(
+                    &path,
+                    format!("unknown dimension \"{dim}\"; expected one of \"length\", \"angle\", \"ratio\""),
+                )
+            })?;
+        if name == DEG || Expression::parse(name, &[name.as_str()]).is_err() {
+            return Err(s.err(
+                &path,
+                format!("\"{name}\" cannot name a parameter: a name is a letter or `_` followed by letters, digits or `_`, and not `deg`"),
+            ));
+        }
+        parameters.push(ParameterInfo {
+            name: name.clone().into(),
+            dimension,
+            description: format!("parameter {name} of the network").into(),
+        });
+    }
+    let mut names: Vec<&str> = parameters.iter().map(|p| p.name.as_ref()).collect();
+    names.push(DEG);
+    let parse = |path: Vec<Segment>, text: &str| -> Res<Keyed> {
+        let key = written(&path);
+        Expression::parse(text, &names)
+            .map(|expression| Keyed { key, expression })
+            .map_err(|e| s.err(&path, format!("in \"{text}\" {e}")))
+    };
+    let point = |path: Vec<Segment>, p: &[String; 2]| -> Res<Point> {
+        let one = |i: usize| {
+            let mut q = path.clone();
+            q.push(Segment::Index(i));
+            parse(q, &p[i])
+        };
+        Ok([one(0)?, one(1)?])
+    };
+    let axis = |path: Vec<Segment>, name: &str| -> Res<Axis> {
+        match name {
+            "x" => Ok(Axis::X),
+            "y" => Ok(Axis::Y),
+            _ => Err(s.err(
+                &path,
+                format!("unknown axis \"{name}\"; expected \"x\" (the line y = 0) or \"y\" (the line x = 0)"),
+            )),
+        }
+    };
+    let mut mirror = Vec::new();
+    for (i, m) in n.mirror.iter().flatten().enumerate() {
+        let a = axis(net(&[k("mirror"), Segment::Index(i)]), m)?;
+        if mirror.contains(&a) {
+            return Err(s.err(&net(&[k("mirror")]), format!("axis \"{m}\" is given twice")));
+        }
+        mirror.push(a);
+    }
+    // the bodies
+    let mut bodies: Vec<BodyDescription> = Vec::new();
+    let mut ground = Vec::new();
+    for (i, b) in n.bodies.iter().enumerate() {
+        let path = net(&at("bodies", i));
+        let sub = |key: &str| {
+            let mut p = path.clone();
+            p.push(k(key));
+            p
+        };
+        if bodies.iter().any(|o| o.name == b.name) {
+            return Err(s.err(&sub("name"), format!("body \"{}\" is named twice", b.name)));
+        }
+        let mut points = Vec::new();
+        match (&b.outline, &b.link) {
+            (Some(_), Some(_)) => {
+                return Err(s.err(&sub("link"), "give an outline or a link, not both"))
+            }
+            (Some(outline), None) => {
+                for (j, p) in outline.iter().enumerate() {
+                    let mut q = sub("outline");
+                    q.push(Segment::Index(j));
+                    points.push(point(q, p)?);
+                }
+            }
+            (None, Some(link)) => {
+                let mut q = sub("link");
+                q.push(k("from"));
+                points.push(point(q.clone(), &link.from)?);
+                q.pop();
+                q.push(k("to"));
+                points.push(point(q.clone(), &link.to)?);
+                q.pop();
+                q.push(k("width"));
+                parse(q, &link.width)?;
+            }
+            (None, None) => {}
+        }
+        if b.name == GROUND {
+            if b.on_axis.is_some() {
+                return Err(s.err(
+                    &sub("on_axis"),
+                    "the ground does not move: it needs no axis",
+                ));
+            }
+            ground = points;
+            continue;
+        }
+        let mut on_axis = Vec::new();
+        for (j, name) in b.on_axis.iter().flatten().enumerate() {
+            let mut q = sub("on_axis");
+            q.push(Segment::Index(j));
+            let a = axis(q.clone(), name)?;
+            if !mirror.contains(&a) {
+                return Err(s.err(
+                    &q,
+                    format!("axis \"{name}\" is no mirror axis of the network: add it to `network.mirror`"),
+                ));
+            }
+            on_axis.push(a);
+        }
+        bodies.push(BodyDescription {
+            name: b.name.clone(),
+            key: written(&path),
+            points,
+            on_axis,
+        });
+    }
+    let body_names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
+    let find_body = |path: &[Segment], name: &str| -> Res<Option<usize>> {
+        if name == GROUND {
+            return Ok(None);
+        }
+        body_names
+            .iter()
+            .position(|&b| b == name)
+            .map(Some)
+            .ok_or_else(|| {
+                s.err(
+                    path,
+                    format!(
+                        "unknown body \"{name}\"; expected \"{GROUND}\" or one of {}",
+                        quoted(&body_names)
+                    ),
+                )
+            })
+    };
+    // the hinges
+    let mut hinges: Vec<HingeDescription> = Vec::new();
+    for (i, h) in n.hinges.iter().enumerate() {
+        let path = net(&at("hinges", i));
+        let sub = |key: &str| {
+            let mut p = path.clone();
+            p.push(k(key));
+            p
+        };
+        if hinges.iter().any(|o| o.name == h.name) {
+            return Err(s.err(&sub("name"), format!("hinge \"{}\" is named twice", h.name)));
+        }
+        let kind = HingeKind::from_name(&h.kind).ok_or_else(|| {
+            s.err(
+                &sub("kind"),
+                format!(
+                    "unknown hinge kind \"{}\"; expected one of {}",
+                    h.kind,
+                    quoted(HingeKind::NAMES)
+                ),
+            )
+        })?;
+        let from = find_body(&sub("from"), &h.from)?;
+        let to = find_body(&sub("to"), &h.to)?;
+        if from == to {
+            return Err(s.err(
+                &sub("to"),
+                format!(
+                    "hinge \"{}\" joins \"{}\" to itself: a hinge joins two bodies",
+                    h.name, h.to
+                ),
+            ));
+        }
+        let stems: Vec<&str> = kind.dimensions().iter().map(|d| d.stem).collect();
+        if let Some(unknown) = h
+            .dimensions
+            .keys()
+            .find(|key| !stems.contains(&key.as_str()))
+        {
+            return Err(s.err(
+                &sub(unknown),
+                format!(
+                    "unknown key \"{unknown}\" of a {} hinge; expected name, kind, from, to, start, angle and its dimensions {}",
+                    kind.name(),
+                    quoted(&stems)
+                ),
+            ));
+        }
+        let mut dimensions = Vec::new();
+        let mut parameter_of = Vec::new();
+        for stem in &stems {
+            let Some(text) = h.dimensions.get(*stem) else {
+                return Err(s.err(
+                    &sub(stem),
+                    format!(
+                        "missing: a {} hinge needs its dimensions {}",
+                        kind.name(),
+                        quoted(&stems)
+                    ),
+                ));
+            };
+            let e = parse(sub(stem), text)?;
+            parameter_of.push(
+                names[..names.len() - 1]
+                    .iter()
+                    .position(|&p| p == text.trim()),
+            );
+            dimensions.push(e);
+        }
+        hinges.push(HingeDescription {
+            name: h.name.clone(),
+            kind,
+            from,
+            to,
+            start: point(sub("start"), &h.start)?,
+            angle: parse(sub("angle"), &h.angle)?,
+            dimensions,
+            parameter_of,
+        });
+    }
+    // every body is joined to something
+    for (b, body) in bodies.iter().enumerate() {
+        if !hinges.iter().any(|h| h.from == Some(b) || h.to == Some(b)) {
+            let i = n
+                .bodies
+                .iter()
+                .position(|r| r.name == body.name)
+                .unwrap_or(0);
+            return Err(s.err(
+                &net(&[k("bodies"), Segment::Index(i), k("name")]),
+                format!(
+                    "body \"{}\" is joined to nothing: no hinge has it as `from` or `to`",
+                    body.name
+                ),
+            ));
+        }
+    }
+    // the ports
+    let port = |path: Vec<Segment>, p: &RawNetworkPort, name: String| -> Res<PortDescription> {
+        let sub = |key: &str| {
+            let mut q = path.clone();
+            q.push(k(key));
+            q
+        };
+        let body = find_body(&sub("body"), &p.body)?.ok_or_else(|| {
+            s.err(
+                &sub("body"),
+                "a port on the ground neither moves nor takes a load: put it on a body",
+            )
+        })?;
+        let across = p
+            .across
+            .as_deref()
+            .map(|a| axis(sub("across"), a))
+            .transpose()?;
+        if let Some(a) = across {
+            if !mirror.contains(&a) {
+                return Err(s.err(
+                    &sub("across"),
+                    "no mirror axis of the network: add it to `network.mirror`",
+                ));
+            }
+        }
+        Ok(PortDescription {
+            name,
+            body,
+            at: point(sub("at"), &p.at)?,
+            direction: point(sub("direction"), &p.direction)?,
+            across,
+        })
+    };
+    if n.input.name.is_some() {
+        return Err(s.err(&net(&[k("input"), k("name")]), "the input takes no name"));
+    }
+    let input = port(net(&[k("input")]), &n.input, "input".into())?;
+    if n.outputs.is_empty() {
+        return Err(s.err(&net(&[k("outputs")]), "give at least one output port"));
+    }
+    let mut outputs: Vec<PortDescription> = Vec::new();
+    for (i, p) in n.outputs.iter().enumerate() {
+        let path = net(&at("outputs", i));
+        let mut q = path.clone();
+        q.push(k("name"));
+        let name = p
+            .name
+            .clone()
+            .ok_or_else(|| s.err(&q, "missing: each output port has a name"))?;
+        if outputs.iter().any(|o| o.name == name) {
+            return Err(s.err(&q, format!("output \"{name}\" is named twice")));
+        }
+        outputs.push(port(path, p, name)?);
+    }
+    let mut measures: Vec<MeasureDescription> = Vec::new();
+    for (i, m) in n.measures.iter().enumerate() {
+        let path = net(&at("measures", i));
+        let sub = |key: &str| {
+            let mut q = path.clone();
+            q.push(k(key));
+            q
+        };
+        let dimension = [Dimension::Length, Dimension::Angle, Dimension::Ratio]
+            .into_iter()
+            .find(|&d| units::dimension_word(d) == m.dimension || (d == Dimension::Ratio && m.dimension == "ratio"))
+            .ok_or_else(|| {
+                s.err(
+                    &sub("dimension"),
+                    format!("unknown dimension \"{}\"; expected one of \"length\", \"angle\", \"ratio\"", m.dimension),
+                )
+            })?;
+        if measures.iter().any(|o| o.name == m.name) {
+            return Err(s.err(
+                &sub("name"),
+                format!("measure \"{}\" is named twice", m.name),
+            ));
+        }
+        measures.push(MeasureDescription {
+            name: m.name.clone(),
+            dimension,
+            value: parse(sub("value"), &m.value)?,
+        });
+    }
+    Ok(Description {
+        parameters,
+        unit,
+        width,
+        mirror,
+        bodies,
+        ground,
+        hinges,
+        input,
+        outputs,
+        measures,
+    })
+}

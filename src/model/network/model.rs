@@ -1,0 +1,667 @@
+//! The network's [`Model`]: a [`Description`] evaluated at a design into the structure of
+//! [`super::structure`], solved for the load cases the wanted outputs need, its outputs
+//! named by port and hinge.
+//!
+//! The ports' quantities are the whole mechanism's, from the described part's compliance
+//! `C_ij` (motion at port `i` under a unit load at port `j`): `W_ij = p_i C_ij f_j`, with
+//! `p_i = 2` for a port across a mirror axis (it reads the change of distance between its
+//! point and its mirror image) and `f_j = 1/2` per mirror axis port `j`'s body lies across
+//! (the described part carries that share of its load). For a quarter bridge both factors
+//! meet and `W = C`, which is paper 004's Eq. 8-11 (the quarter's `a11 = X / F` with the
+//! stroke `X` and the actuator's force `F`).
+//!
+//! The stresses and rotations are under the actuator's largest force, `F = X_nl k_in +
+//! F_preload` (paper 004, Eq. 12 and 14), as the bridge's: each hinge's end loads
+//! ([`Network::flexure_loads`]) into the hinge library's peak stresses with the notch's
+//! concentration. The actuator's true stroke is Eq. 13; the blocked force is the free
+//! output stroke times the output stiffness with the actuator in place (Thevenin's
+//! equivalent of the linear mechanism: Lobontiu, "Compliant Mechanisms", CRC 2002, Sec. 4.4).
+
+use std::borrow::Cow;
+
+use super::file::{Axis, Description, Keyed, Point};
+use super::structure::{Body, Displacements, Dof, Flexure, Load, Network};
+use crate::model::fit::FitLimit;
+use crate::model::hinge::HingeLoads;
+use crate::model::material::Material;
+use crate::model::scalar::{max, Jet, Scalar};
+use crate::model::{unseed, Dimension, Model, OutputInfo, ParameterInfo};
+
+/// The actuator that drives the input (paper 004, Eq. 12-14), as the bridge's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Actuator {
+    pub nominal_stroke: f64,
+    pub preload: f64,
+    pub stiffness: Option<f64>,
+}
+
+/// What an output is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Quantity {
+    /// Output port `o`'s motion over the input's.
+    Amplification(usize),
+    KIn,
+    KOut,
+    KOutActuated,
+    KOutBlocked,
+    BlockedForce,
+    StrokeIn,
+    StrokeOut,
+    StressMax,
+    /// Hinge `h`'s largest stress.
+    Stress(usize),
+    /// Hinge `h`'s stress at its end on `from` (false) or on `to` (true).
+    StressEnd(usize, bool),
+    Rotation(usize),
+    SpanX,
+    SpanY,
+    Measure(usize),
+}
+
+/// A planar flexure network described in a problem file.
+#[derive(Debug, Clone)]
+pub struct NetworkModel {
+    description: Description,
+    material: Material,
+    actuator: Actuator,
+    outputs: Vec<OutputInfo>,
+    quantities: Vec<Quantity>,
+    /// For each output, the outputs it is the maximum of.
+    max_of: Vec<Option<Vec<usize>>>,
+    fit: Vec<FitLimit>,
+}
+
+/// The network at one design, with its ports.
+struct Evaluated<D> {
+    network: Network<D>,
+    /// Input first, then the outputs: (body, point, unit direction).
+    ports: Vec<(usize, [D; 2], [D; 2])>,
+    /// Each port's read factor and load share.
+    read: Vec<f64>,
+    share: Vec<f64>,
+    /// Every described point (m), for the extent.
+    points: Vec<[D; 2]>,
+    /// Each hinge's dimensions (SI).
+    dims: Vec<Vec<D>>,
+    measures: Vec<D>,
+}
+
+impl NetworkModel {
+    pub fn new(description: Description, material: Material, actuator: Actuator) -> Self {
+        let mut outputs = Vec::new();
+        let mut quantities = Vec::new();
+        let d = &description;
+        let mut add = |q: Quantity, name: String, dim: Dimension, what: String| {
+            quantities.push(q);
+            outputs.push(OutputInfo {
+                name: Cow::Owned(name),
+                dimension: dim,
+                description: Cow::Owned(what),
+                display: None,
+                stand_in: None,
+            });
+        };
+        let first = &d.outputs[0].name;
+        add(
+            Quantity::Amplification(0),
+            "amplification".into(),
+            Dimension::Ratio,
+            format!("motion of output \"{first}\" over the input's (W_oi / W_ii)"),
+        );
+        for (o, p) in d.outputs.iter().enumerate().skip(1) {
+            add(
+                Quantity::Amplification(o),
+                format!("amplification_{}", p.name),
+                Dimension::Ratio,
+                format!("motion of output \"{}\" over the input's", p.name),
+            );
+        }
+        use Dimension::*;
+        for (q, name, dim, what) in [
+            (Quantity::KIn, "k_in", Stiffness, "input stiffness, the outputs free (1 / W_ii)".to_string()),
+            (Quantity::KOut, "k_out", Stiffness, format!("stiffness at output \"{first}\", the input free (1 / W_oo)")),
+            (Quantity::KOutActuated, "k_out_actuated", Stiffness, format!("stiffness at output \"{first}\", the input on the actuator's stiffness")),
+            (Quantity::KOutBlocked, "k_out_blocked", Stiffness, format!("stiffness at output \"{first}\", the input held")),
+            (Quantity::BlockedForce, "blocked_force", Force, format!("force at output \"{first}\" held, under the true stroke: stroke_out k_out_actuated")),
+            (Quantity::StrokeIn, "stroke_in", Length, "true actuator stroke under the network's load (paper 004 Eq. 13)".to_string()),
+            (Quantity::StrokeOut, "stroke_out", Length, format!("motion of output \"{first}\" under the true stroke")),
+            (Quantity::StressMax, "stress_max", Stress, "largest stress in the hinges under the largest actuator force (paper 004 Eq. 12-17)".to_string()),
+        ] {
+            add(q, name.into(), dim, what);
+        }
+        for (h, hinge) in d.hinges.iter().enumerate() {
+            add(
+                Quantity::Stress(h),
+                format!("stress_{}", hinge.name),
+                Stress,
+                format!(
+                    "largest stress in hinge \"{}\" ({})",
+                    hinge.name,
+                    hinge.kind.name()
+                ),
+            );
+        }
+        for (h, hinge) in d.hinges.iter().enumerate() {
+            for (to, end) in [(false, "from"), (true, "to")] {
+                add(
+                    Quantity::StressEnd(h, to),
+                    format!("stress_{}_{end}", hinge.name),
+                    Stress,
+                    format!(
+                        "stress in hinge \"{}\" at its end on its `{end}` body",
+                        hinge.name
+                    ),
+                );
+            }
+        }
+        for (h, hinge) in d.hinges.iter().enumerate() {
+            add(
+                Quantity::Rotation(h),
+                format!("rotation_{}", hinge.name),
+                Angle,
+                format!("rotation of hinge \"{}\" (its `to` end against its `from` end) under the largest actuator force", hinge.name),
+            );
+        }
+        for axis in ["x", "y"] {
+            let name = format!("span_{axis}");
+            let (q, what) = match d.measures.iter().position(|m| m.name == name) {
+                Some(i) => (
+                    Quantity::Measure(i),
+                    format!("`{}`", d.measures[i].value.expression.source()),
+                ),
+                None => (
+                    if axis == "x" {
+                        Quantity::SpanX
+                    } else {
+                        Quantity::SpanY
+                    },
+                    format!("extent of the described part along {axis}"),
+                ),
+            };
+            add(q, name, Length, what);
+        }
+        for (i, m) in d.measures.iter().enumerate() {
+            if m.name != "span_x" && m.name != "span_y" {
+                add(
+                    Quantity::Measure(i),
+                    m.name.clone(),
+                    m.dimension,
+                    format!("`{}`", m.value.expression.source()),
+                );
+            }
+        }
+        let max_of = quantities
+            .iter()
+            .map(|q| {
+                let ends = |pick: &dyn Fn(usize) -> bool| {
+                    quantities
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, e)| matches!(e, Quantity::StressEnd(h, _) if pick(*h)))
+                        .map(|(i, _)| i)
+                        .collect::<Vec<_>>()
+                };
+                match *q {
+                    Quantity::StressMax => Some(ends(&|_| true)),
+                    Quantity::Stress(h) => Some(ends(&|g| g == h)),
+                    _ => None,
+                }
+            })
+            .collect();
+        let mut fit = Vec::new();
+        for hinge in &d.hinges {
+            // a range of fit binds a ratio of parameters: only where each dimension is one
+            if let Some(index) = hinge
+                .parameter_of
+                .iter()
+                .copied()
+                .collect::<Option<Vec<_>>>()
+            {
+                let names: Vec<&str> = index
+                    .iter()
+                    .map(|&i| d.parameters[i].name.as_ref())
+                    .collect();
+                let owner = format!("hinge {} ({})", hinge.name, hinge.kind.name());
+                fit.extend(hinge.kind.fit_limits(&owner, &index, &names));
+            }
+        }
+        NetworkModel {
+            description,
+            material,
+            actuator,
+            outputs,
+            quantities,
+            max_of,
+            fit,
+        }
+    }
+
+    /// The network and its ports at the design `x` (SI, every parameter).
+    fn at<D: Scalar>(&self, x: &[D], modulus: Option<D>) -> Result<Evaluated<D>, String> {
+        let d = &self.description;
+        let unit = d.unit;
+        // the parameters in the expressions' units, then `deg`
+        let mut values: Vec<D> = x
+            .iter()
+            .zip(&d.parameters)
+            .map(|(&v, p)| {
+                if p.dimension == Dimension::Length {
+                    v * unit.recip()
+                } else {
+                    v
+                }
+            })
+            .collect();
+        values.push(D::from(std::f64::consts::PI / 180.0));
+        let eval = |e: &Keyed| {
+            e.expression
+                .eval(&values)
+                .map_err(|err| format!("{} = \"{}\": {err}", e.key, e.expression.source()))
+        };
+        let length = |e: &Keyed| eval(e).map(|v| v * unit);
+        let point = |p: &Point| -> Result<[D; 2], String> { Ok([length(&p[0])?, length(&p[1])?]) };
+        let mut points = Vec::new();
+        let mut references: Vec<Option<[D; 2]>> = vec![None; d.bodies.len()];
+        for (b, body) in d.bodies.iter().enumerate() {
+            for p in &body.points {
+                let q = point(p)?;
+                references[b].get_or_insert(q);
+                points.push(q);
+            }
+        }
+        for p in &d.ground {
+            points.push(point(p)?);
+        }
+        let mut flexures = Vec::with_capacity(d.hinges.len());
+        let mut dims = Vec::with_capacity(d.hinges.len());
+        for h in &d.hinges {
+            let mut dd = Vec::with_capacity(h.dimensions.len());
+            for (e, info) in h.dimensions.iter().zip(h.kind.dimensions()) {
+                dd.push(if info.dimension == Dimension::Length {
+                    length(e)?
+                } else {
+                    eval(e)?
+                });
+            }
+            let plain: Vec<f64> = dd.iter().map(|v| v.re()).collect();
+            let names: Vec<&str> = h.dimensions.iter().map(|e| e.key.as_str()).collect();
+            if let Some(why) = h.kind.domain_error(&plain, &names) {
+                return Err(format!("hinge \"{}\": {why}", h.name));
+            }
+            let start = point(&h.start)?;
+            let (s, c) = eval(&h.angle)?.sin_cos();
+            let l = h.kind.length(&dd);
+            let mut compliance = h.kind.compliance(&dd, d.width, &self.material);
+            if let Some(m) = modulus {
+                compliance = compliance.with_modulus(m);
+            }
+            let f = Flexure {
+                from: h.from.map_or(Body::Ground, Body::Rigid),
+                to: h.to.map_or(Body::Ground, Body::Rigid),
+                start,
+                axis: [c, s],
+                length: l,
+                compliance,
+            };
+            let end = f.start_plus_length();
+            for (body, p) in [(h.from, start), (h.to, end)] {
+                if let Some(b) = body {
+                    references[b].get_or_insert(p);
+                }
+            }
+            points.push(start);
+            points.push(end);
+            flexures.push(f);
+            dims.push(dd);
+        }
+        let mut held = Vec::new();
+        for (b, body) in d.bodies.iter().enumerate() {
+            for a in &body.on_axis {
+                held.push((b, if *a == Axis::X { Dof::Y } else { Dof::X }));
+                held.push((b, Dof::Rotation));
+            }
+        }
+        held.sort_by_key(|&(b, dof)| (b, dof as usize));
+        held.dedup();
+        let network = Network {
+            references: references
+                .into_iter()
+                .map(|r| r.expect("every body has a hinge, whose end is a point of it"))
+                .collect(),
+            flexures,
+            springs: Vec::new(),
+            held,
+        };
+        let mut ports = Vec::new();
+        let (mut read, mut share) = (Vec::new(), Vec::new());
+        for p in std::iter::once(&d.input).chain(&d.outputs) {
+            let [dx, dy] = point(&p.direction)?;
+            let norm = (dx * dx + dy * dy).sqrt();
+            if norm.re() == 0.0 {
+                return Err(format!("port \"{}\": its direction is zero", p.name));
+            }
+            ports.push((p.body, point(&p.at)?, [dx / norm, dy / norm]));
+            read.push(if p.across.is_some() { 2.0 } else { 1.0 });
+            share.push(0.5f64.powi(d.bodies[p.body].on_axis.len() as i32));
+        }
+        let measures = d
+            .measures
+            .iter()
+            .map(|m| {
+                let v = eval(&m.value)?;
+                Ok(if m.dimension == Dimension::Length {
+                    v * unit
+                } else {
+                    v
+                })
+            })
+            .collect::<Result<_, String>>()?;
+        Ok(Evaluated {
+            network,
+            ports,
+            read,
+            share,
+            points,
+            dims,
+            measures,
+        })
+    }
+
+    /// The wanted outputs at `x` into `out`, or why the design has none.
+    pub fn evaluate_generic<D: Scalar>(
+        &self,
+        x: &[D],
+        modulus: Option<D>,
+        wanted: &[usize],
+        out: &mut [D],
+    ) -> Result<(), String> {
+        let e = self.at(x, modulus)?;
+        let free = |err: super::structure::NetworkError| match err {
+            super::structure::NetworkError::Free { body, direction } => format!(
+                "body \"{}\" ({}) is free to move ({direction}): nothing holds it against the \
+                 ground",
+                self.description.bodies[body].name, self.description.bodies[body].key
+            ),
+            other => other.to_string(),
+        };
+        let needs = |f: &dyn Fn(Quantity) -> bool| wanted.iter().any(|&w| f(self.quantities[w]));
+        use Quantity::*;
+        let needs_input = needs(&|q| {
+            !matches!(q, SpanX | SpanY | Measure(_) | StrokeIn)
+                || (q == StrokeIn && self.actuator.stiffness.is_some())
+        });
+        let needs_output =
+            needs(&|q| matches!(q, KOut | KOutActuated | KOutBlocked | BlockedForce));
+        let unit_load = |i: usize| {
+            let (body, point, direction) = e.ports[i];
+            Load {
+                body,
+                point,
+                force: direction,
+                moment: D::from(0.0),
+            }
+        };
+        let along = |u: &Displacements<D>, i: usize| {
+            let (body, point, direction) = e.ports[i];
+            u.along(Body::Rigid(body), point, direction)
+        };
+        // the load cases wanted, from one factorization: the input's, the first output's
+        let (load_in, load_out) = ([unit_load(0)], [unit_load(1)]);
+        let mut cases: Vec<&[Load<D>]> = Vec::with_capacity(2);
+        if needs_input {
+            cases.push(&load_in);
+        }
+        if needs_output {
+            cases.push(&load_out);
+        }
+        let mut solved = if cases.is_empty() {
+            Vec::new()
+        } else {
+            e.network.solve_cases(&cases).map_err(free)?
+        };
+        let output: Option<Displacements<D>> = if needs_output { solved.pop() } else { None };
+        let input: Option<Displacements<D>> = if needs_input { solved.pop() } else { None };
+        // W_ij = read_i C_ij share_j
+        let w = |u: &Displacements<D>, i: usize, j: usize| along(u, i) * (e.read[i] * e.share[j]);
+        let w_ii = input.as_ref().map(|u| w(u, 0, 0));
+        let k_in = || w_ii.expect("listed").recip();
+        let stroke_in = || match self.actuator.stiffness {
+            None => D::from(self.actuator.nominal_stroke),
+            Some(k_a) => {
+                let ka = w_ii.expect("listed") * k_a;
+                ka * self.actuator.nominal_stroke / (ka + 1.0)
+            }
+        };
+        let amplification = |o: usize| {
+            let u = input.as_ref().expect("listed");
+            w(u, o + 1, 0) / w(u, 0, 0)
+        };
+        // the first output's stiffnesses: the input free, on the actuator, held
+        let condensed = |actuator: Option<f64>| {
+            let (u_in, u_out) = (
+                input.as_ref().expect("listed"),
+                output.as_ref().expect("listed"),
+            );
+            let (c_oo, c_oi, c_io) = (w(u_out, 1, 1), w(u_in, 1, 0), w(u_out, 0, 1));
+            let c_ii = w(u_in, 0, 0) + actuator.map_or(0.0, f64::recip);
+            (c_oo - c_oi * c_io / c_ii).recip()
+        };
+        // the hinges' loads and stresses under the largest actuator force
+        let force = || k_in() * self.actuator.nominal_stroke + self.actuator.preload;
+        let loads = |h: usize| {
+            let u = input.as_ref().expect("listed");
+            let l = e.network.flexure_loads(h, u);
+            let f = force() * e.share[0];
+            HingeLoads {
+                axial: l.axial * f,
+                shear: l.shear * f,
+                moment: l.moment * f,
+            }
+        };
+        let ends = |h: usize| {
+            let hinge = &self.description.hinges[h];
+            // (loaded end, clamped end): the loads are at its end on `to`
+            let (to, from) = hinge
+                .kind
+                .end_stresses(&e.dims[h], self.description.width, &loads(h));
+            (from, to)
+        };
+        let extent = |i: usize| {
+            let hi = e
+                .points
+                .iter()
+                .skip(1)
+                .fold(e.points[0][i], |m, p| max(m, p[i]));
+            let lo = e
+                .points
+                .iter()
+                .skip(1)
+                .fold(-e.points[0][i], |m, p| max(m, -p[i]));
+            hi + lo
+        };
+        for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
+            *slot = match self.quantities[k] {
+                Amplification(o) => amplification(o),
+                KIn => k_in(),
+                KOut => w(output.as_ref().expect("listed"), 1, 1).recip(),
+                KOutActuated => condensed(self.actuator.stiffness),
+                KOutBlocked => condensed(None),
+                StrokeIn => stroke_in(),
+                StrokeOut => amplification(0) * stroke_in(),
+                BlockedForce => amplification(0) * stroke_in() * condensed(self.actuator.stiffness),
+                StressMax => (0..self.description.hinges.len())
+                    .map(|h| {
+                        let (a, b) = ends(h);
+                        max(a, b)
+                    })
+                    .reduce(max)
+                    .unwrap_or(D::from(0.0)),
+                Stress(h) => {
+                    let (a, b) = ends(h);
+                    max(a, b)
+                }
+                StressEnd(h, to) => {
+                    let (a, b) = ends(h);
+                    if to {
+                        b
+                    } else {
+                        a
+                    }
+                }
+                Rotation(h) => {
+                    let u = input.as_ref().expect("listed");
+                    let f = &e.network.flexures[h];
+                    let turn = u.at(f.to, f.start_plus_length())[2] - u.at(f.from, f.start)[2];
+                    turn * (force() * e.share[0])
+                }
+                SpanX => extent(0),
+                SpanY => extent(1),
+                Measure(m) => e.measures[m],
+            };
+            if !slot.re().is_finite() {
+                return Err(format!(
+                    "output \"{}\" is not finite at this design",
+                    self.outputs[k].name
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn gradients<const N: usize>(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        let seeded: Vec<Jet<N>> = (0..N).map(|i| Jet::variable(x[i], i)).collect();
+        let mut y = vec![Jet::<N>::from(0.0); wanted.len()];
+        if self
+            .evaluate_generic(&seeded, None, wanted, &mut y)
+            .is_err()
+        {
+            out.fill(f64::NAN);
+            jacobian.fill(f64::NAN);
+            return;
+        }
+        unseed(&y, out, jacobian);
+    }
+}
+
+/// `$self.gradients::<N>(...)` with `N` the design's parameter count.
+macro_rules! per_count {
+    ($n:expr, $self:ident, $($arg:expr),*) => {
+        match $n {
+            1 => $self.gradients::<1>($($arg),*),
+            2 => $self.gradients::<2>($($arg),*),
+            3 => $self.gradients::<3>($($arg),*),
+            4 => $self.gradients::<4>($($arg),*),
+            5 => $self.gradients::<5>($($arg),*),
+            6 => $self.gradients::<6>($($arg),*),
+            7 => $self.gradients::<7>($($arg),*),
+            8 => $self.gradients::<8>($($arg),*),
+            9 => $self.gradients::<9>($($arg),*),
+            10 => $self.gradients::<10>($($arg),*),
+            11 => $self.gradients::<11>($($arg),*),
+            12 => $self.gradients::<12>($($arg),*),
+            13 => $self.gradients::<13>($($arg),*),
+            14 => $self.gradients::<14>($($arg),*),
+            15 => $self.gradients::<15>($($arg),*),
+            16 => $self.gradients::<16>($($arg),*),
+            n => panic!("a network has 1 to {} parameters, got {n}", crate::model::MAX_PARAMETERS),
+        }
+    };
+}
+
+impl Model for NetworkModel {
+    fn name(&self) -> &'static str {
+        "network"
+    }
+
+    fn parameters(&self) -> &[ParameterInfo] {
+        &self.description.parameters
+    }
+
+    fn outputs(&self) -> &[OutputInfo] {
+        &self.outputs
+    }
+
+    fn evaluate(&self, x: &[f64], wanted: &[usize], out: &mut [f64]) {
+        if self.evaluate_generic(x, None, wanted, out).is_err() {
+            out.fill(f64::NAN);
+        }
+    }
+
+    fn evaluate_with_gradient(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        per_count!(x.len(), self, x, wanted, out, jacobian)
+    }
+
+    fn domain_error(&self, x: &[f64]) -> Option<String> {
+        if x.len() != self.description.parameters.len() {
+            return Some(format!(
+                "a design of this network has {} parameters, got {}",
+                self.description.parameters.len(),
+                x.len()
+            ));
+        }
+        if let Some((i, v)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Some(format!(
+                "{} = {v} is not finite",
+                self.description.parameters[i].name
+            ));
+        }
+        let all: Vec<usize> = (0..self.outputs.len()).collect();
+        let mut out = vec![0.0; all.len()];
+        self.evaluate_generic(x, None, &all, &mut out).err()
+    }
+
+    /// The description checked at the middle of the bounds: a hinge joined so that a body
+    /// stays free, or an expression that fails there, is a fault of the file, not of one
+    /// design.
+    fn box_error(&self, lower: &[f64], upper: &[f64]) -> Option<(usize, String)> {
+        let middle: Vec<f64> = lower
+            .iter()
+            .zip(upper)
+            .map(|(a, b)| 0.5 * (a + b))
+            .collect();
+        self.domain_error(&middle).map(|why| {
+            (
+                0,
+                format!("the network has no value at the middle of the bounds: {why}"),
+            )
+        })
+    }
+
+    fn max_of(&self, output: usize) -> Option<&[usize]> {
+        self.max_of[output].as_deref()
+    }
+
+    fn unavailable(&self, _: usize) -> Option<String> {
+        None
+    }
+
+    fn material(&self) -> Option<&Material> {
+        Some(&self.material)
+    }
+
+    fn angle_limit(&self) -> Option<f64> {
+        None
+    }
+
+    /// No mirror image: a description's angles are its own, and negating them is the same
+    /// geometry only for some descriptions (the bridge's), which the model cannot tell.
+    fn mirror(&self, _: &mut [f64]) -> bool {
+        false
+    }
+
+    fn fit_limits(&self) -> &[FitLimit] {
+        &self.fit
+    }
+}

@@ -1,0 +1,122 @@
+//! wei2017 written as a flexure network (problems/wei2017_network.toml, issue 25) against
+//! the built-in bridge: the same outputs and gradients at random designs of Table 1, and
+//! every output's gradient against central differences.
+
+use std::path::Path;
+
+use crate::common::{random_design, rel, rng, table1_bounds, wei2017};
+use flexopt::model::Model;
+use flexopt::problem::Problem;
+
+fn network() -> Problem {
+    Problem::load(Path::new("problems/wei2017_network.toml")).unwrap()
+}
+
+/// The outputs both models have, by name.
+const SHARED: [&str; 10] = [
+    "amplification",
+    "k_in",
+    "k_out",
+    "stress_max",
+    "stress_b",
+    "stress_d",
+    "span_x",
+    "span_y",
+    "stroke_in",
+    "stroke_out",
+];
+
+#[test]
+fn the_network_gives_the_bridges_outputs_and_gradients() {
+    let p = network();
+    let net = p.model();
+    let bridge = wei2017();
+    let index = |m: &dyn Model| -> Vec<usize> {
+        SHARED.iter().map(|n| m.output_index(n).unwrap()).collect()
+    };
+    let (wn, wb) = (index(net), index(&bridge));
+    let n = 8;
+    let mut r = rng(25);
+    let (mut worst_value, mut worst_gradient) = ((0.0f64, ""), (0.0f64, ""));
+    for _ in 0..25 {
+        let x = random_design(&mut r);
+        let (mut vn, mut jn) = (vec![0.0; SHARED.len()], vec![0.0; SHARED.len() * n]);
+        let (mut vb, mut jb) = (vec![0.0; SHARED.len()], vec![0.0; SHARED.len() * n]);
+        net.evaluate_with_gradient(&x, &wn, &mut vn, &mut jn);
+        Model::evaluate_with_gradient(&bridge, &x, &wb, &mut vb, &mut jb);
+        for (i, name) in SHARED.iter().enumerate() {
+            let d = rel(vn[i], vb[i], 1e-300);
+            if d > worst_value.0 {
+                worst_value = (d, name);
+            }
+            let scale = (0..n).fold(0.0f64, |m, j| m.max(jb[i * n + j].abs()));
+            for j in 0..n {
+                let d = (jn[i * n + j] - jb[i * n + j]).abs() / scale.max(1e-300);
+                if d > worst_gradient.0 {
+                    worst_gradient = (d, name);
+                }
+            }
+        }
+    }
+    eprintln!("network vs bridge: values {worst_value:?}, gradients {worst_gradient:?}");
+    assert!(worst_value.0 < 1e-10, "{worst_value:?}");
+    assert!(worst_gradient.0 < 1e-10, "{worst_gradient:?}");
+}
+
+/// Every output's exact gradient against central differences, scaled by the bounds, where
+/// no kink of a max lies within the stencil (the one-sided slopes agree).
+#[test]
+fn every_network_output_has_its_central_difference_gradient() {
+    let p = network();
+    let net = p.model();
+    let all: Vec<usize> = net.available_outputs();
+    let m = all.len();
+    let n = 8;
+    let ranges = table1_bounds().map(|(lo, hi)| hi - lo);
+    let mut r = rng(26);
+    let mut worst = (0.0f64, String::new());
+    let (mut checks, mut kinks) = (0, 0);
+    for _ in 0..25 {
+        let x = random_design(&mut r);
+        let (mut v, mut jac) = (vec![0.0; m], vec![0.0; m * n]);
+        net.evaluate_with_gradient(&x, &all, &mut v, &mut jac);
+        let mut plain = vec![0.0; m];
+        net.evaluate(&x, &all, &mut plain);
+        for (a, b) in v.iter().zip(&plain) {
+            assert!(rel(*a, *b, 1e-300) < 1e-12, "dual {a:e} vs real {b:e}");
+        }
+        for j in 0..n {
+            let h = 1e-6 * ranges[j];
+            let at = |k: f64| {
+                let mut y = x;
+                y[j] += k * h;
+                let mut f = vec![0.0; m];
+                net.evaluate(&y, &all, &mut f);
+                f
+            };
+            let (f1, f0, fm1) = (at(1.0), at(0.0), at(-1.0));
+            for i in 0..m {
+                let scale = (0..n).fold(0.0f64, |s, k| s.max((jac[i * n + k] * ranges[k]).abs()));
+                if scale == 0.0 {
+                    continue;
+                }
+                checks += 1;
+                let (right, left) = ((f1[i] - f0[i]) / h, (f0[i] - fm1[i]) / h);
+                if (right - left).abs() * ranges[j] > 1e-3 * scale {
+                    kinks += 1;
+                    continue;
+                }
+                let fd = (f1[i] - fm1[i]) / (2.0 * h);
+                let err = (fd - jac[i * n + j]).abs() * ranges[j] / scale;
+                if err > worst.0 {
+                    worst = (err, format!("d {} / d x{j}", net.outputs()[all[i]].name));
+                }
+            }
+        }
+    }
+    eprintln!(
+        "network gradients vs central differences: worst {worst:?}, {kinks} kinks in {checks}"
+    );
+    assert!(kinks * 50 < checks, "{kinks} kinks in {checks} checks");
+    assert!(worst.0 < 1e-6, "{worst:?}");
+}

@@ -1,0 +1,138 @@
+//! A flexure network's description refused (model = "network", issue 25): each fault named
+//! with its key and what is wrong. Kept apart from `refused.toml`, whose cases the JSON
+//! Schema must refuse too: none of these can be told by a schema (names of the file's own
+//! bodies, relations between tables, values at a design).
+
+use std::path::Path;
+
+use flexopt::problem::Problem;
+
+const FILE: &str = "problems/wei2017_network.toml";
+
+/// The file with each `[from, to]` made in order (each `from` must occur), parsed: its
+/// error's key and message.
+fn refused(edits: &[(&str, &str)]) -> (String, String) {
+    let mut text = std::fs::read_to_string(FILE).unwrap();
+    for (from, to) in edits {
+        assert!(text.contains(from), "fixture text {from:?} not in {FILE}");
+        text = text.replacen(from, to, 1);
+    }
+    let Err(e) = Problem::parse(Path::new("net.toml"), &text) else {
+        panic!("the description must be refused");
+    };
+    (e.key.clone(), e.to_string())
+}
+
+fn says(edits: &[(&str, &str)], key: &str, words: &[&str]) {
+    let (k, shown) = refused(edits);
+    assert_eq!(k, key, "{shown}");
+    assert!(
+        shown.contains(&format!("`{key}`")),
+        "the key is named: {shown}"
+    );
+    for w in words {
+        assert!(shown.contains(w), "{w:?} missing from: {shown}");
+    }
+}
+
+#[test]
+fn the_shipped_network_is_read() {
+    assert!(Problem::load(Path::new(FILE)).is_ok());
+}
+
+#[test]
+fn a_hinge_joining_a_body_to_itself_is_refused() {
+    says(
+        &[(
+            "from = \"middle\"\nto = \"output\"",
+            "from = \"middle\"\nto = \"middle\"",
+        )],
+        "network.hinges[1].to",
+        &["joins \"middle\" to itself"],
+    );
+}
+
+#[test]
+fn a_body_joined_to_nothing_is_refused() {
+    says(
+        &[(
+            "on_axis = [\"y\"]",
+            "on_axis = [\"y\"]\n\n[[network.bodies]]\nname = \"spare\"",
+        )],
+        "network.bodies[3].name",
+        &["\"spare\" is joined to nothing"],
+    );
+}
+
+/// Without the output block's mirror axis nothing holds the quarter along x: the free body
+/// and its direction are named, at the middle of the bounds.
+#[test]
+fn rigid_body_motion_left_names_the_free_body_and_its_direction() {
+    let edits = [
+        (
+            "name = \"output\"              # the output block, cut by the other axis\non_axis = [\"y\"]",
+            "name = \"output\"",
+        ),
+        ("across = \"x\"", ""),
+    ];
+    let (key, shown) = refused(&edits);
+    assert_eq!(key, "variables[0].upper", "{shown}");
+    for w in [
+        "is free to move (",
+        "network.bodies[",
+        "middle of the bounds",
+    ] {
+        assert!(shown.contains(w), "{w:?} missing from: {shown}");
+    }
+}
+
+#[test]
+fn an_unknown_name_in_an_expression_is_refused_with_its_position() {
+    says(
+        &[("angle = \"delta2\"", "angle = \"delta9\"")],
+        "network.hinges[0].angle",
+        &["delta9", "at character 1"],
+    );
+}
+
+#[test]
+fn a_division_by_zero_at_the_design_names_the_expression() {
+    says(
+        &[("angle = \"delta4\"", "angle = \"delta4/(l3 - l3)\"")],
+        "variables[0].upper",
+        &["network.hinges[1].angle", "`(l3 - l3)` is zero"],
+    );
+}
+
+#[test]
+fn a_port_on_the_ground_is_refused() {
+    says(
+        &[(
+            "[network.input]\nbody = \"input\"",
+            "[network.input]\nbody = \"ground\"",
+        )],
+        "network.input.body",
+        &["on the ground"],
+    );
+}
+
+#[test]
+fn an_unknown_body_is_refused_with_the_known_ones() {
+    says(
+        &[("from = \"input\"", "from = \"inptu\"")],
+        "network.hinges[0].from",
+        &["unknown body \"inptu\"", "\"input\""],
+    );
+}
+
+#[test]
+fn a_dimension_the_hinges_kind_has_not_is_refused() {
+    says(
+        &[(
+            "l = \"l2\"\nt = \"t2\"",
+            "l = \"l2\"\nt = \"t2\"\nr = \"t2\"",
+        )],
+        "network.hinges[0].r",
+        &["unknown key \"r\" of a strip hinge", "\"l\", \"t\""],
+    );
+}
