@@ -200,7 +200,7 @@ impl Problem {
         // the names made once: a dict's keys are most of an evaluation's cost
         let names = self.output_names.get_or_init(py, || {
             let infos = self.inner.model().outputs();
-            let names = self.analytic.iter().map(|&i| infos[i].name);
+            let names = self.analytic.iter().map(|&i| infos[i].name.as_ref());
             names.map(|n| PyString::new(py, n).unbind()).collect()
         });
         for (name, &v) in names.iter().zip(values) {
@@ -300,18 +300,21 @@ impl Problem {
 
     /// The outputs `evaluate` gives, in the order of its arrays.
     #[getter]
-    fn outputs(&self) -> Vec<&'static str> {
+    fn outputs(&self) -> Vec<String> {
         let infos = self.inner.model().outputs();
-        self.analytic.iter().map(|&i| infos[i].name).collect()
+        self.analytic
+            .iter()
+            .map(|&i| infos[i].name.to_string())
+            .collect()
     }
 
     /// Output -> its SI unit.
     #[getter]
-    fn output_units(&self) -> Vec<(&'static str, &'static str)> {
+    fn output_units(&self) -> Vec<(String, &'static str)> {
         let infos = self.inner.model().outputs();
         self.analytic
             .iter()
-            .map(|&i| (infos[i].name, infos[i].dimension.si_unit()))
+            .map(|&i| (infos[i].name.to_string(), infos[i].dimension.si_unit()))
             .collect()
     }
 
