@@ -42,6 +42,18 @@ pub struct SectionSchema {
     pub rules: Vec<serde_json::Value>,
 }
 
+impl SectionSchema {
+    /// A section with no rules between it and the rest of the file.
+    pub fn new(name: &'static str, schema: schemars::Schema, required: bool) -> Self {
+        SectionSchema {
+            name,
+            schema,
+            required,
+            rules: Vec::new(),
+        }
+    }
+}
+
 /// No sections: a model whose parameters are all variables.
 pub fn no_sections(_: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
     Vec::new()

@@ -97,12 +97,7 @@ struct RawPart {
 
 /// The JSON Schema of each of the bridge's sections.
 pub fn schema(g: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
-    let one = |name, schema, required| SectionSchema {
-        name,
-        schema,
-        required,
-        rules: Vec::new(),
-    };
+    let one = SectionSchema::new;
     // each hinge's kind once: from [hinge.b] or [hinges.b], or else from hinge.kind
     let hinge_rules = ["b", "d"]
         .iter()

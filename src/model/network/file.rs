@@ -209,12 +209,7 @@ pub struct Description {
 
 /// The JSON Schema of each of the network's sections.
 pub fn schema(g: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
-    let one = |name, schema, required| SectionSchema {
-        name,
-        schema,
-        required,
-        rules: Vec::new(),
-    };
+    let one = SectionSchema::new;
     vec![
         SectionSchema {
             rules: crate::model::material::strength_rules("material"),

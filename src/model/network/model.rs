@@ -535,7 +535,7 @@ impl NetworkModel {
         out: &mut [f64],
         jacobian: &mut [f64],
     ) {
-        let seeded: Vec<Jet<N>> = (0..N).map(|i| Jet::variable(x[i], i)).collect();
+        let seeded: [Jet<N>; N] = std::array::from_fn(|i| Jet::variable(x[i], i));
         let mut y = vec![Jet::<N>::from(0.0); wanted.len()];
         if self
             .evaluate_generic(&seeded, None, wanted, &mut y)
@@ -604,18 +604,10 @@ impl Model for NetworkModel {
     }
 
     fn domain_error(&self, x: &[f64]) -> Option<String> {
-        if x.len() != self.description.parameters.len() {
-            return Some(format!(
-                "a design of this network has {} parameters, got {}",
-                self.description.parameters.len(),
-                x.len()
-            ));
-        }
-        if let Some((i, v)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Some(format!(
-                "{} = {v} is not finite",
-                self.description.parameters[i].name
-            ));
+        if let Some(why) =
+            crate::model::check_parameters("network", &self.description.parameters, x, &[], &[])
+        {
+            return Some(why);
         }
         let all: Vec<usize> = (0..self.outputs.len()).collect();
         let mut out = vec![0.0; all.len()];
