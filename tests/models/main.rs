@@ -16,6 +16,7 @@ mod hinges;
 mod layout;
 mod model_stability;
 mod network_bridge;
+mod network_shipped;
 mod paper001;
 mod paper004_tables;
 mod prr3;

@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use crate::common::{random_design, rel, rng, table1_bounds, wei2017};
+use crate::network_shipped::worst_central_difference;
 use flexopt::model::Model;
 use flexopt::problem::Problem;
 
@@ -68,52 +69,10 @@ fn the_network_gives_the_bridges_outputs_and_gradients() {
 #[test]
 fn every_network_output_has_its_central_difference_gradient() {
     let p = network();
-    let net = p.model();
-    let all: Vec<usize> = net.available_outputs();
-    let m = all.len();
-    let n = 8;
-    let ranges = table1_bounds().map(|(lo, hi)| hi - lo);
     let mut r = rng(26);
-    let mut worst = (0.0f64, String::new());
-    let (mut checks, mut kinks) = (0, 0);
-    for _ in 0..25 {
-        let x = random_design(&mut r);
-        let (mut v, mut jac) = (vec![0.0; m], vec![0.0; m * n]);
-        net.evaluate_with_gradient(&x, &all, &mut v, &mut jac);
-        let mut plain = vec![0.0; m];
-        net.evaluate(&x, &all, &mut plain);
-        for (a, b) in v.iter().zip(&plain) {
-            assert!(rel(*a, *b, 1e-300) < 1e-12, "dual {a:e} vs real {b:e}");
-        }
-        for j in 0..n {
-            let h = 1e-6 * ranges[j];
-            let at = |k: f64| {
-                let mut y = x;
-                y[j] += k * h;
-                let mut f = vec![0.0; m];
-                net.evaluate(&y, &all, &mut f);
-                f
-            };
-            let (f1, f0, fm1) = (at(1.0), at(0.0), at(-1.0));
-            for i in 0..m {
-                let scale = (0..n).fold(0.0f64, |s, k| s.max((jac[i * n + k] * ranges[k]).abs()));
-                if scale == 0.0 {
-                    continue;
-                }
-                checks += 1;
-                let (right, left) = ((f1[i] - f0[i]) / h, (f0[i] - fm1[i]) / h);
-                if (right - left).abs() * ranges[j] > 1e-3 * scale {
-                    kinks += 1;
-                    continue;
-                }
-                let fd = (f1[i] - fm1[i]) / (2.0 * h);
-                let err = (fd - jac[i * n + j]).abs() * ranges[j] / scale;
-                if err > worst.0 {
-                    worst = (err, format!("d {} / d x{j}", net.outputs()[all[i]].name));
-                }
-            }
-        }
-    }
+    let designs: Vec<Vec<f64>> = (0..25).map(|_| random_design(&mut r).to_vec()).collect();
+    let (worst, kinks, checks) =
+        worst_central_difference(p.model(), &designs, &table1_bounds(), &[]);
     eprintln!(
         "network gradients vs central differences: worst {worst:?}, {kinks} kinks in {checks}"
     );

@@ -382,3 +382,48 @@ fn the_network_form_of_wei2017_finds_the_bridges_optimum() {
         );
     }
 }
+
+/// The folded guide's study (problems/guide_network.toml) ends where beam theory puts its
+/// shortest leaves: at the thinnest web, t = 0.3 mm, the length at which the guided leaves'
+/// stress `3 k X L / (2 w t^2)`, `k = 1 / (L^3 / (E w t^3) + L / (G w t))`, reaches half the
+/// yield strength for the 0.5 mm stroke X (found here by bisection, the stress rising as L
+/// falls), every start converging there.
+#[test]
+fn the_guides_study_finds_beam_theorys_shortest_leaves() {
+    use flexopt::model::material::Material;
+    let p = Problem::load(Path::new("problems/guide_network.toml")).unwrap();
+    let s = study::run(&p, &options(&p, Solver::Sqp));
+    assert_eq!(s.ends.converged, 300, "{:?}", s.ends);
+    let best = &s.runs[s.best];
+    let m = Material::al7075_t6();
+    let (e, g, w, t, stroke) = (
+        m.youngs_modulus,
+        m.shear_modulus(),
+        0.01f64,
+        0.3e-3f64,
+        0.5e-3,
+    );
+    let limit = 0.5 * m.yield_strength.unwrap();
+    let stress = |l: f64| {
+        let k = 1.0 / (l.powi(3) / (e * w * t.powi(3)) + l / (g * w * t));
+        1.5 * k * stroke * l / (w * t * t)
+    };
+    let (mut lo, mut hi) = (1e-3, 40e-3);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if stress(mid) > limit {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    eprintln!("guide: study {:?}, beam theory L = {hi:e}", best.x_end);
+    assert!(
+        (best.x_end[0] / hi - 1.0).abs() < 1e-9,
+        "{} vs {hi}",
+        best.x_end[0]
+    );
+    assert!((best.x_end[1] - t).abs() < 1e-12, "{}", best.x_end[1]);
+    let optima: usize = s.clustering.zones.iter().map(|z| z.optima.len()).sum();
+    assert_eq!(optima, 1);
+}
