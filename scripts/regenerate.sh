@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates every committed file of results/ but the benchmarks': the study of each problem
-# in problems/ (the flexure networks too: wei2017_network, paper 004's bridge, and the rhombus, guide and lever; but the sweep-only wei2017_fig9; wei2017's optimum refined by FE too, in
+# in problems/ (the flexure networks too: wei2017_network, paper 004's bridge, and the rhombus, guide, lever, Scott-Russell and bridge-lever; but the sweep-only wei2017_fig9; wei2017's optimum refined by FE too, in
 # wei2017_refined/; ti_first_mode's refined by its own [refine] section), the finite-element checks of wei2017's optimum and printed design and of bridge_circular's
 # optimum, the hinges' accuracy table, the trade-off front of wei2017_dynamic, and the
 # sweeps of the three sweep scripts. With a folder as argument it writes there instead
@@ -10,7 +10,8 @@ cd "$(dirname "$0")/.."
 export RESULTS=${1:-results}
 cargo build --release --quiet
 for p in wei2017_dynamic bridge_stress bridge_circular prr3_frequency pss3_frequency ti_first_mode \
-  wei2017_min_stress wei2017_network rhombus_network guide_network lever_network; do
+  wei2017_min_stress wei2017_network rhombus_network guide_network lever_network \
+  scott_russell_network bridge_lever_network; do
   ./target/release/flexopt run "problems/$p.toml" --quiet --out "$RESULTS/$p" >/dev/null
 done
 # paper 004's problem as the README's main job runs it (so that running it leaves the
