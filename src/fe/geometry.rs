@@ -201,6 +201,33 @@ impl Hinge {
     }
 }
 
+/// The straight edge from `a` to `b`, split where a face ends inside it (within 1e-12 m of
+/// the edge): a face that covers part of an edge then begins and ends at nodes of every
+/// mesh, and its edges are exactly those of the mesh between them.
+fn split_at_faces(a: [f64; 2], b: [f64; 2], faces: &[crate::part::Face]) -> Vec<Edge> {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len = d[0].hypot(d[1]);
+    let mut cuts: Vec<f64> = faces
+        .iter()
+        .flat_map(|f| [f.a, f.b])
+        .filter_map(|p| {
+            let along = ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len;
+            let off = ((p[0] - a[0]) * d[1] - (p[1] - a[1]) * d[0]).abs() / len;
+            (off <= 1e-12 && along > 1e-12 && along < len - 1e-12).then_some(along / len)
+        })
+        .collect();
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let at = |t: f64| [a[0] + t * d[0], a[1] + t * d[1]];
+    let mut points = vec![a];
+    points.extend(cuts.iter().map(|&t| at(t)));
+    points.push(b);
+    points
+        .windows(2)
+        .map(|w| Edge::Line { a: w[0], b: w[1] })
+        .collect()
+}
+
 /// The region to mesh, in metres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Domain {
@@ -222,18 +249,16 @@ impl Domain {
                     .map(|i| {
                         let (a, b) = (l.vertices[i], l.vertices[(i + 1) % n]);
                         match BulgeArc::from_bulge(a, b) {
-                            Some(arc) => Edge::Arc {
+                            Some(arc) => vec![Edge::Arc {
                                 centre: arc.centre,
                                 radius: arc.radius,
                                 start: arc.start,
                                 sweep: arc.sweep,
-                            },
-                            None => Edge::Line {
-                                a: [a.x, a.y],
-                                b: [b.x, b.y],
-                            },
+                            }],
+                            None => split_at_faces([a.x, a.y], [b.x, b.y], &part.faces),
                         }
                     })
+                    .flat_map(|edges| edges.into_iter())
                     .collect()
             })
             .collect();

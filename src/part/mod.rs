@@ -33,6 +33,17 @@ use serde::Serialize;
 pub use mm::PartMm;
 pub use outline::{Loop, Vertex};
 
+/// The convex hull of `points` (counterclockwise, each corner once): a solid around points
+/// a model places.
+pub fn convex_hull(points: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    use geo::{ConvexHull, MultiPoint, Point};
+    let mp: MultiPoint<f64> = points.iter().map(|p| Point::new(p[0], p[1])).collect();
+    let h = mp.convex_hull();
+    let mut out: Vec<[f64; 2]> = h.exterior().0.iter().map(|c| [c.x, c.y]).collect();
+    out.pop();
+    out
+}
+
 /// A convex solid of the part, counterclockwise, in metres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Solid {

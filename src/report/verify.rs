@@ -104,6 +104,12 @@ pub struct VerifyReport {
     /// Why there are no 3D values.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub solid_note: Option<String>,
+    /// The whole part was solved: it or its check is not symmetric about the y axis.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub whole_part: bool,
+    /// Why the modal outputs the part states are not there.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub modal_note: Option<String>,
     /// The plate's width over its thinnest hinge, and the fidelity that ratio calls for
     /// ([`Fidelity::for_plate`]): the column to read.
     pub width_over_thickness: f64,
@@ -186,6 +192,8 @@ impl VerifyReport {
             budget_stop: v.budget_stop.map(|b| b.to_string()),
             solid_solves: v.solid.as_ref().map_or(Vec::new(), |s| s.solves.clone()),
             solid_note: v.solid_note.clone(),
+            whole_part: v.whole_part,
+            modal_note: v.modal_note.clone(),
             width_over_thickness: v.width / thinnest,
             read: Fidelity::for_plate(v.width, thinnest),
         }
@@ -244,15 +252,16 @@ type Chart<'a, 'b> = ChartContext<
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
 >;
 
-/// Each element of the half mesh and its mirror image as the polygon of its corners, mm,
-/// with a value per element; `shift` moves each node (m).
+/// Each element of the half mesh and its mirror image (or of the whole part's mesh, where
+/// that was solved) as the polygon of its corners, mm, with a value per element; `shift`
+/// moves each node (m).
 fn cells(
     v: &Verification,
     k: usize,
     shift: &dyn Fn(usize) -> [f64; 2],
 ) -> Vec<(Vec<(f64, f64)>, f64)> {
     let f = &v.results[k].fields;
-    polygons(&f.mesh, &f.von_mises, shift)
+    polygons(&f.mesh, &f.von_mises, shift, !v.whole_part)
 }
 
 /// [`cells`] of any element: its corners are where its sides start.
@@ -260,6 +269,7 @@ fn polygons<E: Element>(
     m: &Mesh<E>,
     von_mises: &[f64],
     shift: &dyn Fn(usize) -> [f64; 2],
+    mirror: bool,
 ) -> Vec<(Vec<(f64, f64)>, f64)> {
     let mut out = Vec::with_capacity(2 * m.elements.len());
     for el in &m.elements {
@@ -274,7 +284,9 @@ fn polygons<E: Element>(
             .collect();
         let mm = |p: (f64, f64)| (p.0 * 1e3, p.1 * 1e3);
         out.push((corners.iter().map(|&p| mm(p)).collect(), value));
-        out.push((corners.iter().map(|&p| mm((-p.0, p.1))).collect(), value));
+        if mirror {
+            out.push((corners.iter().map(|&p| mm((-p.0, p.1))).collect(), value));
+        }
     }
     out
 }
@@ -328,7 +340,8 @@ fn deformed_png(path: &Path, problem: &str, v: &Verification) -> Result<(), Writ
             for (k, style) in [(0.0, RGBColor(170, 170, 170)), (scale, BLUE)] {
                 for b in &m.boundary {
                     // the half's edges and their mirror images; the cut is not outline
-                    if b.nodes.iter().all(|&n| m.nodes[n][0].abs() < 1e-12) {
+                    let halved = !v.whole_part;
+                    if halved && b.nodes.iter().all(|&n| m.nodes[n][0].abs() < 1e-12) {
                         continue;
                     }
                     let pts: Vec<(f64, f64)> = b
@@ -345,10 +358,12 @@ fn deformed_png(path: &Path, problem: &str, v: &Verification) -> Result<(), Writ
                         pts,
                         style.stroke_width(2),
                     )))?;
-                    chart.draw_series(std::iter::once(PathElement::new(
-                        mirrored,
-                        style.stroke_width(2),
-                    )))?;
+                    if halved {
+                        chart.draw_series(std::iter::once(PathElement::new(
+                            mirrored,
+                            style.stroke_width(2),
+                        )))?;
+                    }
                 }
             }
         }
@@ -385,10 +400,11 @@ impl Display for VerifyTable<'_> {
         writeln!(
             s,
             "{}: finite-element check (paper 004 Sec. 4.1), {} meshes, the finest {} elements on \
-             the half part, in {:.2} s; errors estimated by Richardson extrapolation{}",
+             the {} part, in {:.2} s; errors estimated by Richardson extrapolation{}",
             r.problem,
             r.levels.len(),
             finest.map_or(0, |l| l.elements),
+            if r.whole_part { "whole" } else { "half" },
             r.seconds,
             match (&r.budget_stop, r.converged) {
                 (_, true) => String::new(),
@@ -487,6 +503,9 @@ impl Display for VerifyTable<'_> {
                 )
             }
         };
+        if let Some(why) = &r.modal_note {
+            writeln!(s, "no natural frequencies: {why}")?;
+        }
         writeln!(
             s,
             "{solid}; the plate is {:.3} times as wide as its thinnest hinge is thick: read {} \

@@ -5,10 +5,12 @@
 //! each on a sequence of uniformly refined meshes until every output meant to converge has
 //! an estimated error below the tolerance.
 //!
-//! The part must be symmetric about the y axis, and every load case symmetric too: the half
-//! at `x >= 0` is solved, its cut held in x (the symmetric response), or in y for the
+//! Where the part is symmetric about the y axis, and every load case too, the half at
+//! `x >= 0` is solved, its cut held in x (the symmetric response), or in y for the
 //! antisymmetric modes; `statement.rs` derives the half's loads and measures from the
-//! whole part's statement. What the quantities mean:
+//! whole part's statement. Any other part is solved whole, its statement as it stands (its
+//! natural modes are not yet computed whole: the modal outputs are left out, and the
+//! verification says so). What the quantities mean:
 //!
 //! - a stiffness is `test force / measure`, a ratio one measure over another.
 //! - the section stress: the largest `|N| / (w t) + 6 |M| / (w t^2)` over the hinges' root
@@ -178,9 +180,15 @@ pub struct Verification {
     pub part: Part,
     /// The check the part's model stated.
     pub analysis: Analysis,
+    /// The part solved: its half at `x >= 0`, or the whole part ([`Verification::whole_part`]).
     pub half: Part,
+    /// The whole part was solved, not its half: the part or its statement is not symmetric
+    /// about the y axis.
+    pub whole_part: bool,
+    /// Why the modal outputs the part states were not computed.
+    pub modal_note: Option<String>,
     pub levels: Vec<Level>,
-    /// The half part's mesh at each level.
+    /// The solved part's mesh at each level (the half's, or the whole part's).
     pub meshes: Vec<Mesh>,
     pub material: Elastic,
     pub width: f64,
@@ -281,7 +289,8 @@ impl Verification {
     }
 }
 
-/// Verifies the part of `spec` (a whole part, symmetric about the y axis) with `material`.
+/// Verifies the part of `spec` (a whole part) with `material`: by its half where the part and
+/// its statement are symmetric about the y axis, else whole.
 pub fn verify(
     spec: &PartSpec,
     material: &Elastic,
@@ -290,11 +299,6 @@ pub fn verify(
     let begin = std::time::Instant::now();
     let part =
         Part::build(spec).map_err(|e| FeError::Setup(format!("the part cannot be made: {e}")))?;
-    let half_spec = spec
-        .right_half()
-        .ok_or_else(|| FeError::Setup("the part is not symmetric about its output axis".into()))?;
-    let half = Part::build(&half_spec)
-        .map_err(|e| FeError::Setup(format!("the half part cannot be built: {e}")))?;
     let actuation = spec
         .actuation
         .ok_or_else(|| FeError::Setup("the model gives no actuation for its part".into()))?;
@@ -306,7 +310,25 @@ pub fn verify(
     let actuation_case = analysis
         .actuation
         .ok_or_else(|| FeError::Setup("the part's check states no actuation case".into()))?;
-    let stated = statement::half(&analysis, &spec.faces, settings.test_force)?;
+    statement::faces_exist(&analysis, &spec.faces)?;
+    // the half where the part and its statement are symmetric, else the whole part
+    let halved = spec.right_half().and_then(|h| {
+        statement::half(&analysis, &spec.faces, settings.test_force)
+            .ok()
+            .map(|stated| (h, stated))
+    });
+    let whole_part = halved.is_none();
+    let (half, stated) = match halved {
+        Some((h, stated)) => (
+            Part::build(&h)
+                .map_err(|e| FeError::Setup(format!("the half part cannot be built: {e}")))?,
+            stated,
+        ),
+        None => (
+            part.clone(),
+            statement::whole(&analysis, settings.test_force),
+        ),
+    };
     let setup = Setup {
         domain: Domain::of_part(&half),
         material: *material,
@@ -317,7 +339,13 @@ pub fn verify(
         actuation_case,
         stated,
     };
-    let modal = settings.modal && material.density > 0.0 && setup.analysis.modal.is_some();
+    let asked_modal = settings.modal && material.density > 0.0 && setup.analysis.modal.is_some();
+    let modal = asked_modal && !whole_part;
+    let modal_note = (asked_modal && whole_part).then(|| {
+        "left out: the part is not symmetric about the y axis, and its modes are not yet \
+         computed on the whole part"
+            .to_string()
+    });
     let (base, coarse) = size_function(&setup.domain, settings.per_thickness);
     let budget = settings.max_dofs / 2;
     let first = mesh_within(&setup.domain, &base, coarse, budget)?;
@@ -506,6 +534,8 @@ pub fn verify(
         analysis: setup.analysis.clone(),
         setup,
         half,
+        whole_part,
+        modal_note,
         levels,
         meshes,
         material: *material,

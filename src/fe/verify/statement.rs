@@ -1,6 +1,8 @@
 //! The part's statement of its check ([`Analysis`]) turned into what a mesh is loaded and
 //! read with: on the whole part as stated, or on its right half, where the symmetry
-//! condition on the cut stands for everything at `x < 0`.
+//! condition on the cut stands for everything at `x < 0`. The half is solved where the part
+//! and every load case, measure and actuator of its statement are symmetric about the y
+//! axis ([`half`] states them); elsewhere the whole part is.
 //!
 //! On the half, a face wholly at `x < 0` is its mirror image's business: a measure reads
 //! the mirror face with the x components negated (the symmetric field there is the mirror
@@ -162,8 +164,17 @@ fn reads(
         .collect()
 }
 
+/// That every face the statement names is a face of the part.
+pub(super) fn faces_exist(analysis: &Analysis, faces: &[Face]) -> Result<(), FeError> {
+    for name in analysis.faces() {
+        side(faces, name)?;
+    }
+    Ok(())
+}
+
 /// The statement on the right half of the part whose faces are `faces` (metres), at the
-/// test force `force`: for the symmetric response, which every load case must be.
+/// test force `force`: for the symmetric response, which every load case must be (an error
+/// says which is not).
 pub(super) fn half(analysis: &Analysis, faces: &[Face], force: f64) -> Result<Stated, FeError> {
     let right = |name: &str| -> Result<String, FeError> {
         Ok(match side(faces, name)? {

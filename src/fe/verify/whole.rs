@@ -25,12 +25,16 @@ pub struct FullModel {
 }
 
 impl Verification {
-    /// The whole part's model at `level`: the half mesh mirrored, each load case of the
-    /// part's statement at the test force.
+    /// The whole part's model at `level`: the half mesh mirrored (or the whole part's mesh,
+    /// where that was solved), each load case of the part's statement at the test force.
     pub fn full_model(&self, level: usize) -> Result<FullModel, FeError> {
         let domain = Domain::of_part(&self.part);
         let tol = 1e-9 * domain.size();
-        let mesh = self.meshes[level].mirrored_about_y(tol);
+        let mesh = if self.whole_part {
+            self.meshes[level].clone()
+        } else {
+            self.meshes[level].mirrored_about_y(tol)
+        };
         let stated = whole(&self.analysis, self.test_force);
         let named = self.analysis.faces();
         let edges = Edges::of(&mesh, &domain, &named)?;

@@ -38,12 +38,15 @@ use indexmap::IndexMap;
 use serde::Deserialize;
 
 use super::model::{Actuator, NetworkModel};
+use super::part::{Counterparts, NetworkPart, PartSettings, RawNetworkPart};
 use crate::model::bridge::file::RawActuator;
 use crate::model::entry::SectionSchema;
 use crate::model::expression::Expression;
 use crate::model::hinge::HingeKind;
 use crate::model::material::{Material, RawMaterial};
+use crate::model::Model;
 use crate::model::{Dimension, Mechanism, ParameterInfo};
+use crate::part::Actuation;
 use crate::vocab::error::Segment;
 use crate::vocab::reader::{k, quoted, Res};
 use crate::vocab::schema::{Measured, PositiveLength};
@@ -51,7 +54,7 @@ use crate::vocab::sections::Sections;
 use crate::vocab::units::{self, Unit};
 
 /// The sections the network reads.
-pub const SECTIONS: &[&str] = &["material", "network", "actuator"];
+pub const SECTIONS: &[&str] = &["material", "network", "actuator", "part"];
 
 /// The name of the ground among the bodies.
 pub const GROUND: &str = "ground";
@@ -153,6 +156,8 @@ pub struct BodyDescription {
     /// Its key in the file (`network.bodies[2]`).
     pub key: String,
     pub points: Vec<Point>,
+    /// A link's width (its two points the segment's ends); `None` for an outline.
+    pub link_width: Option<Keyed>,
     pub on_axis: Vec<Axis>,
 }
 
@@ -217,6 +222,7 @@ pub fn schema(g: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
         },
         one("network", g.subschema_for::<RawNetwork>(), true),
         one("actuator", g.subschema_for::<RawActuator>(), true),
+        one("part", g.subschema_for::<RawNetworkPart>(), false),
     ]
 }
 
@@ -237,8 +243,36 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
             .map(|q| s.measured(&act("stiffness"), q))
             .transpose()?,
     };
+    let part: Option<RawNetworkPart> = s.optional("part")?;
+    let part = part
+        .map(|p| PartSettings::read(s, &p))
+        .transpose()?
+        .map(|settings| NetworkPart {
+            description: description.clone(),
+            settings,
+            actuation: Actuation {
+                nominal_stroke: actuator.nominal_stroke,
+                preload: actuator.preload,
+                stiffness: actuator.stiffness,
+                payload_mass: 0.0,
+            },
+            counterparts: Counterparts::default(),
+        });
     let model = NetworkModel::new(description, material, actuator);
-    Ok(Mechanism::physics_only(std::sync::Arc::new(model)))
+    let part = part.map(|p| NetworkPart {
+        counterparts: Counterparts {
+            amplification: model.output_index("amplification"),
+            k_in: model.output_index("k_in"),
+            k_out: model.output_index("k_out"),
+            stress_max: model.output_index("stress_max"),
+        },
+        ..p
+    });
+    let mut mechanism = Mechanism::physics_only(std::sync::Arc::new(model));
+    if let Some(p) = part {
+        mechanism.part_maker = Some(std::sync::Arc::new(p));
+    }
+    Ok(mechanism)
 }
 
 fn net(rest: &[Segment]) -> Vec<Segment> {
@@ -341,6 +375,7 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
             return Err(s.err(&sub("name"), format!("body \"{}\" is named twice", b.name)));
         }
         let mut points = Vec::new();
+        let mut link_width = None;
         match (&b.outline, &b.link) {
             (Some(_), Some(_)) => {
                 return Err(s.err(&sub("link"), "give an outline or a link, not both"))
@@ -361,7 +396,7 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
                 points.push(point(q.clone(), &link.to)?);
                 q.pop();
                 q.push(k("width"));
-                parse(q, &link.width)?;
+                link_width = Some(parse(q, &link.width)?);
             }
             (None, None) => {}
         }
@@ -392,6 +427,7 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
             name: b.name.clone(),
             key: written(&path),
             points,
+            link_width,
             on_axis,
         });
     }

@@ -2,11 +2,13 @@
 //! 25): the structural analysis ([`structure`]) of bodies joined through the hinge
 //! library's compliances, and the natural modes of their masses on it ([`modes`]), over
 //! [`crate::model::scalar::Scalar`] for exact gradients; the problem file's description
-//! ([`file`]) and the model of its outputs ([`model`]). Its part is still to come.
+//! ([`file`]) and the model of its outputs ([`model`]); its part and the finite-element
+//! check through its ports ([`part`]), for a file with a `[part]` section.
 
 pub mod file;
 pub mod model;
 pub mod modes;
+pub mod part;
 pub mod ports;
 pub mod structure;
 

@@ -391,7 +391,7 @@ pub(super) fn fe_check(set: &Set) -> Markup {
         section #fe {
             h2 { "Finite-element check of the optimum's part" }
             p {
-                "The half part meshed and solved in " (columns.len()) " idealizations, each output's
+                "The " @if v.get("whole_part").and_then(Value::as_bool) == Some(true) { "whole" } @else { "half" } " part meshed and solved in " (columns.len()) " idealizations, each output's
                 discretization error estimated over refined meshes (tolerance "
                 (num(v.get("tolerance"))) ", " @if v.get("converged").and_then(Value::as_bool) == Some(true) { "reached" } @else { strong.bad { "not reached" } } ")."
                 " The plate's width over its thinnest hinge is " (num(v.get("width_over_thickness")))

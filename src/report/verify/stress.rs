@@ -101,11 +101,9 @@ fn hinge_peaks(v: &Verification, k: usize) -> Vec<(usize, f64, (f64, f64))> {
         .enumerate()
         .map(|(i, h)| {
             let mut best = (i, 0.0, (0.0, 0.0));
+            let images: &[f64] = if v.whole_part { &[1.0] } else { &[1.0, -1.0] };
             for (node, &s) in f.mesh.nodes.iter().zip(&f.von_mises) {
-                for p in [
-                    (node[0] * 1e3, node[1] * 1e3),
-                    (-node[0] * 1e3, node[1] * 1e3),
-                ] {
+                for p in images.iter().map(|&k| (k * node[0] * 1e3, node[1] * 1e3)) {
                     if s > best.1 && on(h, p) {
                         best = (i, s, p);
                     }

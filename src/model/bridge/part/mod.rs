@@ -46,7 +46,7 @@ use super::geometry::{Geometry, Layout};
 use super::BridgeSettings;
 use crate::model::part_rules::broken;
 use crate::model::scalar::{max, Scalar};
-use crate::part::{Actuation, Actuator, Face, HingeSite, PartSpec, Solid};
+use crate::part::{convex_hull, Actuation, Actuator, Face, HingeSite, PartSpec, Solid};
 use drawing::{annotations, deg, mm};
 
 /// The `[part]` settings of a bridge (SI).
@@ -117,15 +117,6 @@ fn mirror_xy(p: P) -> P {
 /// A polygon mirrored: its points mirrored and reversed, so it stays counterclockwise.
 fn mirrored(points: &[P], m: fn(P) -> P) -> Vec<P> {
     points.iter().rev().map(|&p| m(p)).collect()
-}
-
-fn hull(points: &[P]) -> Vec<P> {
-    use geo::{ConvexHull, MultiPoint, Point};
-    let mp: MultiPoint<f64> = points.iter().map(|p| Point::new(p[0], p[1])).collect();
-    let h = mp.convex_hull();
-    let mut out: Vec<P> = h.exterior().0.iter().map(|c| [c.x, c.y]).collect();
-    out.pop();
-    out
 }
 
 /// `polygon` with each of `points` inserted into the edge it lies on (within 1e-15 m of
@@ -243,7 +234,7 @@ pub fn spec(
     let [l3a, l3b] = across(f3, q.nb, q.hb);
     let [l4a, l4b] = across(f4, q.nd, q.hd);
     let link = on_edges(
-        hull(&[l3a, l3b, l4a, l4b]),
+        convex_hull(&[l3a, l3b, l4a, l4b]),
         &[hinge_b[1], hinge_b[2], hinge_d[0], hinge_d[3]],
     );
 

@@ -1,0 +1,693 @@
+//! The part of a flexure network, drawn from the same description as its model, and the
+//! finite-element check it states through the ports (issue 25).
+//!
+//! What is cut (metres, the description's points evaluated at the design):
+//!
+//! - each body as the file draws it: its outline (split into triangles where it is not
+//!   convex, as the part's solids are convex), or its link, a band of its width around the
+//!   segment; a body drawn by neither is the convex hull of its hinges' pads;
+//! - each hinge's thin section from `start` along `angle` for the kind's length, the model's
+//!   hinge, with the true profile of its kind ([`crate::model::hinge::HingeKind::outline`]);
+//!   its solid runs the fillet radius beyond both ends (a strip's; a notch meets its bodies
+//!   smoothly and has none) to a face across it, and behind each face a pad `pad` deep and
+//!   `root/2 + fillet + pad_margin` to each side: the pad is joined to the hinge and to the
+//!   body, so that a body drawn up to the hinge's end meets it through a face the fillets
+//!   land on;
+//! - the ground is its hinges' pads, each held on its far side (the faces `clamp`).
+//!
+//! A port's face lies where the line through the port along its direction leaves the body
+//! on the side the port's force comes from (the actuator's side): every point of that line
+//! moves alike along the direction under a rigid motion of the body, so the face's mean
+//! displacement along it reads the port's. The face is `face` long, shorter where the edge
+//! it lies on is.
+//!
+//! The check ([`crate::part::analysis`]): the clamped faces held; the test force on the input
+//! face along the input's direction (the actuation case), the input's and the first output's
+//! motions read under it; then on the first output's face, the input free. So `fe_k_in`,
+//! `fe_amplification`, `fe_k_out` and the hinges' beam and peak stresses under the
+//! actuation, each beside the model's output of the same meaning.
+//!
+//! Not yet: networks with mirror axes (their whole part from the described half or
+//! quarter), and the natural modes.
+
+use serde::Deserialize;
+
+use super::file::{Axis, Description, Keyed, Point};
+use crate::model::{Dimension, PartMaker};
+use crate::part::analysis::{
+    ActuationCase, Analysis, FeCounterpart, FeOutput, FeOutputId, Load, LoadCase, Measure,
+    Quantity, Term,
+};
+use crate::part::{convex_hull, Actuation, Face, HingeSite, PartSpec, Solid};
+use crate::vocab::reader::{k, Res};
+use crate::vocab::schema::{Measure as Quantified, Measured, NonNegativeLength, PositiveLength};
+use crate::vocab::sections::Sections;
+
+type P = [f64; 2];
+
+/// `[part]` of a network: a file with this section has a part.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RawNetworkPart {
+    /// The radius of the fillets at a strip's roots (default 0.2 mm).
+    fillet_radius: Option<Measured<NonNegativeLength>>,
+    /// The narrowest slot the wire cuts (default 0.4 mm).
+    min_slot: Option<Measured<NonNegativeLength>>,
+    /// How deep each hinge's pad reaches into its body (default 2 mm).
+    pad: Option<Measured<PositiveLength>>,
+    /// How far a pad reaches beside the hinge's root and fillet (default 1 mm).
+    pad_margin: Option<Measured<PositiveLength>>,
+    /// The length of a port's face (default 2 mm).
+    face: Option<Measured<PositiveLength>>,
+}
+
+/// `[part]` of a network (SI).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PartSettings {
+    pub fillet_radius: f64,
+    pub min_slot: f64,
+    pub pad: f64,
+    pub pad_margin: f64,
+    pub face: f64,
+}
+
+impl Default for PartSettings {
+    /// As the bridge's part: wire EDM with a 0.25 mm wire cuts inner corners of about 0.17
+    /// mm radius and slots of about 0.33 mm.
+    fn default() -> Self {
+        PartSettings {
+            fillet_radius: 0.2e-3,
+            min_slot: 0.4e-3,
+            pad: 2e-3,
+            pad_margin: 1e-3,
+            face: 2e-3,
+        }
+    }
+}
+
+impl PartSettings {
+    /// `[part]`, each key with its default.
+    pub fn read(s: &Sections, p: &RawNetworkPart) -> Res<Self> {
+        fn length<M: Quantified>(
+            s: &Sections,
+            key: &str,
+            q: &Option<Measured<M>>,
+            or: f64,
+        ) -> Res<f64> {
+            q.as_ref()
+                .map_or(Ok(or), |q| s.measured(&[k("part"), k(key)], q))
+        }
+        let d = PartSettings::default();
+        Ok(PartSettings {
+            fillet_radius: length(s, "fillet_radius", &p.fillet_radius, d.fillet_radius)?,
+            min_slot: length(s, "min_slot", &p.min_slot, d.min_slot)?,
+            pad: length(s, "pad", &p.pad, d.pad)?,
+            pad_margin: length(s, "pad_margin", &p.pad_margin, d.pad_margin)?,
+            face: length(s, "face", &p.face, d.face)?,
+        })
+    }
+}
+
+/// The model's outputs the check measures, by their indices among the model's outputs.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Counterparts {
+    pub amplification: Option<usize>,
+    pub k_in: Option<usize>,
+    pub k_out: Option<usize>,
+    pub stress_max: Option<usize>,
+}
+
+/// A network's part: the description, the settings, the actuator.
+#[derive(Debug, Clone)]
+pub struct NetworkPart {
+    pub description: Description,
+    pub settings: PartSettings,
+    pub actuation: Actuation,
+    pub counterparts: Counterparts,
+}
+
+const FE_K_IN: FeOutputId = FeOutputId(0);
+const FE_AMPLIFICATION: FeOutputId = FeOutputId(1);
+const FE_K_OUT: FeOutputId = FeOutputId(2);
+const FE_STRESS_SECTION: FeOutputId = FeOutputId(3);
+
+impl PartMaker for NetworkPart {
+    fn part(&self, x: &[f64]) -> Result<PartSpec, Vec<String>> {
+        spec(self, x)
+    }
+
+    fn fe_counterpart(&self, output: usize) -> Option<FeCounterpart> {
+        let c = &self.counterparts;
+        let is = |o: Option<usize>| o == Some(output);
+        if is(c.k_in) {
+            Some(FeCounterpart::Output(FE_K_IN))
+        } else if is(c.amplification) {
+            Some(FeCounterpart::Output(FE_AMPLIFICATION))
+        } else if is(c.k_out) {
+            Some(FeCounterpart::Output(FE_K_OUT))
+        } else if is(c.stress_max) {
+            // the hinges' beam stress with each notch's concentration: the section stress
+            // is its FE counterpart for strips, whose concentration is 1
+            Some(FeCounterpart::Output(FE_STRESS_SECTION))
+        } else {
+            None
+        }
+    }
+}
+
+fn add(a: P, b: P) -> P {
+    [a[0] + b[0], a[1] + b[1]]
+}
+
+fn scale(a: P, k: f64) -> P {
+    [a[0] * k, a[1] * k]
+}
+
+fn sub(a: P, b: P) -> P {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn cross(a: P, b: P) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+fn signed_area(points: &[P]) -> f64 {
+    let n = points.len();
+    0.5 * (0..n)
+        .map(|i| cross(points[i], points[(i + 1) % n]))
+        .sum::<f64>()
+}
+
+fn is_convex(points: &[P]) -> bool {
+    let n = points.len();
+    (0..n).all(|i| {
+        let (a, b, c) = (points[i], points[(i + 1) % n], points[(i + 2) % n]);
+        cross(sub(b, a), sub(c, b)) >= 0.0
+    })
+}
+
+/// A simple polygon (counterclockwise) cut into triangles by ear clipping (Meisters, "Polygons
+/// have ears", Amer. Math. Monthly 82, 1975): convex pieces for the union.
+fn triangles(points: &[P]) -> Vec<Vec<P>> {
+    let mut left: Vec<P> = points.to_vec();
+    let mut out = Vec::new();
+    while left.len() > 3 {
+        let n = left.len();
+        let ear = (0..n).find(|&i| {
+            let (a, b, c) = (left[(i + n - 1) % n], left[i], left[(i + 1) % n]);
+            cross(sub(b, a), sub(c, b)) > 0.0
+                && left.iter().all(|&p| {
+                    p == a
+                        || p == b
+                        || p == c
+                        || !(cross(sub(b, a), sub(p, a)) >= 0.0
+                            && cross(sub(c, b), sub(p, b)) >= 0.0
+                            && cross(sub(a, c), sub(p, c)) >= 0.0)
+                })
+        });
+        let Some(i) = ear else {
+            // a self-crossing outline has no ear: keep what is left whole, the checks say
+            break;
+        };
+        let n = left.len();
+        out.push(vec![left[(i + n - 1) % n], left[i], left[(i + 1) % n]]);
+        left.remove(i);
+    }
+    out.push(left);
+    out
+}
+
+fn band(a: P, b: P, half: f64) -> Vec<P> {
+    let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+    let n = [-(b[1] - a[1]) / len, (b[0] - a[0]) / len];
+    vec![
+        add(a, scale(n, -half)),
+        add(b, scale(n, -half)),
+        add(b, scale(n, half)),
+        add(a, scale(n, half)),
+    ]
+}
+
+/// Where the ray from `p` along `dir` first leaves the convex polygon `poly`, if `p` lies in
+/// it: the distance along the ray and the edge's index.
+fn exit(poly: &[P], p: P, dir: P) -> Option<(f64, usize)> {
+    let n = poly.len();
+    let inside = (0..n).all(|i| cross(sub(poly[(i + 1) % n], poly[i]), sub(p, poly[i])) >= -1e-15);
+    if !inside {
+        return None;
+    }
+    (0..n)
+        .filter_map(|i| {
+            let (a, b) = (poly[i], poly[(i + 1) % n]);
+            let e = sub(b, a);
+            let denom = cross(dir, e);
+            if denom.abs() < 1e-30 {
+                return None;
+            }
+            let s = cross(sub(a, p), e) / denom;
+            let t = cross(sub(a, p), dir) / denom;
+            (s >= 0.0 && (-1e-12..=1.0 + 1e-12).contains(&t)).then_some((s, i))
+        })
+        .min_by(|x, y| x.0.total_cmp(&y.0))
+}
+
+/// The stretch `[c0, c1]` of the line `q + s e` (`s` in `[lo, hi]`) that the convex polygon
+/// `poly` covers, its boundary included (to 1e-12 m), if any.
+fn covered(poly: &[P], q: P, e: P, lo: f64, hi: f64) -> Option<(f64, f64)> {
+    let (mut a, mut b) = (lo, hi);
+    let n = poly.len();
+    for i in 0..n {
+        let (p0, p1) = (poly[i], poly[(i + 1) % n]);
+        let edge = sub(p1, p0);
+        let len = edge[0].hypot(edge[1]);
+        // inside: cross(edge, point - p0) / len >= -tol, linear in s
+        let at0 = cross(edge, sub(q, p0)) / len + 1e-12;
+        let slope = cross(edge, e) / len;
+        if slope.abs() < 1e-15 {
+            if at0 < 0.0 {
+                return None;
+            }
+            continue;
+        }
+        let root = -at0 / slope;
+        if slope > 0.0 {
+            a = a.max(root);
+        } else {
+            b = b.min(root);
+        }
+    }
+    (a < b).then_some((a, b))
+}
+
+/// The description's expressions evaluated at `x` (SI) in f64.
+struct Values<'a> {
+    d: &'a Description,
+    values: Vec<f64>,
+}
+
+impl<'a> Values<'a> {
+    fn new(d: &'a Description, x: &[f64]) -> Self {
+        let mut values: Vec<f64> = x
+            .iter()
+            .zip(&d.parameters)
+            .map(|(&v, p)| {
+                if p.dimension == Dimension::Length {
+                    v / d.unit
+                } else {
+                    v
+                }
+            })
+            .collect();
+        values.push(std::f64::consts::PI / 180.0);
+        Values { d, values }
+    }
+
+    fn eval(&self, e: &Keyed) -> Result<f64, String> {
+        e.expression
+            .eval(&self.values)
+            .map_err(|err| format!("{} = \"{}\": {err}", e.key, e.expression.source()))
+    }
+
+    fn length(&self, e: &Keyed) -> Result<f64, String> {
+        Ok(self.eval(e)? * self.d.unit)
+    }
+
+    fn point(&self, p: &Point) -> Result<P, String> {
+        Ok([self.length(&p[0])?, self.length(&p[1])?])
+    }
+}
+
+/// The part of design `x`.
+fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
+    let d = &part.description;
+    let s = &part.settings;
+    if !d.mirror.is_empty() {
+        let axes: Vec<&str> = d
+            .mirror
+            .iter()
+            .map(|a| if *a == Axis::X { "x" } else { "y" })
+            .collect();
+        return Err(vec![format!(
+            "the part of a network with mirror axes ({}) is not drawn yet: describe the whole \
+             mechanism without `network.mirror` to have its part",
+            axes.join(", ")
+        )]);
+    }
+    let v = Values::new(d, x);
+    let one = |r: Result<P, String>| r.map_err(|e| vec![e]);
+    let mut solids: Vec<Solid> = Vec::new();
+    let mut joints: Vec<(usize, usize)> = Vec::new();
+    let mut hinges: Vec<HingeSite> = Vec::new();
+    let mut faces: Vec<Face> = Vec::new();
+    // the solids of each body (index 0 the ground), for the joints and the ports
+    let mut of_body: Vec<Vec<usize>> = vec![Vec::new(); d.bodies.len() + 1];
+    let slot = |b: Option<usize>| b.map_or(0, |b| b + 1);
+    let mut problems = Vec::new();
+
+    // each hinge: its solid and its two pads
+    let mut pads: Vec<(usize, Vec<P>)> = Vec::new();
+    // each hinge's solid and the bodies it meets through its faces
+    let mut meets: Vec<(usize, usize, usize)> = Vec::new();
+    for h in &d.hinges {
+        let mut dims = Vec::with_capacity(h.dimensions.len());
+        for (e, info) in h.dimensions.iter().zip(h.kind.dimensions()) {
+            let value = if info.dimension == Dimension::Length {
+                v.length(e)
+            } else {
+                v.eval(e)
+            };
+            dims.push(value.map_err(|e| vec![e])?);
+        }
+        let start = one(v.point(&h.start))?;
+        let angle = v.eval(&h.angle).map_err(|e| vec![e])?;
+        let u = [angle.cos(), angle.sin()];
+        let n = [-u[1], u[0]];
+        let length = h.kind.length(&dims);
+        let end = add(start, scale(u, length));
+        let root = h.kind.root_thickness(&dims);
+        let fillet = if h.kind.has_sharp_roots() {
+            s.fillet_radius
+        } else {
+            0.0
+        };
+        let (f0, f1) = (add(start, scale(u, -fillet)), add(end, scale(u, fillet)));
+        let half = 0.5 * root + fillet + s.pad_margin;
+        let own = solids.len();
+        let body = band(f0, f1, 0.5 * root);
+        // the pads: behind each face, their face edge holding the hinge's corners
+        let pad_from = vec![
+            add(add(f0, scale(u, -s.pad)), scale(n, -half)),
+            add(f0, scale(n, -half)),
+            body[0],
+            body[3],
+            add(f0, scale(n, half)),
+            add(add(f0, scale(u, -s.pad)), scale(n, half)),
+        ];
+        let pad_to = vec![
+            add(f1, scale(n, -half)),
+            add(add(f1, scale(u, s.pad)), scale(n, -half)),
+            add(add(f1, scale(u, s.pad)), scale(n, half)),
+            add(f1, scale(n, half)),
+            body[2],
+            body[1],
+        ];
+        solids.push(Solid {
+            name: format!("hinge {}", h.name),
+            points: body,
+        });
+        meets.push((own, slot(h.from), slot(h.to)));
+        hinges.push(HingeSite {
+            name: h.name.clone(),
+            start,
+            end,
+            thickness: h.kind.least_thickness(&dims),
+            root,
+            fillet,
+            kind: h.kind.name(),
+            profile: h.kind.outline(&dims),
+            solid: own,
+        });
+        for (which, (points, body)) in [(pad_from, h.from), (pad_to, h.to)].into_iter().enumerate()
+        {
+            let k = solids.len();
+            let side = if which == 0 { "start" } else { "end" };
+            solids.push(Solid {
+                name: format!("the pad at hinge {}'s {side}", h.name),
+                points: points.clone(),
+            });
+            joints.push((own, k));
+            of_body[slot(body)].push(k);
+            if body.is_none() {
+                // the ground: held on the pad's far side, along the pad's outline
+                let (a, b) = if which == 0 {
+                    (points[5], points[0])
+                } else {
+                    (points[1], points[2])
+                };
+                faces.push(Face {
+                    name: "clamp".into(),
+                    a,
+                    b,
+                });
+            }
+            pads.push((slot(body), points));
+        }
+    }
+
+    // the bodies as drawn, or the hull of their pads
+    for (b, body) in d.bodies.iter().enumerate() {
+        let mut points = Vec::with_capacity(body.points.len());
+        for p in &body.points {
+            points.push(one(v.point(p))?);
+        }
+        let shapes: Vec<Vec<P>> = match (&body.link_width, points.len()) {
+            (Some(w), 2) => {
+                let width = v.length(w).map_err(|e| vec![e])?;
+                vec![band(points[0], points[1], 0.5 * width)]
+            }
+            (_, 0) => {
+                let all: Vec<P> = pads
+                    .iter()
+                    .filter(|(o, _)| *o == b + 1)
+                    .flat_map(|(_, p)| p.iter().copied())
+                    .collect();
+                vec![convex_hull(&all)]
+            }
+            _ => {
+                if signed_area(&points) < 0.0 {
+                    points.reverse();
+                }
+                if is_convex(&points) {
+                    vec![points]
+                } else {
+                    triangles(&points)
+                }
+            }
+        };
+        for (i, shape) in shapes.into_iter().enumerate() {
+            let k = solids.len();
+            solids.push(Solid {
+                name: if i == 0 {
+                    format!("body {}", body.name)
+                } else {
+                    format!("body {} ({})", body.name, i + 1)
+                },
+                points: shape,
+            });
+            of_body[b + 1].push(k);
+        }
+    }
+    // a hinge meets its two bodies through its faces, and every solid of a body is joined
+    // to every other of it
+    for &(own, from, to) in &meets {
+        for &k in of_body[from].iter().chain(&of_body[to]) {
+            if !joints.contains(&(own, k)) {
+                joints.push((own, k));
+            }
+        }
+    }
+    for list in &of_body {
+        for (i, &a) in list.iter().enumerate() {
+            for &c in &list[i + 1..] {
+                joints.push((a, c));
+            }
+        }
+    }
+
+    // the ports' faces, on the side the force comes from
+    let ports = std::iter::once(("input".to_string(), &d.input))
+        .chain(d.outputs.iter().map(|o| (format!("output_{}", o.name), o)));
+    let mut directions = Vec::new();
+    for (name, port) in ports {
+        let at = one(v.point(&port.at))?;
+        let dir = one(v.point(&port.direction))?;
+        let norm = dir[0].hypot(dir[1]);
+        let dir = [dir[0] / norm, dir[1] / norm];
+        directions.push(dir);
+        let back = [-dir[0], -dir[1]];
+        let hit = of_body[port.body + 1]
+            .iter()
+            .filter_map(|&k| {
+                let poly = &solids[k].points;
+                exit(poly, at, back).map(|(t, e)| (t, k, e))
+            })
+            .max_by(|x, y| x.0.total_cmp(&y.0));
+        let Some((t, k, e)) = hit else {
+            problems.push(format!(
+                "port {name} at ({:.3}, {:.3}) mm lies on no solid of body \"{}\": put it on \
+                 the body",
+                at[0] * 1e3,
+                at[1] * 1e3,
+                d.bodies[port.body].name
+            ));
+            continue;
+        };
+        let q = add(at, scale(back, t));
+        let poly = &solids[k].points;
+        let (a, b) = (poly[e], poly[(e + 1) % poly.len()]);
+        let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+        let along = ((q[0] - a[0]) * (b[0] - a[0]) + (q[1] - a[1]) * (b[1] - a[1])) / len;
+        let half = (0.5 * s.face).min(along).min(len - along);
+        if half < 1e-6 {
+            problems.push(format!(
+                "port {name}: its face falls on a corner of body \"{}\"; move the port along \
+                 the body's edge",
+                d.bodies[port.body].name
+            ));
+            continue;
+        }
+        let e_u = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
+        // the face keeps off every solid of another body or hinge, whose material stands on
+        // that edge there and leaves it no outline
+        let mut lo = -half;
+        let mut hi = half;
+        for (j, other) in solids.iter().enumerate() {
+            if of_body[port.body + 1].contains(&j) {
+                continue;
+            }
+            if let Some((c0, c1)) = covered(&other.points, q, e_u, -half, half) {
+                if c0 <= 0.0 && c1 >= 0.0 {
+                    lo = hi;
+                    problems.push(format!(
+                        "port {name}: its face at ({:.3}, {:.3}) mm lies on {}; move the port \
+                         clear of it",
+                        q[0] * 1e3,
+                        q[1] * 1e3,
+                        other.name
+                    ));
+                    break;
+                } else if c1 < 0.0 {
+                    lo = lo.max(c1);
+                } else {
+                    hi = hi.min(c0);
+                }
+            }
+        }
+        if hi <= lo {
+            continue;
+        }
+        faces.push(Face {
+            name: name.clone(),
+            a: add(q, scale(e_u, lo)),
+            b: add(q, scale(e_u, hi)),
+        });
+    }
+    if !problems.is_empty() {
+        return Err(problems);
+    }
+    let first_output = format!("output_{}", d.outputs[0].name);
+    let analysis = analysis(&first_output, directions[0], directions[1]);
+    Ok(PartSpec {
+        width: d.width,
+        actuation: Some(part.actuation),
+        analysis: Some(analysis),
+        solids,
+        joints,
+        hinges,
+        faces,
+        annotations: Vec::new(),
+        caption: format!(
+            "flexure network: {} bodies, {} hinges",
+            d.bodies.len(),
+            d.hinges.len()
+        ),
+        min_slot: s.min_slot,
+        actuator: None,
+        warnings: Vec::new(),
+    })
+}
+
+/// The check through the ports: the test force on the input (the actuation case), the input's
+/// and the first output's motions under it; then on the first output, the input free.
+fn analysis(output: &str, d_in: P, d_out: P) -> Analysis {
+    let term = |face: &str, direction: P| Term {
+        weight: 1.0,
+        face: face.into(),
+        direction,
+    };
+    let out = |name: &'static str, dimension, meaning: &'static str, quantity| FeOutput {
+        name,
+        dimension,
+        meaning,
+        quantity,
+        converges: quantity != Quantity::PeakStress,
+        display: None,
+        analytic: None,
+    };
+    Analysis {
+        clamped: vec!["clamp".into()],
+        cases: vec![
+            LoadCase {
+                name: "on the input face".into(),
+                loads: vec![Load {
+                    face: "input".into(),
+                    direction: d_in,
+                    share: 1.0,
+                }],
+            },
+            LoadCase {
+                name: "on the first output's face".into(),
+                loads: vec![Load {
+                    face: output.into(),
+                    direction: d_out,
+                    share: 1.0,
+                }],
+            },
+        ],
+        measures: vec![
+            Measure {
+                case: 0,
+                terms: vec![term("input", d_in)],
+            },
+            Measure {
+                case: 0,
+                terms: vec![term(output, d_out)],
+            },
+            Measure {
+                case: 1,
+                terms: vec![term(output, d_out)],
+            },
+        ],
+        outputs: vec![
+            out(
+                "fe_k_in",
+                Dimension::Stiffness,
+                "the test force over the input face's motion along the input",
+                Quantity::Stiffness(0),
+            ),
+            out(
+                "fe_amplification",
+                Dimension::Ratio,
+                "the first output face's motion over the input face's, the force on the input",
+                Quantity::Ratio {
+                    numerator: 1,
+                    denominator: 0,
+                },
+            ),
+            out(
+                "fe_k_out",
+                Dimension::Stiffness,
+                "the test force on the first output over its face's motion, the input free",
+                Quantity::Stiffness(2),
+            ),
+            out(
+                "fe_stress_section",
+                Dimension::Stress,
+                "the largest beam stress at the hinges' sections under the actuation",
+                Quantity::SectionStress,
+            ),
+            out(
+                "fe_stress_max",
+                Dimension::Stress,
+                "the largest von Mises stress under the actuation",
+                Quantity::PeakStress,
+            ),
+        ],
+        actuation: Some(ActuationCase {
+            name: "actuation_force",
+            case: 0,
+            stiffness: FE_K_IN,
+        }),
+        modal: None,
+    }
+}
