@@ -490,6 +490,14 @@ impl NetworkModel {
                 .end_stresses(&e.dims[h], self.description.width, &loads(h));
             (from, to)
         };
+        // each hinge's two end stresses once, however many outputs read them
+        let stresses: Vec<(D, D)> =
+            if needs(&|q| matches!(q, StressMax | Stress(_) | StressEnd(..))) {
+                (0..self.description.hinges.len()).map(ends).collect()
+            } else {
+                Vec::new()
+            };
+        let ends = |h: usize| stresses[h];
         let extent = |i: usize| {
             let hi = e
                 .points
