@@ -24,6 +24,9 @@ use std::fmt;
 
 use super::scalar::{self, Scalar};
 
+mod tape;
+pub use tape::Tape;
+
 /// A parsed expression; its names are indices into the list it was parsed against.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Expression {
@@ -53,7 +56,7 @@ enum Kind {
     Call(Function, usize, Option<usize>),
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 enum Function {
     Sin,
     Cos,
@@ -244,13 +247,7 @@ impl Expression {
                                 ),
                             ));
                         }
-                        // asin x = atan(x / sqrt(1 - x^2)), acos x = pi/2 - asin x
-                        let asin = (x / (-(x * x) + 1.0).sqrt()).atan();
-                        if f == Function::Asin {
-                            asin
-                        } else {
-                            -asin + FRAC_PI_2
-                        }
+                        asin_or_acos(x, f)
                     }
                     Function::Atan => x.atan(),
                     Function::Atan2 => {
@@ -284,6 +281,17 @@ impl Expression {
                 }
             }
         })
+    }
+}
+
+/// `asin x` or `acos x` (`f`), `|x| < 1`: asin x = atan(x / sqrt(1 - x^2)), acos x =
+/// pi/2 - asin x.
+fn asin_or_acos<D: Scalar>(x: D, f: Function) -> D {
+    let asin = (x / (-(x * x) + 1.0).sqrt()).atan();
+    if f == Function::Asin {
+        asin
+    } else {
+        -asin + FRAC_PI_2
     }
 }
 
@@ -618,7 +626,7 @@ mod tests {
     use crate::model::scalar::Jet;
     use num_dual::Dual2SVec64;
 
-    const NAMES: [&str; 3] = ["l2", "delta2", "t"];
+    pub(super) const NAMES: [&str; 3] = ["l2", "delta2", "t"];
 
     fn value(text: &str, x: [f64; 3]) -> f64 {
         Expression::parse(text, &NAMES)
@@ -679,7 +687,7 @@ mod tests {
         }
     }
 
-    const SMOOTH: [&str; 8] = [
+    pub(super) const SMOOTH: [&str; 8] = [
         "l2*cos(delta2) - t/2",
         "sqrt(l2^2 + t^2) * sin(delta2)",
         "t^(1/3) / (l2 + 1)",

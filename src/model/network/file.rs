@@ -144,6 +144,9 @@ pub enum Axis {
 pub struct Keyed {
     pub key: String,
     pub expression: Expression,
+    /// Its place among the expressions the model compiles into one tape
+    /// ([`crate::model::expression::Tape`]), set by the model.
+    pub slot: usize,
 }
 
 pub type Point = [Keyed; 2];
@@ -332,7 +335,11 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
     let parse = |path: Vec<Segment>, text: &str| -> Res<Keyed> {
         let key = written(&path);
         Expression::parse(text, &names)
-            .map(|expression| Keyed { key, expression })
+            .map(|expression| Keyed {
+                key,
+                expression,
+                slot: usize::MAX,
+            })
             .map_err(|e| s.err(&path, format!("in \"{text}\" {e}")))
     };
     let point = |path: Vec<Segment>, p: &[String; 2]| -> Res<Point> {

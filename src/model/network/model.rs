@@ -19,8 +19,9 @@
 
 use std::borrow::Cow;
 
-use super::file::{Axis, Description, Keyed, Point};
+use super::file::{Axis, Description, HingeDescription, Keyed, Point};
 use super::structure::{Body, Displacements, Dof, Flexure, Load, Network};
+use crate::model::expression::Tape;
 use crate::model::fit::FitLimit;
 use crate::model::hinge::HingeLoads;
 use crate::model::material::Material;
@@ -69,6 +70,8 @@ pub struct NetworkModel {
     /// For each output, the outputs it is the maximum of.
     max_of: Vec<Option<Vec<usize>>>,
     fit: Vec<FitLimit>,
+    /// Every expression of the description, compiled together (each [`Keyed::slot`]).
+    tape: Tape,
 }
 
 /// The network at one design, with its ports.
@@ -87,7 +90,15 @@ struct Evaluated<D> {
 }
 
 impl NetworkModel {
-    pub fn new(description: Description, material: Material, actuator: Actuator) -> Self {
+    pub fn new(mut description: Description, material: Material, actuator: Actuator) -> Self {
+        let tape = {
+            let names = description.parameters.len() + 1;
+            let mut all = expressions(&mut description);
+            for (slot, e) in all.iter_mut().enumerate() {
+                e.slot = slot;
+            }
+            Tape::compile(all.iter().map(|e| &e.expression), names)
+        };
         let mut outputs = Vec::new();
         let mut quantities = Vec::new();
         let d = &description;
@@ -233,31 +244,46 @@ impl NetworkModel {
             quantities,
             max_of,
             fit,
+            tape,
         }
     }
 
-    /// The network and its ports at the design `x` (SI, every parameter).
+    /// The network and its ports at the design `x` (SI, every parameter): the expressions
+    /// from the tape, or where it fails, from their trees, which say which one and why.
     fn at<D: Scalar>(&self, x: &[D], modulus: Option<D>) -> Result<Evaluated<D>, String> {
         let d = &self.description;
         let unit = d.unit;
         // the parameters in the expressions' units, then `deg`
-        let mut values: Vec<D> = x
-            .iter()
-            .zip(&d.parameters)
-            .map(|(&v, p)| {
-                if p.dimension == Dimension::Length {
-                    v * unit.recip()
-                } else {
-                    v
-                }
-            })
-            .collect();
+        let mut values: Vec<D> = Vec::with_capacity(x.len() + 1);
+        values.extend(x.iter().zip(&d.parameters).map(|(&v, p)| {
+            if p.dimension == Dimension::Length {
+                v * unit.recip()
+            } else {
+                v
+            }
+        }));
         values.push(D::from(std::f64::consts::PI / 180.0));
-        let eval = |e: &Keyed| {
-            e.expression
-                .eval(&values)
-                .map_err(|err| format!("{} = \"{}\": {err}", e.key, e.expression.source()))
-        };
+        let mut registers = Vec::new();
+        if self.tape.run(&values, &mut registers) {
+            self.build(modulus, |e: &Keyed| Ok(registers[self.tape.output(e.slot)]))
+        } else {
+            self.build(modulus, |e: &Keyed| {
+                e.expression
+                    .eval(&values)
+                    .map_err(|err| format!("{} = \"{}\": {err}", e.key, e.expression.source()))
+            })
+        }
+    }
+
+    /// [`NetworkModel::at`] with each expression's value from `eval`.
+    fn build<D: Scalar>(
+        &self,
+        modulus: Option<D>,
+        eval: impl Fn(&Keyed) -> Result<D, String>,
+    ) -> Result<Evaluated<D>, String> {
+        let d = &self.description;
+        let unit = d.unit;
+        let eval = &eval;
         let length = |e: &Keyed| eval(e).map(|v| v * unit);
         let point = |p: &Point| -> Result<[D; 2], String> { Ok([length(&p[0])?, length(&p[1])?]) };
         let mut points = Vec::new();
@@ -283,9 +309,7 @@ impl NetworkModel {
                     eval(e)?
                 });
             }
-            let plain: Vec<f64> = dd.iter().map(|v| v.re()).collect();
-            let names: Vec<&str> = h.dimensions.iter().map(|e| e.key.as_str()).collect();
-            if let Some(why) = h.kind.domain_error(&plain, &names) {
+            if let Some(why) = domain_error(h, &dd) {
                 return Err(format!("hinge \"{}\": {why}", h.name));
             }
             let start = point(&h.start)?;
@@ -466,6 +490,14 @@ impl NetworkModel {
                 .end_stresses(&e.dims[h], self.description.width, &loads(h));
             (from, to)
         };
+        // each hinge's two end stresses once, however many outputs read them
+        let stresses: Vec<(D, D)> =
+            if needs(&|q| matches!(q, StressMax | Stress(_) | StressEnd(..))) {
+                (0..self.description.hinges.len()).map(ends).collect()
+            } else {
+                Vec::new()
+            };
+        let ends = |h: usize| stresses[h];
         let extent = |i: usize| {
             let hi = e
                 .points
@@ -547,6 +579,51 @@ impl NetworkModel {
         }
         unseed(&y, out, jacobian);
     }
+}
+
+/// Every expression [`NetworkModel::at`] evaluates.
+fn expressions(d: &mut Description) -> Vec<&mut Keyed> {
+    let mut all = Vec::new();
+    for b in &mut d.bodies {
+        for p in &mut b.points {
+            all.extend(p.iter_mut());
+        }
+    }
+    for p in &mut d.ground {
+        all.extend(p.iter_mut());
+    }
+    for h in &mut d.hinges {
+        all.extend(h.dimensions.iter_mut());
+        all.extend(h.start.iter_mut());
+        all.push(&mut h.angle);
+    }
+    for p in std::iter::once(&mut d.input).chain(&mut d.outputs) {
+        all.extend(p.at.iter_mut());
+        all.extend(p.direction.iter_mut());
+    }
+    for m in &mut d.measures {
+        all.push(&mut m.value);
+    }
+    all
+}
+
+/// Why hinge `h`'s dimensions `dims` (SI) make no hinge of its kind, named by their keys;
+/// the check on the values alone, without allocating, and the names only for a message.
+fn domain_error<D: Scalar>(h: &HingeDescription, dims: &[D]) -> Option<String> {
+    const MOST: usize = 8;
+    if dims.len() <= MOST {
+        let mut plain = [0.0; MOST];
+        for (p, v) in plain.iter_mut().zip(dims) {
+            *p = v.re();
+        }
+        let stems: [&str; MOST] =
+            std::array::from_fn(|i| h.kind.dimensions().get(i).map_or("", |info| info.stem));
+        h.kind
+            .domain_error(&plain[..dims.len()], &stems[..dims.len()])?;
+    }
+    let names: Vec<&str> = h.dimensions.iter().map(|e| e.key.as_str()).collect();
+    let plain: Vec<f64> = dims.iter().map(|v| v.re()).collect();
+    h.kind.domain_error(&plain, &names)
 }
 
 /// `$self.gradients::<N>(...)` with `N` the design's parameter count.

@@ -130,12 +130,12 @@ const FREE_PIVOT: f64 = 1e-13;
 
 /// The displacements of each body's reference point, `(u, v, theta)`.
 #[derive(Debug, Clone)]
-pub struct Displacements<D> {
+pub struct Displacements<'a, D> {
     pub bodies: Vec<[D; 3]>,
-    references: Vec<[D; 2]>,
+    references: &'a [[D; 2]],
 }
 
-impl<D: Scalar> Displacements<D> {
+impl<D: Scalar> Displacements<'_, D> {
     /// The motion of `point` of `body`: `(u, v, theta)` there.
     pub fn at(&self, body: Body, point: [D; 2]) -> [D; 3] {
         match body {
@@ -238,50 +238,160 @@ impl<D: Scalar> Network<D> {
     }
 
     /// The bodies' displacements under `loads`.
-    pub fn solve(&self, loads: &[Load<D>]) -> Result<Displacements<D>, NetworkError> {
+    pub fn solve(&self, loads: &[Load<D>]) -> Result<Displacements<'_, D>, NetworkError> {
         let mut all = self.solve_cases(&[loads])?;
         Ok(all.remove(0))
     }
 
     /// The bodies' displacements under each of `cases`, from one factorization of the
-    /// stiffness.
-    pub fn solve_cases(&self, cases: &[&[Load<D>]]) -> Result<Vec<Displacements<D>>, NetworkError> {
-        let n = 3 * self.references.len();
-        let mut k = self.stiffness()?;
-        // a held degree of freedom: its row and column out, a unit pivot, no load
-        let scale = (0..n).map(|i| k[i * n + i].re().abs()).fold(0.0, f64::max);
-        for &(body, dof) in &self.held {
-            let j = 3 * body + dof as usize;
-            for i in 0..n {
-                k[i * n + j] = D::from(0.0);
-                k[j * n + i] = D::from(0.0);
+    /// stiffness of the degrees of freedom not held (a held one's row and column drop out:
+    /// the factor of the rest is the one the whole matrix with a unit pivot there would
+    /// give, at the cost of the free ones alone).
+    pub fn solve_cases(
+        &self,
+        cases: &[&[Load<D>]],
+    ) -> Result<Vec<Displacements<'_, D>>, NetworkError> {
+        let bodies = self.references.len();
+        let (index, m) = self.free_numbering();
+        let mut k = vec![D::from(0.0); m * m];
+        for (i, f) in self.flexures.iter().enumerate() {
+            if f.from == f.to {
+                return Err(NetworkError::SelfJoined { flexure: i });
             }
-            k[j * n + j] = D::from(scale.max(1.0));
+            self.add_flexure_free(f, &index, &mut k, m);
         }
-        factor(&mut k, n)?;
+        for s in &self.springs {
+            let r = sub(s.point, self.references[s.body]);
+            let [nx, ny] = s.direction;
+            let a = [nx, ny, -r[1] * nx + r[0] * ny];
+            for p in 0..3 {
+                for q in 0..=p {
+                    let (i, j) = (index[3 * s.body + p], index[3 * s.body + q]);
+                    if i != HELD && j != HELD {
+                        let (i, j) = (i.max(j), i.min(j));
+                        k[i * m + j] = k[i * m + j] + s.stiffness * a[p] * a[q];
+                    }
+                }
+            }
+        }
+        factor(&mut k, m).map_err(|free| {
+            let dof = index.iter().position(|&i| i == free).unwrap_or(0);
+            NetworkError::Free {
+                body: dof / 3,
+                direction: ["x", "y", "rotation"][dof % 3],
+            }
+        })?;
         Ok(cases
             .iter()
             .map(|loads| {
-                let mut f = vec![D::from(0.0); n];
+                let mut f = vec![D::from(0.0); m];
                 for l in loads.iter() {
                     let r = sub(l.point, self.references[l.body]);
                     let o = 3 * l.body;
-                    f[o] = f[o] + l.force[0];
-                    f[o + 1] = f[o + 1] + l.force[1];
-                    f[o + 2] = f[o + 2] + l.moment + (r[0] * l.force[1] - r[1] * l.force[0]);
+                    let moment = l.moment + (r[0] * l.force[1] - r[1] * l.force[0]);
+                    for (dof, v) in [(o, l.force[0]), (o + 1, l.force[1]), (o + 2, moment)] {
+                        if index[dof] != HELD {
+                            f[index[dof]] = f[index[dof]] + v;
+                        }
+                    }
                 }
-                for &(body, dof) in &self.held {
-                    f[3 * body + dof as usize] = D::from(0.0);
-                }
-                let u = substitute(&k, n, f);
+                substitute(&k, m, &mut f);
                 Displacements {
-                    bodies: u.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
-                    references: self.references.clone(),
+                    bodies: (0..bodies)
+                        .map(|b| {
+                            std::array::from_fn(|d| match index[3 * b + d] {
+                                HELD => D::from(0.0),
+                                i => f[i],
+                            })
+                        })
+                        .collect(),
+                    references: &self.references,
                 }
             })
             .collect())
     }
+
+    /// Each degree of freedom's place among those not held ([`HELD`] if held), and their
+    /// count.
+    fn free_numbering(&self) -> (Vec<usize>, usize) {
+        let mut index = vec![0; 3 * self.references.len()];
+        for &(body, dof) in &self.held {
+            index[3 * body + dof as usize] = HELD;
+        }
+        let mut m = 0;
+        for i in index.iter_mut().filter(|i| **i != HELD) {
+            *i = m;
+            m += 1;
+        }
+        (index, m)
+    }
+
+    /// Flexure `f`'s stiffness into the lower triangle of `k`, the free degrees of freedom
+    /// numbered by `index`: each block `A_i^T K A_j` of the module's formula, with the maps'
+    /// known zeros and ones skipped and each entry of the symmetric matrix formed once.
+    fn add_flexure_free(&self, f: &Flexure<D>, index: &[usize], k: &mut [D], m: usize) {
+        let c = &f.compliance;
+        // K = C^-1: the axial entry, and the bending block's inverse
+        let det = c.c22 * c.c33 - c.c23 * c.c23;
+        let (k11, k22, k23, k33) = (c.c11.recip(), c.c33 / det, -(c.c23 / det), c.c22 / det);
+        let [ex, ey] = f.axis;
+        // an end's map R T(r) from its body's reference motion to the end's motion in the
+        // flexure's frame, by columns (u, v, theta); its third row is (0, 0, 1). The
+        // clamped start's carries G (its v gains l theta) and enters with a minus sign.
+        let end = |body: Body, point: [D; 2], lever: Option<D>| {
+            let Body::Rigid(b) = body else { return None };
+            let r = sub(point, self.references[b]);
+            let mut turn = [ey * r[0] - ex * r[1], ey * r[1] + ex * r[0]];
+            if let Some(l) = lever {
+                turn[1] = turn[1] + l;
+            }
+            let columns = [[ex, -ey], [ey, ex], turn];
+            // K A by columns, the third row of A supplying the bending block's column
+            let ka: [[D; 3]; 3] = std::array::from_fn(|q| {
+                let [a0, a1] = columns[q];
+                if q == 2 {
+                    [k11 * a0, k22 * a1 + k23, k23 * a1 + k33]
+                } else {
+                    [k11 * a0, k22 * a1, k23 * a1]
+                }
+            });
+            Some((b, columns, ka))
+        };
+        let ends = [
+            end(f.from, f.start, Some(f.length)),
+            end(f.to, f.start_plus_length(), None),
+        ];
+        for (ei, one) in ends.iter().enumerate() {
+            let Some((bi, ai, _)) = one else { continue };
+            for (ej, other) in ends.iter().enumerate() {
+                let Some((bj, _, kaj)) = other else { continue };
+                for p in 0..3 {
+                    let gi = index[3 * bi + p];
+                    if gi == HELD {
+                        continue;
+                    }
+                    for q in 0..3 {
+                        let gj = index[3 * bj + q];
+                        if gj == HELD || gj > gi {
+                            continue;
+                        }
+                        let [a0, a1] = ai[p];
+                        let [k0, k1, k2] = kaj[q];
+                        let mut v = a0 * k0 + a1 * k1;
+                        if p == 2 {
+                            v = v + k2;
+                        }
+                        let idx = gi * m + gj;
+                        k[idx] = if ei == ej { k[idx] + v } else { k[idx] - v };
+                    }
+                }
+            }
+        }
+    }
 }
+
+/// [`Network::free_numbering`]'s mark of a held degree of freedom.
+const HELD: usize = usize::MAX;
 
 impl<D: Scalar> Network<D> {
     /// The loads at flexure `i`'s end on its second body, in its own frame, under the
@@ -335,8 +445,9 @@ fn transfer<D: Scalar>(r: [D; 2], u: [D; 3]) -> [D; 3] {
     [u[0] - r[1] * u[2], u[1] + r[0] * u[2], u[2]]
 }
 
-/// `L D L^T` of the symmetric `k` in place (`L` below the diagonal, `D` on it).
-fn factor<D: Scalar>(k: &mut [D], n: usize) -> Result<(), NetworkError> {
+/// `L D L^T` of the symmetric `k` in place (`L` below the diagonal, `D` on it; the upper
+/// triangle is not read), or the first pivot that vanishes.
+fn factor<D: Scalar>(k: &mut [D], n: usize) -> Result<(), usize> {
     let scale = (0..n).map(|i| k[i * n + i].re().abs()).fold(0.0, f64::max);
     for j in 0..n {
         let mut d = k[j * n + j];
@@ -344,10 +455,7 @@ fn factor<D: Scalar>(k: &mut [D], n: usize) -> Result<(), NetworkError> {
             d = d - k[j * n + p] * k[j * n + p] * k[p * n + p];
         }
         if d.re().is_nan() || d.re() <= FREE_PIVOT * scale {
-            return Err(NetworkError::Free {
-                body: j / 3,
-                direction: ["x", "y", "rotation"][j % 3],
-            });
+            return Err(j);
         }
         k[j * n + j] = d;
         for i in j + 1..n {
@@ -361,7 +469,8 @@ fn factor<D: Scalar>(k: &mut [D], n: usize) -> Result<(), NetworkError> {
     Ok(())
 }
 
-fn substitute<D: Scalar>(l: &[D], n: usize, mut x: Vec<D>) -> Vec<D> {
+/// `x` overwritten by `K^-1 x`, `l` the factor of [`factor`].
+fn substitute<D: Scalar>(l: &[D], n: usize, x: &mut [D]) {
     for i in 0..n {
         for p in 0..i {
             x[i] = x[i] - l[i * n + p] * x[p];
@@ -375,7 +484,6 @@ fn substitute<D: Scalar>(l: &[D], n: usize, mut x: Vec<D>) -> Vec<D> {
             x[i] = x[i] - l[p * n + i] * x[p];
         }
     }
-    x
 }
 
 #[cfg(test)]
@@ -611,7 +719,8 @@ mod tests {
             moment: 0.0,
         };
         let motion = |t: f64| {
-            let u = two_stage(t).solve(&[load(0)]).unwrap();
+            let net = two_stage(t);
+            let u = net.solve(&[load(0)]).unwrap();
             u.along(Body::Rigid(1), [0.02, 0.0], [0.0, 1.0])
         };
         let jet = {

@@ -1,0 +1,347 @@
+//! Many [`Expression`]s compiled together into one flat list of operations over registers:
+//! a mechanism's coordinates repeat the same terms (`l2*cos(delta2)` begins every point
+//! past hinge b), so each distinct operation is computed once for all of them, without a
+//! tree walk or a `Result` per node.
+//!
+//! The tape computes exactly what [`Expression::eval`] computes, operation for operation
+//! (the same [`Scalar`] methods on the same operands; the constants folded only where `f64`
+//! arithmetic gives the same number as the scalar's, by sums, differences and products), so
+//! that a design's values do not depend on which of the two evaluated it. Where a value
+//! leaves a function's domain, [`Tape::run`] only says so: the caller asks the tree which
+//! expression and why ([`Expression::eval`]'s message), a path taken once per failing
+//! design.
+
+use std::collections::HashMap;
+
+use super::{asin_or_acos, atan2, Expression, Function, Kind};
+use crate::model::scalar::{self, Scalar};
+
+/// Expressions compiled together: registers `0..inputs` hold the names' values, each
+/// operation appends one register (two for [`Code::SinCos`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tape {
+    inputs: usize,
+    ops: Vec<Op>,
+    registers: usize,
+    /// The register of each expression, in the order compiled.
+    outputs: Vec<u32>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+enum Code {
+    Const,
+    Neg,
+    Add,
+    /// `a + c`
+    AddC,
+    Sub,
+    /// `a - c`
+    SubC,
+    Mul,
+    /// `a * c`
+    MulC,
+    Div,
+    /// `a / c`, `c` not zero
+    DivC,
+    /// `a^b`, `b` the exponent as `i32` bits
+    Powi,
+    /// `a^c`
+    Powf,
+    /// `sin a`, then `cos a` in the next register
+    SinCos,
+    /// Any other function of `a` (and `b`)
+    Call(Function),
+}
+
+/// One operation: its code, its register operands `a`, `b` and its constant `c`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Op {
+    code: Code,
+    a: u32,
+    b: u32,
+    c: f64,
+}
+
+/// A compiled sub-expression: a register, or a constant not yet placed in one.
+#[derive(Debug, Clone, Copy)]
+enum Value {
+    Register(u32),
+    Constant(f64),
+}
+
+struct Compiler {
+    ops: Vec<Op>,
+    registers: u32,
+    /// Each operation's register, by its code, operands and the constant's bits.
+    seen: HashMap<(Code, u32, u32, u64), u32>,
+}
+
+impl Compiler {
+    fn emit(&mut self, code: Code, a: u32, b: u32, c: f64) -> u32 {
+        let key = (code, a, b, c.to_bits());
+        if let Some(&r) = self.seen.get(&key) {
+            return r;
+        }
+        let r = self.registers;
+        self.ops.push(Op { code, a, b, c });
+        self.registers += if code == Code::SinCos { 2 } else { 1 };
+        self.seen.insert(key, r);
+        r
+    }
+
+    fn register(&mut self, v: Value) -> u32 {
+        match v {
+            Value::Register(r) => r,
+            Value::Constant(c) => self.emit(Code::Const, 0, 0, c),
+        }
+    }
+
+    fn node(&mut self, e: &Expression, i: usize) -> Value {
+        use Value::{Constant as C, Register as R};
+        let (code, a, b, c) = match e.nodes[i].kind {
+            Kind::Constant(c) => return C(c),
+            Kind::Name(k) => return R(k as u32),
+            Kind::Neg(a) => match self.node(e, a) {
+                C(x) => return C(-x),
+                R(a) => (Code::Neg, a, 0, 0.0),
+            },
+            Kind::Add(a, b) => match (self.node(e, a), self.node(e, b)) {
+                (C(x), C(y)) => return C(x + y),
+                (R(a), C(y)) | (C(y), R(a)) => (Code::AddC, a, 0, y),
+                (R(a), R(b)) => (Code::Add, a, b, 0.0),
+            },
+            Kind::Sub(a, b) => match (self.node(e, a), self.node(e, b)) {
+                (C(x), C(y)) => return C(x - y),
+                (R(a), C(y)) => (Code::SubC, a, 0, y),
+                (x, y) => {
+                    let (a, b) = (self.register(x), self.register(y));
+                    (Code::Sub, a, b, 0.0)
+                }
+            },
+            Kind::Mul(a, b) => match (self.node(e, a), self.node(e, b)) {
+                (C(x), C(y)) => return C(x * y),
+                (R(a), C(y)) | (C(y), R(a)) => (Code::MulC, a, 0, y),
+                (R(a), R(b)) => (Code::Mul, a, b, 0.0),
+            },
+            // a quotient of constants is left to the scalar: a dual number divides by
+            // multiplying with the reciprocal, which `f64` division does not round alike
+            Kind::Div(a, b) => match (self.node(e, a), self.node(e, b)) {
+                (R(a), C(y)) if y != 0.0 => (Code::DivC, a, 0, y),
+                (x, y) => {
+                    let (a, b) = (self.register(x), self.register(y));
+                    (Code::Div, a, b, 0.0)
+                }
+            },
+            Kind::Powi(a, n) => {
+                let a = self.node(e, a);
+                (Code::Powi, self.register(a), n as u32, 0.0)
+            }
+            Kind::Powf(a, y) => {
+                let a = self.node(e, a);
+                (Code::Powf, self.register(a), 0, y)
+            }
+            Kind::Call(f, a, b) => {
+                let x = self.node(e, a);
+                let x = self.register(x);
+                let y = match b {
+                    Some(b) => {
+                        let y = self.node(e, b);
+                        self.register(y)
+                    }
+                    None => 0,
+                };
+                match f {
+                    Function::Sin => return R(self.emit(Code::SinCos, x, 0, 0.0)),
+                    Function::Cos => return R(self.emit(Code::SinCos, x, 0, 0.0) + 1),
+                    _ => (Code::Call(f), x, y, 0.0),
+                }
+            }
+        };
+        R(self.emit(code, a, b, c))
+    }
+}
+
+impl Tape {
+    /// The expressions, each parsed against the same `inputs` names, compiled into one tape.
+    pub fn compile<'a>(
+        expressions: impl IntoIterator<Item = &'a Expression>,
+        inputs: usize,
+    ) -> Self {
+        let mut c = Compiler {
+            ops: Vec::new(),
+            registers: inputs as u32,
+            seen: HashMap::new(),
+        };
+        let outputs = expressions
+            .into_iter()
+            .map(|e| {
+                let v = c.node(e, e.root);
+                c.register(v)
+            })
+            .collect();
+        Tape {
+            inputs,
+            ops: c.ops,
+            registers: c.registers as usize,
+            outputs,
+        }
+    }
+
+    /// How many registers [`Tape::run`] fills.
+    pub fn registers(&self) -> usize {
+        self.registers
+    }
+
+    /// The register of the `k`-th expression compiled.
+    pub fn output(&self, k: usize) -> usize {
+        self.outputs[k] as usize
+    }
+
+    /// Every register from the names' `values` into `registers` (cleared first); false if a
+    /// value left a function's domain or an expression's value is not finite, where
+    /// [`Expression::eval`] tells which and why.
+    pub fn run<D: Scalar>(&self, values: &[D], registers: &mut Vec<D>) -> bool {
+        debug_assert_eq!(values.len(), self.inputs);
+        registers.clear();
+        registers.reserve(self.registers);
+        registers.extend_from_slice(values);
+        let mut fine = true;
+        for op in &self.ops {
+            let r = &*registers;
+            let a = || r[op.a as usize];
+            let b = || r[op.b as usize];
+            let v = match op.code {
+                Code::Const => D::from(op.c),
+                Code::Neg => -a(),
+                Code::Add => a() + b(),
+                Code::AddC => a() + op.c,
+                Code::Sub => a() - b(),
+                Code::SubC => a() - op.c,
+                Code::Mul => a() * b(),
+                Code::MulC => a() * op.c,
+                Code::Div => {
+                    let d = b();
+                    fine &= d.re() != 0.0;
+                    a() / d
+                }
+                Code::DivC => a() / op.c,
+                Code::Powi => {
+                    let (x, n) = (a(), op.b as i32);
+                    fine &= !(n < 0 && x.re() == 0.0);
+                    x.powi(n)
+                }
+                Code::Powf => {
+                    let x = a();
+                    fine &= !(x.re() < 0.0 || (x.re() == 0.0 && op.c < 1.0));
+                    x.powf(op.c)
+                }
+                Code::SinCos => {
+                    let (s, c) = a().sin_cos();
+                    registers.push(s);
+                    registers.push(c);
+                    continue;
+                }
+                Code::Call(f) => {
+                    let x = a();
+                    match f {
+                        // emitted as SinCos
+                        Function::Sin => x.sin(),
+                        Function::Cos => x.cos(),
+                        Function::Tan => {
+                            let (s, c) = x.sin_cos();
+                            fine &= c.re() != 0.0;
+                            s / c
+                        }
+                        Function::Asin | Function::Acos => {
+                            fine &= x.re().abs() < 1.0;
+                            asin_or_acos(x, f)
+                        }
+                        Function::Atan => x.atan(),
+                        Function::Atan2 => {
+                            let y = b();
+                            fine &= !(x.re() == 0.0 && y.re() == 0.0);
+                            // the first argument is the ordinate
+                            atan2(x, y)
+                        }
+                        Function::Sqrt => {
+                            fine &= x.re() >= 0.0;
+                            x.sqrt()
+                        }
+                        Function::Abs => x.abs(),
+                        Function::Hypot => {
+                            let y = b();
+                            fine &= !(x.re() == 0.0 && y.re() == 0.0);
+                            (x * x + y * y).sqrt()
+                        }
+                        Function::Min => scalar::min(x, b()),
+                        Function::Max => scalar::max(x, b()),
+                    }
+                }
+            };
+            registers.push(v);
+        }
+        fine && self
+            .outputs
+            .iter()
+            .all(|&o| registers[o as usize].re().is_finite())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::{NAMES, SMOOTH};
+    use super::*;
+    use crate::model::scalar::Jet;
+
+    /// The tape gives the tree's values and gradients bit for bit, shares what the
+    /// expressions share, and fails where the tree fails.
+    #[test]
+    fn the_tape_computes_what_the_tree_computes() {
+        let texts: Vec<&str> = SMOOTH
+            .iter()
+            .copied()
+            .chain([
+                "l2*cos(delta2)",
+                "l2*cos(delta2) + t*sin(delta2)",
+                "2*3 - l2/3 + (1 - t) - 4/l2",
+                "-(2 + 1)*l2^2 + 0",
+            ])
+            .collect();
+        let parsed: Vec<Expression> = texts
+            .iter()
+            .map(|t| Expression::parse(t, &NAMES).unwrap())
+            .collect();
+        let tape = Tape::compile(&parsed, 3);
+        let x = [1.7, 0.4, 0.55];
+        let jets: Vec<Jet<3>> = (0..3).map(|i| Jet::variable(x[i], i)).collect();
+        let (mut plain, mut dual) = (Vec::new(), Vec::new());
+        assert!(tape.run(&x, &mut plain));
+        assert!(tape.run(&jets, &mut dual));
+        for (k, e) in parsed.iter().enumerate() {
+            let r = tape.output(k);
+            assert_eq!(
+                plain[r].to_bits(),
+                e.eval(&x).unwrap().to_bits(),
+                "{}",
+                texts[k]
+            );
+            let tree = e.eval(&jets).unwrap();
+            assert_eq!(dual[r].re.to_bits(), tree.re.to_bits(), "{}", texts[k]);
+            for i in 0..3 {
+                // the same numbers, a zero's sign aside (a constant's zero derivative)
+                assert!(dual[r].grad[i] == tree.grad[i], "{} d/d{i}", texts[k]);
+            }
+        }
+        // `l2*cos(delta2)` once, with one sin_cos of delta2 for every expression
+        let one = Tape::compile(&parsed[8..10], 3);
+        assert_eq!(one.ops.len(), 4, "{:?}", one.ops);
+        // a division by zero, a root of a negative number: refused, as the tree refuses
+        for text in ["1 / (l2 - t)", "sqrt(delta2 - l2)", "hypot(l2 - t, 0)"] {
+            let e = Expression::parse(text, &NAMES).unwrap();
+            let tape = Tape::compile([&e], 3);
+            let x = [2.0, 0.5, 2.0];
+            assert!(e.eval(&x).is_err(), "{text}");
+            assert!(!tape.run(&x, &mut plain), "{text}");
+        }
+    }
+}
