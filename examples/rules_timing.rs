@@ -1,7 +1,8 @@
 //! Issue 23's benchmark as one process: the 300-start studies of wei2017 and
 //! wei2017_min_stress (two threads) with the part's rules enforced and with `[part] enforce
-//! = false`, alternating, medians of the argument's count (7); with each the counts that
-//! tell whether a change moved the iterates (starts at the best, iterations, evaluations).
+//! = false`, each with the SQP's constraint screening and without, the four alternating,
+//! medians of the argument's count (7); with each the counts that tell whether a change moved
+//! the iterates (starts at the best, iterations, evaluations).
 use std::path::Path;
 use std::time::Instant;
 
@@ -13,13 +14,15 @@ fn main() {
     for file in ["problems/wei2017.toml", "problems/wei2017_min_stress.toml"] {
         let text = std::fs::read_to_string(file).unwrap();
         let free = text.replace("[search]", "[part]\nenforce = false\n\n[search]");
-        let mut times = [vec![], vec![]];
-        let mut summary = [String::new(), String::new()];
+        let mut times = [vec![], vec![], vec![], vec![]];
+        let mut summary = [String::new(), String::new(), String::new(), String::new()];
+        let configs = [(&text, true), (&free, true), (&text, false), (&free, false)];
         for _ in 0..reps {
-            for (k, t) in [&text, &free].into_iter().enumerate() {
+            for (k, &(t, screening)) in configs.iter().enumerate() {
                 let problem = Problem::parse(Path::new(file), t).unwrap();
                 let options = StudyOptions {
                     threads: 2,
+                    screening,
                     ..StudyOptions::from_problem(&problem)
                 };
                 let begin = Instant::now();
@@ -43,12 +46,21 @@ fn main() {
             v.sort_by(f64::total_cmp);
             v[v.len() / 2]
         };
-        let (a, b) = (med(&mut times[0]), med(&mut times[1]));
+        let m: Vec<f64> = times.iter_mut().map(med).collect();
+        println!("{file}:");
+        for (k, what) in ["screened", "not screened"].iter().enumerate() {
+            let (a, b) = (m[2 * k], m[2 * k + 1]);
+            println!(
+                "  {what}: enforced {a:.1} ms, not {b:.1} ms, ratio {:.2}",
+                a / b
+            );
+            println!("    enforced: {}", summary[2 * k]);
+            println!("    not:      {}", summary[2 * k + 1]);
+        }
         println!(
-            "{file}: enforced {a:.1} ms, not {b:.1} ms, ratio {:.2}",
-            a / b
+            "  screened against not: enforced {:.2}, not enforced {:.2}",
+            m[0] / m[2],
+            m[1] / m[3]
         );
-        println!("  enforced: {}", summary[0]);
-        println!("  not:      {}", summary[1]);
     }
 }

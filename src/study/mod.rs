@@ -13,7 +13,7 @@ use crate::optim::multistart::{self, Sampling as StartSampling};
 use crate::optim::nelder_mead::{self, NelderMeadSettings};
 use crate::optim::progress::Progress;
 use crate::optim::sqp::{self, SqpSettings};
-use crate::optim::staged;
+use crate::optim::staged::{self, HandOvers};
 use crate::optim::{Problem as OptimProblem, Solution, Status};
 use crate::problem::epigraph::Epigraph;
 use crate::problem::nlp::{feasible_end, DesignNlp, FEASIBILITY_TOLERANCE};
@@ -41,6 +41,9 @@ pub struct StudyOptions {
     /// that cannot be met ([`least_violating`]); a Pareto front, which only marks such
     /// points, turns it off.
     pub explain_infeasible: bool,
+    /// The SQP's constraint screening ([`SqpSettings::screening`]); off by default: on the
+    /// studies of issue 23 it did not pay (`examples/rules_timing.rs`, docs/performance.md).
+    pub screening: bool,
 }
 
 impl StudyOptions {
@@ -54,6 +57,7 @@ impl StudyOptions {
             progress: false,
             stop: Arc::new(AtomicBool::new(false)),
             explain_infeasible: true,
+            screening: false,
         }
     }
 }
@@ -220,11 +224,14 @@ fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -
         m.extend_from_slice(&v[n..]);
         Some(m)
     };
+    // each stage's solves from the ends of the stage before, shared by the starts
+    let hand_overs: Vec<HandOvers> = stages.iter().map(|_| HandOvers::new()).collect();
     let solutions = match options.solver {
         Solver::Sqp => {
             let settings = SqpSettings {
                 tolerance,
                 max_iterations,
+                screening: options.screening,
                 ..SqpSettings::default()
             };
             let sqp = |p: &dyn OptimProblem, x0: &[f64]| sqp::solve(p, x0, &settings);
@@ -240,7 +247,7 @@ fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -
                     multistart::run_until(
                         &ep,
                         &starts,
-                        |_, x0| in_stages(&ep_stages, x0, &sqp, &ep_mirror),
+                        |_, x0| in_stages(&ep_stages, x0, &sqp, &ep_mirror, &hand_overs),
                         options.threads,
                         progress,
                         &options.stop,
@@ -257,7 +264,7 @@ fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -
                 None => multistart::run_until(
                     nlp,
                     starts,
-                    |_, x0| in_stages(&plain, x0, &sqp, &mirror),
+                    |_, x0| in_stages(&plain, x0, &sqp, &mirror, &hand_overs),
                     options.threads,
                     progress,
                     &options.stop,
@@ -274,7 +281,7 @@ fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -
             multistart::run_until(
                 nlp,
                 starts,
-                |_, x0| in_stages(&plain, x0, &nm, &mirror),
+                |_, x0| in_stages(&plain, x0, &nm, &mirror, &hand_overs),
                 options.threads,
                 progress,
                 &options.stop,
@@ -311,11 +318,15 @@ fn solve_range(problem: &Problem, options: &StudyOptions, range: Range<usize>) -
 /// constraint the stage before left out is taken on from its `mirror` image instead where
 /// that meets them all (wei2017: 97 of 300 first stages end at the optimum's mirror image
 /// whose output block meets the actuator, and went on to a worse optimum from there).
+/// The whole problem's solves from the ends before are shared by the starts whose ends
+/// round to one point ([`HandOvers`], one per stage): wei2017's 79 second stages from one
+/// optimum of the relaxation are 4 solves.
 fn in_stages(
     stages: &[&dyn OptimProblem],
     x0: &[f64],
     solve: &dyn Fn(&dyn OptimProblem, &[f64]) -> Solution,
     mirror: &dyn Fn(&[f64]) -> Option<Vec<f64>>,
+    hand_overs: &[HandOvers],
 ) -> Solution {
     match stages {
         [] => unreachable!("a start is solved in one stage at least"),
@@ -324,8 +335,11 @@ fn in_stages(
             *whole,
             x0,
             FEASIBILITY_TOLERANCE,
-            |x| in_stages(before, x, solve, mirror),
-            solve,
+            |x| in_stages(before, x, solve, mirror, hand_overs),
+            |p, x| {
+                let (lower, upper) = p.bounds();
+                hand_overs[before.len()].solve(x, lower, upper, |y| solve(p, y))
+            },
             mirror,
         ),
     }

@@ -50,7 +50,7 @@ fn check<const N: usize>(p: &Hs<N>, s: &Solution, solver: &str) {
     );
 }
 
-/// SQP with its default Hessian refresh, and with BFGS alone.
+/// SQP with its default Hessian refresh, with BFGS alone, and with constraint screening.
 fn sqp_on<const N: usize>(p: Hs<N>) {
     let s = sqp::solve(&p, &p.start, &SqpSettings::default());
     check(&p, &s, "SQP");
@@ -60,6 +60,12 @@ fn sqp_on<const N: usize>(p: Hs<N>) {
     };
     let s = sqp::solve(&p, &p.start, &bfgs);
     check(&p, &s, "SQP (BFGS only)");
+    let screened = SqpSettings {
+        screening: true,
+        ..SqpSettings::default()
+    };
+    let s = sqp::solve(&p, &p.start, &screened);
+    check(&p, &s, "SQP (screening)");
 }
 
 #[test]

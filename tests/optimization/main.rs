@@ -8,6 +8,7 @@ mod common;
 
 mod hock_schittkowski;
 mod honest_results;
+mod screening;
 mod shards;
 mod solver_robustness;
 mod study;

@@ -29,7 +29,8 @@
 //! The steps live in their own files, each with a typed result: [`subproblem`] (the QP
 //! and its elastic fallback: [`subproblem::QpKind`]), [`line_search`] (backtracking with
 //! the second-order correction: [`line_search::Outcome`]), [`curvature`] (the BFGS update,
-//! the Hessian refresh and the step limit) and [`termination`] (the KKT residual).
+//! the Hessian refresh and the step limit), [`termination`] (the KKT residual) and
+//! [`screening`] (which inequalities a QP holds, where [`SqpSettings::screening`] asks).
 //!
 //! References: J. Nocedal and S. J. Wright, Numerical Optimization, 2nd ed., Springer 2006,
 //! Ch. 18 (SQP, merit functions, second-order correction, damped BFGS, Procedure 18.2);
@@ -39,6 +40,7 @@
 mod curvature;
 mod line_search;
 mod scaling;
+mod screening;
 mod subproblem;
 mod termination;
 
@@ -59,6 +61,10 @@ pub struct SqpSettings {
     /// from differences of the exact gradients, its negative curvature flipped
     /// ([`super::hessian`]), until the KKT residual falls below 1e-4; 0 for BFGS alone.
     pub hessian_refresh: usize,
+    /// Put into each QP only the inequalities its step could reach, the others once a step
+    /// breaks them ([`screening`]): the same steps, from smaller QPs where most rows are far
+    /// from their bounds.
+    pub screening: bool,
 }
 
 impl Default for SqpSettings {
@@ -67,6 +73,7 @@ impl Default for SqpSettings {
             tolerance: 1e-10,
             max_iterations: 500,
             hessian_refresh: HESSIAN_REFRESH,
+            screening: false,
         }
     }
 }
@@ -80,7 +87,7 @@ const REFRESH_UNTIL_KKT: f64 = 1e-4;
 /// Solves `problem` from `x0` (moved into the bounds first), its objective scaled where
 /// its gradient there is large ([`scaling`]).
 pub fn solve(problem: &dyn Problem, x0: &[f64], settings: &SqpSettings) -> Solution {
-    Sqp::new(problem, x0).run(settings)
+    Sqp::new(problem, x0, settings.screening).run(settings)
 }
 
 /// A point with the problem's values and gradients there.
@@ -151,7 +158,7 @@ struct Sqp<'p> {
 }
 
 impl<'p> Sqp<'p> {
-    fn new(problem: &'p dyn Problem, x0: &[f64]) -> Self {
+    fn new(problem: &'p dyn Problem, x0: &[f64], screening: bool) -> Self {
         let n = problem.dimension();
         let m = problem.constraint_count();
         let (lower, upper) = problem.bounds();
@@ -170,7 +177,7 @@ impl<'p> Sqp<'p> {
             point: Iterate::new(x0, m),
             step: Step::new(n, m),
             curvature: Curvature::new(n),
-            subproblem: Subproblem::new(n),
+            subproblem: Subproblem::new(n, screening),
             line_search: LineSearch::new(n, m),
             evaluations: 0,
         }

@@ -3,6 +3,7 @@
 //! constraints have no common point, the elastic QP that minimizes their largest violation.
 
 use super::curvature::Curvature;
+use super::screening::Screen;
 use super::{Iterate, Shape};
 use crate::optim::dense::inf_norm;
 use crate::optim::qp::{self, QpProblem, QpStatus, QpWorkspace};
@@ -49,12 +50,18 @@ pub(super) struct Subproblem {
     l: Vec<f64>,
     ws: QpWorkspace,
     ws_elastic: QpWorkspace,
-    /// The rows of the plain QP active at its last solve.
+    /// Which constraints the plain QP holds ([`screening`]); all of them where screening is
+    /// off, and in the elastic QP.
+    screen: Screen,
+    /// The constraints active at the last plain solve, by their index; the bounds as
+    /// `m + 2j` (lower) and `m + 2j + 1` (upper).
     active_hint: Vec<usize>,
+    /// `active_hint` as rows of the QP being solved.
+    hint: Vec<usize>,
 }
 
 impl Subproblem {
-    pub fn new(n: usize) -> Self {
+    pub fn new(n: usize, screening: bool) -> Self {
         Subproblem {
             n,
             g: Vec::new(),
@@ -67,7 +74,9 @@ impl Subproblem {
             l: Vec::new(),
             ws: QpWorkspace::new(n),
             ws_elastic: QpWorkspace::new(n + 1),
+            screen: Screen::new(screening),
             active_hint: Vec::new(),
+            hint: Vec::new(),
         }
     }
 
@@ -79,7 +88,8 @@ impl Subproblem {
 
     /// Solves the QP at `point` with constraint values `rhs` into `step`; the elastic QP
     /// when the plain one has no solution. `None` when even that fails. A model that has
-    /// lost its definiteness is restarted (`curvature`) and the QP solved again.
+    /// lost its definiteness is restarted (`curvature`) and the QP solved again. `step`
+    /// comes in with the last step, whose length screening takes as the next one's reach.
     pub fn solve(
         &mut self,
         shape: &Shape,
@@ -88,56 +98,92 @@ impl Subproblem {
         curvature: &mut Curvature,
         step: &mut Step,
     ) -> Option<QpKind> {
-        for kind in [QpKind::Regular, QpKind::Elastic] {
-            let elastic = kind == QpKind::Elastic;
-            self.build(shape, point, rhs, curvature, elastic);
-            let nv = shape.n + usize::from(elastic);
-            self.x.resize(nv, 0.0);
-            self.l.resize(self.b.len() + 2 * nv, 0.0);
-            let ws = if elastic {
-                &mut self.ws_elastic
-            } else {
-                &mut self.ws
-            };
+        let limit = curvature.step_limit();
+        self.screen.select(
+            shape,
+            point,
+            rhs,
+            limit,
+            inf_norm(&step.d),
+            &self.active_hint,
+        );
+        loop {
+            self.build(shape, point, rhs, curvature, false);
+            self.x.resize(shape.n, 0.0);
+            self.l.resize(self.b.len() + 2 * shape.n, 0.0);
+            self.hint.clear();
+            self.hint.extend(
+                self.active_hint
+                    .iter()
+                    .filter_map(|&i| self.screen.qp_row(i, shape.m)),
+            );
             let problem = QpProblem {
                 g: &self.g,
                 a: &self.a,
                 c: &self.c,
                 b: &self.b,
-                meq: if elastic { 0 } else { shape.meq },
+                meq: shape.meq,
                 lower: &self.lo,
                 upper: &self.hi,
             };
             // the rows of the plain QP keep their meaning between iterations: start from the
             // last active set
-            let hint: &[usize] = if elastic { &[] } else { &self.active_hint };
-            let status = qp::solve_with_hint(&problem, hint, &mut self.x, &mut self.l, ws);
-            if status == QpStatus::Optimal && !elastic {
-                self.active_hint.clear();
-                self.active_hint
-                    .extend_from_slice(qp::active_rows(&self.ws));
-            }
+            let status =
+                qp::solve_with_hint(&problem, &self.hint, &mut self.x, &mut self.l, &mut self.ws);
             match status {
                 QpStatus::Optimal => {
-                    self.read(shape, step, elastic);
-                    return Some(kind);
+                    self.active_hint.clear();
+                    let active = qp::active_rows(&self.ws);
+                    self.active_hint
+                        .extend(active.iter().map(|&k| self.screen.constraint(k, shape.m)));
+                    // a row left out that the step breaks: in with it, and solve again
+                    let d = &self.x[..shape.n];
+                    if self
+                        .screen
+                        .admit_broken(shape, point, rhs, d, &mut self.active_hint)
+                    {
+                        continue;
+                    }
+                    self.read(shape, step, false);
+                    return Some(QpKind::Regular);
                 }
                 QpStatus::NotConvex if !curvature.is_identity() => {
                     // rounding in the BFGS updates cost B its definiteness: start it afresh
                     curvature.reset();
                     return self.solve(shape, point, rhs, curvature, step);
                 }
-                _ if elastic && !curvature.is_identity() => {
-                    // the elastic QP always has a solution (d = 0 with the slack at the
-                    // worst violation): the dual method lost it to B's conditioning, as
-                    // after a refresh across a clearance's kink. Start B afresh.
-                    curvature.reset();
-                    return self.solve(shape, point, rhs, curvature, step);
-                }
-                _ => {}
+                _ => break,
             }
         }
-        None
+        self.screen.take_all(shape.m);
+        self.build(shape, point, rhs, curvature, true);
+        let nv = shape.n + 1;
+        self.x.resize(nv, 0.0);
+        self.l.resize(self.b.len() + 2 * nv, 0.0);
+        let problem = QpProblem {
+            g: &self.g,
+            a: &self.a,
+            c: &self.c,
+            b: &self.b,
+            meq: 0,
+            lower: &self.lo,
+            upper: &self.hi,
+        };
+        match qp::solve(&problem, &mut self.x, &mut self.l, &mut self.ws_elastic) {
+            QpStatus::Optimal => {
+                self.read(shape, step, true);
+                Some(QpKind::Elastic)
+            }
+            _ if !curvature.is_identity() => {
+                // the elastic QP always has a solution (d = 0 with the slack at the worst
+                // violation): the dual method lost it to B's conditioning, as after a
+                // refresh across a clearance's kink, or B lost its definiteness. Start B
+                // afresh.
+                curvature.reset();
+                self.solve(shape, point, rhs, curvature, step)
+            }
+            _ => None,
+        }
     }
 
     /// QP variables: `d` (and the slack in elastic mode), bounded by `lower - x <= d <=
@@ -210,11 +256,12 @@ impl Subproblem {
             self.lo.push(0.0);
             self.hi.push(f64::INFINITY);
         }
-        for (i, &r) in rhs.iter().enumerate().take(m) {
+        for k in 0..self.screen.rows().len() {
+            let i = self.screen.rows()[k];
             let row = &point.jac[i * n..(i + 1) * n];
-            self.push_row(row, 1.0, elastic, -r);
+            self.push_row(row, 1.0, elastic, -rhs[i]);
             if elastic && i < meq {
-                self.push_row(row, -1.0, elastic, r);
+                self.push_row(row, -1.0, elastic, rhs[i]);
             }
         }
     }
@@ -228,12 +275,13 @@ impl Subproblem {
     }
 
     /// The step and the multipliers of the constraints (an equality's two elastic rows
-    /// folded into one) and of the bounds.
+    /// folded into one; zero for a row screened out) and of the bounds.
     fn read(&self, shape: &Shape, step: &mut Step, elastic: bool) {
-        let (n, m, meq) = (shape.n, shape.m, shape.meq);
+        let (n, meq) = (shape.n, shape.meq);
         step.d.copy_from_slice(&self.x[..n]);
+        step.lambda.fill(0.0);
         let mut row = 0;
-        for i in 0..m {
+        for &i in self.screen.rows() {
             step.lambda[i] = self.l[row];
             row += 1;
             if elastic && i < meq {
