@@ -4,7 +4,9 @@
 //! end), values and gradients, at Table 1's design. The models alone: the bridge's problem
 //! also checks its part's rules, which the network has not yet. The two are timed in alternating
 //! rounds in one run (the machine is shared) and the medians compared; the figures go to
-//! results/bench/network.json and network.txt.
+//! results/bench/network.json and network.txt. Then each shipped network's evaluation with
+//! exact gradients against central differences of the same code, and the two-stage
+//! amplifier's 300-start study against wei2017's network's.
 
 use std::hint::black_box;
 use std::path::Path;
@@ -107,6 +109,8 @@ fn main() {
             "rounds": ROUNDS, "calls_per_round": CALLS,
         }));
     }
+    shipped(&mut text, &mut json);
+    studies(&mut text, &mut json);
     print!("{text}");
     std::fs::create_dir_all("results/bench").unwrap();
     std::fs::write("results/bench/network.txt", &text).unwrap();
@@ -115,4 +119,120 @@ fn main() {
         serde_json::to_string_pretty(&json).unwrap() + "\n",
     )
     .unwrap();
+}
+
+/// Each shipped network's every output with its exact gradient, against central differences
+/// of the same code for the free variables (one evaluation of the values at the design and
+/// two a free variable, as a study would need without exact gradients), at the middle of the
+/// file's bounds: alternating rounds, medians. The exact gradient covers every parameter,
+/// fixed ones too.
+fn shipped(text: &mut String, json: &mut Vec<serde_json::Value>) {
+    *text += "\neach shipped network, every output, per evaluation at the middle of its bounds: \
+              exact gradients against central differences of the same code\n";
+    for file in [
+        "rhombus_network",
+        "guide_network",
+        "lever_network",
+        "scott_russell_network",
+        "bridge_lever_network",
+        "wei2017_network",
+    ] {
+        let p = Problem::load(Path::new(&format!("problems/{file}.toml"))).unwrap();
+        let m = p.model();
+        let x: Vec<f64> = p
+            .variables
+            .iter()
+            .map(|v| 0.5 * (v.lower + v.upper))
+            .collect();
+        let free: Vec<(usize, f64)> = p
+            .variables
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| !v.fixed)
+            .map(|(i, v)| (i, 1e-6 * (v.upper - v.lower)))
+            .collect();
+        let all = m.available_outputs();
+        let (mut c, mut j) = (vec![0.0; all.len()], vec![0.0; all.len() * x.len()]);
+        let (mut exact, mut central) = (Vec::new(), Vec::new());
+        let calls = CALLS / 4;
+        for round in 0..ROUNDS {
+            let first_exact = round % 2 == 0;
+            for exact_now in [first_exact, !first_exact] {
+                let start = Instant::now();
+                for _ in 0..calls {
+                    if exact_now {
+                        m.evaluate_with_gradient(black_box(&x), &all, &mut c, &mut j);
+                    } else {
+                        m.evaluate(black_box(&x), &all, &mut c);
+                        let mut y = x.clone();
+                        for &(k, h) in &free {
+                            y[k] = x[k] + h;
+                            m.evaluate(black_box(&y), &all, &mut c);
+                            y[k] = x[k] - h;
+                            m.evaluate(black_box(&y), &all, &mut c);
+                            y[k] = x[k];
+                        }
+                    }
+                    black_box(&c);
+                }
+                let per = start.elapsed().as_secs_f64() / calls as f64;
+                if exact_now {
+                    exact.push(per)
+                } else {
+                    central.push(per)
+                }
+            }
+        }
+        let (e, cd) = (median(exact), median(central));
+        *text += &format!(
+            "{file:>22}: {} outputs, {} free of {} parameters: exact {:8.0} ns, central \
+             differences {:8.0} ns, ratio {:.2}\n",
+            all.len(),
+            free.len(),
+            x.len(),
+            e * 1e9,
+            cd * 1e9,
+            e / cd
+        );
+        json.push(serde_json::json!({
+            "case": "shipped network, every output", "problem": file, "outputs": all.len(),
+            "free": free.len(), "parameters": x.len(), "exact_ns": e * 1e9,
+            "central_differences_ns": cd * 1e9, "ratio": e / cd,
+            "rounds": ROUNDS, "calls_per_round": calls,
+        }));
+    }
+}
+
+/// The 300-start study of the two-stage amplifier (problems/bridge_lever_network.toml)
+/// against wei2017's network's, alternating, medians of 5, each on its file's threads.
+fn studies(text: &mut String, json: &mut Vec<serde_json::Value>) {
+    use flexopt::study::{self, StudyOptions};
+    let load = |f: &str| Problem::load(Path::new(&format!("problems/{f}.toml"))).unwrap();
+    let (two, wei) = (load("bridge_lever_network"), load("wei2017_network"));
+    let (mut t2, mut tw) = (Vec::new(), Vec::new());
+    for round in 0..5 {
+        for two_now in [round % 2 == 0, round % 2 != 0] {
+            let p = if two_now { &two } else { &wei };
+            let start = Instant::now();
+            black_box(study::run(p, &StudyOptions::from_problem(p)));
+            let s = start.elapsed().as_secs_f64();
+            if two_now {
+                t2.push(s)
+            } else {
+                tw.push(s)
+            }
+        }
+    }
+    let (a, b) = (median(t2), median(tw));
+    *text += &format!(
+        "\nthe 300-start study: two-stage bridge-lever {:.1} ms, wei2017's network {:.1} ms, \
+         ratio {:.2} (medians of 5, alternating)\n",
+        a * 1e3,
+        b * 1e3,
+        a / b
+    );
+    json.push(serde_json::json!({
+        "case": "300-start study", "bridge_lever_ms": a * 1e3, "wei2017_network_ms": b * 1e3,
+        "ratio": a / b, "rounds": 5,
+    }));
 }

@@ -78,26 +78,45 @@ pub fn json_schema() -> Value {
             .filter(|s| s.required)
             .map(|s| s.name)
             .collect();
-        let mine: Vec<&str> = sections.iter().map(|s| s.name).collect();
+        let mine: Vec<(&str, Value)> = sections
+            .iter()
+            .map(|s| (s.name, s.schema.clone().to_value()))
+            .collect();
         let rules: Vec<Value> = sections.iter().flat_map(|s| s.rules.clone()).collect();
-        for s in sections {
-            properties.insert(s.name.into(), s.schema.to_value());
-        }
         per_model.push((m, required, mine, rules));
     }
     let all_sections: Vec<&str> = per_model
         .iter()
-        .flat_map(|(_, _, mine, _)| mine.iter().copied())
+        .flat_map(|(_, _, mine, _)| mine.iter().map(|(name, _)| *name))
         .collect();
+    // a section two models read (the bridge's `[part]` and a network's) has each model's
+    // schema under that model; one model's alone stands at the top
+    let shared = |name: &str| all_sections.iter().filter(|&&s| s == name).count() > 1;
+    for (_, _, mine, _) in &per_model {
+        for (name, schema) in mine {
+            let at_top = if shared(name) {
+                json!({"type": "object"})
+            } else {
+                schema.clone()
+            };
+            properties.insert(name.to_string(), at_top);
+        }
+    }
     let all_of: Vec<Value> = per_model
         .iter()
         .map(|(m, required, mine, rules)| {
+            let names: Vec<&str> = mine.iter().map(|(name, _)| *name).collect();
             // the sections of other models are no keys of this one
             let mut then: Map<String, Value> = all_sections
                 .iter()
-                .filter(|s| !mine.contains(s))
+                .filter(|s| !names.contains(s))
                 .map(|s| (s.to_string(), Value::Bool(false)))
                 .collect();
+            then.extend(
+                mine.iter()
+                    .filter(|(name, _)| shared(name))
+                    .map(|(name, schema)| (name.to_string(), schema.clone())),
+            );
             then.extend(model_keys(m));
             let mut then = json!({"required": required, "properties": then});
             if !rules.is_empty() {
