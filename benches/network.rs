@@ -23,6 +23,24 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// The medians over `rounds` rounds of `time(true)` and `time(false)`, each a time (s),
+/// alternating which goes first, so that neither always meets a cold cache.
+fn alternate(rounds: usize, mut time: impl FnMut(bool) -> f64) -> (f64, f64) {
+    let (mut a, mut b) = (Vec::new(), Vec::new());
+    for round in 0..rounds {
+        let first = round % 2 == 0;
+        for now in [first, !first] {
+            let t = time(now);
+            if now {
+                a.push(t)
+            } else {
+                b.push(t)
+            }
+        }
+    }
+    (median(a), median(b))
+}
+
 fn main() {
     let bridge = Problem::load(Path::new("problems/wei2017.toml")).unwrap();
     let network = Problem::load(Path::new("problems/wei2017_network.toml")).unwrap();
@@ -65,31 +83,20 @@ fn main() {
     );
     let mut rows = Vec::new();
     for (what, gradients) in [("values", false), ("with gradients", true)] {
-        let (mut tb, mut tn) = (Vec::new(), Vec::new());
-        for round in 0..ROUNDS {
-            // alternate which goes first, so that neither always meets a cold cache
-            let first_bridge = round % 2 == 0;
-            for bridge_now in [first_bridge, !first_bridge] {
-                let (m, w) = if bridge_now { (mb, &wb) } else { (mn, &wn) };
-                let (mut c, mut j) = (vec![0.0; w.len()], vec![0.0; w.len() * 8]);
-                let start = Instant::now();
-                for _ in 0..CALLS {
-                    if gradients {
-                        m.evaluate_with_gradient(black_box(&x), w, &mut c, &mut j);
-                    } else {
-                        m.evaluate(black_box(&x), w, &mut c);
-                    }
-                    black_box(&c);
-                }
-                let per = start.elapsed().as_secs_f64() / CALLS as f64;
-                if bridge_now {
-                    tb.push(per)
+        let (b, n) = alternate(ROUNDS, |bridge_now| {
+            let (m, w) = if bridge_now { (mb, &wb) } else { (mn, &wn) };
+            let (mut c, mut j) = (vec![0.0; w.len()], vec![0.0; w.len() * 8]);
+            let start = Instant::now();
+            for _ in 0..CALLS {
+                if gradients {
+                    m.evaluate_with_gradient(black_box(&x), w, &mut c, &mut j);
                 } else {
-                    tn.push(per)
+                    m.evaluate(black_box(&x), w, &mut c);
                 }
+                black_box(&c);
             }
-        }
-        let (b, n) = (median(tb), median(tn));
+            start.elapsed().as_secs_f64() / CALLS as f64
+        });
         rows.push((what, b, n));
     }
     let mut text = String::from(
@@ -153,37 +160,27 @@ fn shipped(text: &mut String, json: &mut Vec<serde_json::Value>) {
             .collect();
         let all = m.available_outputs();
         let (mut c, mut j) = (vec![0.0; all.len()], vec![0.0; all.len() * x.len()]);
-        let (mut exact, mut central) = (Vec::new(), Vec::new());
         let calls = CALLS / 4;
-        for round in 0..ROUNDS {
-            let first_exact = round % 2 == 0;
-            for exact_now in [first_exact, !first_exact] {
-                let start = Instant::now();
-                for _ in 0..calls {
-                    if exact_now {
-                        m.evaluate_with_gradient(black_box(&x), &all, &mut c, &mut j);
-                    } else {
-                        m.evaluate(black_box(&x), &all, &mut c);
-                        let mut y = x.clone();
-                        for &(k, h) in &free {
-                            y[k] = x[k] + h;
-                            m.evaluate(black_box(&y), &all, &mut c);
-                            y[k] = x[k] - h;
-                            m.evaluate(black_box(&y), &all, &mut c);
-                            y[k] = x[k];
-                        }
-                    }
-                    black_box(&c);
-                }
-                let per = start.elapsed().as_secs_f64() / calls as f64;
+        let (e, cd) = alternate(ROUNDS, |exact_now| {
+            let start = Instant::now();
+            for _ in 0..calls {
                 if exact_now {
-                    exact.push(per)
+                    m.evaluate_with_gradient(black_box(&x), &all, &mut c, &mut j);
                 } else {
-                    central.push(per)
+                    m.evaluate(black_box(&x), &all, &mut c);
+                    let mut y = x.clone();
+                    for &(k, h) in &free {
+                        y[k] = x[k] + h;
+                        m.evaluate(black_box(&y), &all, &mut c);
+                        y[k] = x[k] - h;
+                        m.evaluate(black_box(&y), &all, &mut c);
+                        y[k] = x[k];
+                    }
                 }
+                black_box(&c);
             }
-        }
-        let (e, cd) = (median(exact), median(central));
+            start.elapsed().as_secs_f64() / calls as f64
+        });
         *text += &format!(
             "{file:>22}: {} outputs, {} free of {} parameters: exact {:8.0} ns, central \
              differences {:8.0} ns, ratio {:.2}\n",
@@ -209,21 +206,12 @@ fn studies(text: &mut String, json: &mut Vec<serde_json::Value>) {
     use flexopt::study::{self, StudyOptions};
     let load = |f: &str| Problem::load(Path::new(&format!("problems/{f}.toml"))).unwrap();
     let (two, wei) = (load("bridge_lever_network"), load("wei2017_network"));
-    let (mut t2, mut tw) = (Vec::new(), Vec::new());
-    for round in 0..5 {
-        for two_now in [round % 2 == 0, round % 2 != 0] {
-            let p = if two_now { &two } else { &wei };
-            let start = Instant::now();
-            black_box(study::run(p, &StudyOptions::from_problem(p)));
-            let s = start.elapsed().as_secs_f64();
-            if two_now {
-                t2.push(s)
-            } else {
-                tw.push(s)
-            }
-        }
-    }
-    let (a, b) = (median(t2), median(tw));
+    let (a, b) = alternate(5, |two_now| {
+        let p = if two_now { &two } else { &wei };
+        let start = Instant::now();
+        black_box(study::run(p, &StudyOptions::from_problem(p)));
+        start.elapsed().as_secs_f64()
+    });
     *text += &format!(
         "\nthe 300-start study: two-stage bridge-lever {:.1} ms, wei2017's network {:.1} ms, \
          ratio {:.2} (medians of 5, alternating)\n",

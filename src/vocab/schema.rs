@@ -60,6 +60,16 @@ impl Reader<'_, '_> {
             Sign::NonNegative => self.non_negative(path, &q.written, M::DIMENSION),
         }
     }
+
+    /// [`Sections::measured`] of an optional key, or `or` where the file leaves it out.
+    pub fn measured_or<M: Measure>(
+        &self,
+        path: &[Segment],
+        q: &Option<Measured<M>>,
+        or: f64,
+    ) -> Res<f64> {
+        q.as_ref().map_or(Ok(or), |q| self.measured(path, q))
+    }
 }
 
 macro_rules! measures {

@@ -122,6 +122,16 @@ fn analysis() -> Analysis {
     }
 }
 
+/// The actuation of both test parts: [`STROKE`], no preload, a stiff actuator.
+fn stroke() -> Actuation {
+    Actuation {
+        nominal_stroke: STROKE,
+        preload: 0.0,
+        stiffness: None,
+        payload_mass: 0.0,
+    }
+}
+
 fn spec() -> PartSpec {
     spec_with(L, T)
 }
@@ -142,12 +152,7 @@ fn spec_with(l: f64, t: f64) -> PartSpec {
     let (top, bottom, end) = (0.5 * t, -0.5 * t, C + l);
     PartSpec {
         width: W,
-        actuation: Some(Actuation {
-            nominal_stroke: STROKE,
-            preload: 0.0,
-            stiffness: None,
-            payload_mass: 0.0,
-        }),
+        actuation: Some(stroke()),
         analysis: Some(analysis()),
         solids: vec![
             Solid {
@@ -399,12 +404,7 @@ pub fn cantilever(l: f64, t: f64) -> PartSpec {
     let down = [0.0, -1.0];
     PartSpec {
         width: W,
-        actuation: Some(Actuation {
-            nominal_stroke: STROKE,
-            preload: 0.0,
-            stiffness: None,
-            payload_mass: 0.0,
-        }),
+        actuation: Some(stroke()),
         analysis: Some(Analysis {
             clamped: vec!["root".into()],
             cases: vec![LoadCase {

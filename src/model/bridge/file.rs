@@ -225,8 +225,7 @@ fn part_settings(
 ) -> Res<PartSettings> {
     let d = PartSettings::default();
     fn length<M: Measure>(s: &Sections, key: &str, q: &Option<Measured<M>>, or: f64) -> Res<f64> {
-        q.as_ref()
-            .map_or(Ok(or), |q| s.measured(&[k("part"), k(key)], q))
+        s.measured_or(&[k("part"), k(key)], q, or)
     }
     Ok(PartSettings {
         link_thickness: length(s, "link_thickness", &p.link_thickness, d.link_thickness)?,

@@ -247,33 +247,29 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
             .transpose()?,
     };
     let part: Option<RawNetworkPart> = s.optional("part")?;
-    let part = part
-        .map(|p| PartSettings::read(s, &p))
-        .transpose()?
-        .map(|settings| NetworkPart {
-            description: description.clone(),
-            settings,
-            actuation: Actuation {
-                nominal_stroke: actuator.nominal_stroke,
-                preload: actuator.preload,
-                stiffness: actuator.stiffness,
-                payload_mass: 0.0,
-            },
-            counterparts: Counterparts::default(),
-        });
+    let part = part.map(|p| PartSettings::read(s, &p)).transpose()?;
+    let actuation = Actuation {
+        nominal_stroke: actuator.nominal_stroke,
+        preload: actuator.preload,
+        stiffness: actuator.stiffness,
+        payload_mass: 0.0,
+    };
+    let drawn = part.map(|settings| (settings, description.clone()));
     let model = NetworkModel::new(description, material, actuator);
-    let part = part.map(|p| NetworkPart {
-        counterparts: Counterparts {
-            amplification: model.output_index("amplification"),
-            k_in: model.output_index("k_in"),
-            k_out: model.output_index("k_out"),
-            stress_max: model.output_index("stress_max"),
-        },
-        ..p
-    });
+    let counterparts = Counterparts {
+        amplification: model.output_index("amplification"),
+        k_in: model.output_index("k_in"),
+        k_out: model.output_index("k_out"),
+        stress_max: model.output_index("stress_max"),
+    };
     let mut mechanism = Mechanism::physics_only(std::sync::Arc::new(model));
-    if let Some(p) = part {
-        mechanism.part_maker = Some(std::sync::Arc::new(p));
+    if let Some((settings, description)) = drawn {
+        mechanism.part_maker = Some(std::sync::Arc::new(NetworkPart {
+            description,
+            settings,
+            actuation,
+            counterparts,
+        }));
     }
     Ok(mechanism)
 }

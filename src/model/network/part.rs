@@ -40,7 +40,7 @@ use crate::part::analysis::{
 };
 use crate::part::{convex_hull, Actuation, Face, HingeSite, PartSpec, Solid};
 use crate::vocab::reader::{k, Res};
-use crate::vocab::schema::{Measure as Quantified, Measured, NonNegativeLength, PositiveLength};
+use crate::vocab::schema::{Measured, NonNegativeLength, PositiveLength};
 use crate::vocab::sections::Sections;
 
 type P = [f64; 2];
@@ -88,28 +88,24 @@ impl Default for PartSettings {
 impl PartSettings {
     /// `[part]`, each key with its default.
     pub fn read(s: &Sections, p: &RawNetworkPart) -> Res<Self> {
-        fn length<M: Quantified>(
-            s: &Sections,
-            key: &str,
-            q: &Option<Measured<M>>,
-            or: f64,
-        ) -> Res<f64> {
-            q.as_ref()
-                .map_or(Ok(or), |q| s.measured(&[k("part"), k(key)], q))
-        }
+        let at = |key: &str| [k("part"), k(key)];
         let d = PartSettings::default();
         Ok(PartSettings {
-            fillet_radius: length(s, "fillet_radius", &p.fillet_radius, d.fillet_radius)?,
-            min_slot: length(s, "min_slot", &p.min_slot, d.min_slot)?,
-            pad: length(s, "pad", &p.pad, d.pad)?,
-            pad_margin: length(s, "pad_margin", &p.pad_margin, d.pad_margin)?,
-            face: length(s, "face", &p.face, d.face)?,
+            fillet_radius: s.measured_or(
+                &at("fillet_radius"),
+                &p.fillet_radius,
+                d.fillet_radius,
+            )?,
+            min_slot: s.measured_or(&at("min_slot"), &p.min_slot, d.min_slot)?,
+            pad: s.measured_or(&at("pad"), &p.pad, d.pad)?,
+            pad_margin: s.measured_or(&at("pad_margin"), &p.pad_margin, d.pad_margin)?,
+            face: s.measured_or(&at("face"), &p.face, d.face)?,
         })
     }
 }
 
 /// The model's outputs the check measures, by their indices among the model's outputs.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Counterparts {
     pub amplification: Option<usize>,
     pub k_in: Option<usize>,
@@ -187,7 +183,9 @@ fn is_convex(points: &[P]) -> bool {
 }
 
 /// A simple polygon (counterclockwise) cut into triangles by ear clipping (Meisters, "Polygons
-/// have ears", Amer. Math. Monthly 82, 1975): convex pieces for the union.
+/// have ears", Amer. Math. Monthly 82, 1975): convex pieces for the union. A body's outline
+/// has a handful of corners; geo's `earcut` feature is left out of the build (issue 28,
+/// docs/performance.md) and spade's triangulation would need its outside triangles removed.
 fn triangles(points: &[P]) -> Vec<Vec<P>> {
     let mut left: Vec<P> = points.to_vec();
     let mut out = Vec::new();
