@@ -27,8 +27,16 @@
 //! `fe_amplification`, `fe_k_out` and the hinges' beam and peak stresses under the
 //! actuation, each beside the model's output of the same meaning.
 //!
-//! Not yet: networks with mirror axes (their whole part from the described half or
-//! quarter), and the natural modes.
+//! Mirror axes: the whole part is the described one and its images about each axis (and
+//! both). A body across an axis is drawn with its image about it as one solid (the convex
+//! hull of the two), so its halves join; each port's face has its images, which share the
+//! port's force where they lie on the port's own body (as the model's described half of such
+//! a body carries its share). A port across an axis reads its face and its image's face
+//! across it: the change of their distance. A part with no ground is held on the first
+//! output's image across its axis, as the bridge's lower output block is. The part is
+//! symmetric about the y axis where the description is, so the check solves its right half.
+//!
+//! Not yet: the natural modes.
 
 use serde::Deserialize;
 
@@ -315,37 +323,108 @@ impl<'a> Values<'a> {
     }
 }
 
-/// The part of design `x`.
+/// One of the images the mirror axes make of the described part: `flip_x` maps x to -x
+/// (the axis `y`, the line x = 0), `flip_y` maps y to -y (the axis `x`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Image {
+    flip_x: bool,
+    flip_y: bool,
+}
+
+impl Image {
+    const IDENTITY: Image = Image {
+        flip_x: false,
+        flip_y: false,
+    };
+
+    /// The identity first, then the image about each axis and about both.
+    fn all(mirror: &[Axis]) -> Vec<Image> {
+        let y = mirror.contains(&Axis::Y);
+        let x = mirror.contains(&Axis::X);
+        let mut out = vec![Image::IDENTITY];
+        for (flip_x, flip_y) in [(false, true), (true, false), (true, true)] {
+            if (!flip_x || y) && (!flip_y || x) {
+                out.push(Image { flip_x, flip_y });
+            }
+        }
+        out
+    }
+
+    fn across(axis: Axis) -> Image {
+        Image {
+            flip_x: axis == Axis::Y,
+            flip_y: axis == Axis::X,
+        }
+    }
+
+    fn point(self, p: P) -> P {
+        [
+            if self.flip_x { -p[0] } else { p[0] },
+            if self.flip_y { -p[1] } else { p[1] },
+        ]
+    }
+
+    /// A counterclockwise polygon's image, counterclockwise.
+    fn polygon(self, points: &[P]) -> Vec<P> {
+        let mut out: Vec<P> = points.iter().map(|&p| self.point(p)).collect();
+        if self.flip_x != self.flip_y {
+            out.reverse();
+        }
+        out
+    }
+
+    /// The same image of a body that lies across `own`: the flips about those axes map the
+    /// body onto itself.
+    fn of_body(self, own: &[Axis]) -> Image {
+        Image {
+            flip_x: self.flip_x && !own.contains(&Axis::Y),
+            flip_y: self.flip_y && !own.contains(&Axis::X),
+        }
+    }
+
+    fn suffix(self) -> &'static str {
+        match (self.flip_x, self.flip_y) {
+            (false, false) => "",
+            (false, true) => " (mirror x)",
+            (true, false) => " (mirror y)",
+            (true, true) => " (mirror x, y)",
+        }
+    }
+}
+
+/// A physical body of the whole part: its slot (0 the ground) and which of its images.
+type BodyKey = (usize, Image);
+
+/// A described hinge as cut: its solid, its site and its two pads with their bodies.
+struct CutHinge {
+    solid: Solid,
+    site: HingeSite,
+    from: usize,
+    to: usize,
+    /// Each pad and, for a pad on the ground, its clamped side.
+    pads: [(Solid, Option<(P, P)>); 2],
+}
+
+fn same_face(a: (P, P), b: (P, P)) -> bool {
+    let tol = 1e-12;
+    let near = |p: P, q: P| (p[0] - q[0]).abs() <= tol && (p[1] - q[1]).abs() <= tol;
+    (near(a.0, b.0) && near(a.1, b.1)) || (near(a.0, b.1) && near(a.1, b.0))
+}
+
+/// The part of design `x`: the described part, then its images about the mirror axes.
 fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
     let d = &part.description;
     let s = &part.settings;
-    if !d.mirror.is_empty() {
-        let axes: Vec<&str> = d
-            .mirror
-            .iter()
-            .map(|a| if *a == Axis::X { "x" } else { "y" })
-            .collect();
-        return Err(vec![format!(
-            "the part of a network with mirror axes ({}) is not drawn yet: describe the whole \
-             mechanism without `network.mirror` to have its part",
-            axes.join(", ")
-        )]);
-    }
     let v = Values::new(d, x);
     let one = |r: Result<P, String>| r.map_err(|e| vec![e]);
-    let mut solids: Vec<Solid> = Vec::new();
-    let mut joints: Vec<(usize, usize)> = Vec::new();
-    let mut hinges: Vec<HingeSite> = Vec::new();
-    let mut faces: Vec<Face> = Vec::new();
-    // the solids of each body (index 0 the ground), for the joints and the ports
-    let mut of_body: Vec<Vec<usize>> = vec![Vec::new(); d.bodies.len() + 1];
     let slot = |b: Option<usize>| b.map_or(0, |b| b + 1);
-    let mut problems = Vec::new();
+    // the axes each body (by slot) lies across: a body's images about them are itself
+    let own: Vec<&[Axis]> = std::iter::once(&[][..])
+        .chain(d.bodies.iter().map(|b| b.on_axis.as_slice()))
+        .collect();
 
     // each hinge: its solid and its two pads
-    let mut pads: Vec<(usize, Vec<P>)> = Vec::new();
-    // each hinge's solid and the bodies it meets through its faces
-    let mut meets: Vec<(usize, usize, usize)> = Vec::new();
+    let mut cut: Vec<CutHinge> = Vec::new();
     for h in &d.hinges {
         let mut dims = Vec::with_capacity(h.dimensions.len());
         for (e, info) in h.dimensions.iter().zip(h.kind.dimensions()) {
@@ -370,7 +449,6 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
         };
         let (f0, f1) = (add(start, scale(u, -fillet)), add(end, scale(u, fillet)));
         let half = 0.5 * root + fillet + s.pad_margin;
-        let own = solids.len();
         let body = band(f0, f1, 0.5 * root);
         // the pads: behind each face, their face edge holding the hinge's corners
         let pad_from = vec![
@@ -389,65 +467,60 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
             body[2],
             body[1],
         ];
-        solids.push(Solid {
-            name: format!("hinge {}", h.name),
-            points: body,
+        // the ground is held on a pad's far side, along the pad's outline
+        let clamp_from = h.from.is_none().then(|| (pad_from[5], pad_from[0]));
+        let clamp_to = h.to.is_none().then(|| (pad_to[1], pad_to[2]));
+        let pad = |side: &str, points| Solid {
+            name: format!("the pad at hinge {}'s {side}", h.name),
+            points,
+        };
+        cut.push(CutHinge {
+            solid: Solid {
+                name: format!("hinge {}", h.name),
+                points: body,
+            },
+            site: HingeSite {
+                name: h.name.clone(),
+                start,
+                end,
+                thickness: h.kind.least_thickness(&dims),
+                root,
+                fillet,
+                kind: h.kind.name(),
+                profile: h.kind.outline(&dims),
+                solid: 0,
+            },
+            from: slot(h.from),
+            to: slot(h.to),
+            pads: [
+                (pad("start", pad_from), clamp_from),
+                (pad("end", pad_to), clamp_to),
+            ],
         });
-        meets.push((own, slot(h.from), slot(h.to)));
-        hinges.push(HingeSite {
-            name: h.name.clone(),
-            start,
-            end,
-            thickness: h.kind.least_thickness(&dims),
-            root,
-            fillet,
-            kind: h.kind.name(),
-            profile: h.kind.outline(&dims),
-            solid: own,
-        });
-        for (which, (points, body)) in [(pad_from, h.from), (pad_to, h.to)].into_iter().enumerate()
-        {
-            let k = solids.len();
-            let side = if which == 0 { "start" } else { "end" };
-            solids.push(Solid {
-                name: format!("the pad at hinge {}'s {side}", h.name),
-                points: points.clone(),
-            });
-            joints.push((own, k));
-            of_body[slot(body)].push(k);
-            if body.is_none() {
-                // the ground: held on the pad's far side, along the pad's outline
-                let (a, b) = if which == 0 {
-                    (points[5], points[0])
-                } else {
-                    (points[1], points[2])
-                };
-                faces.push(Face {
-                    name: "clamp".into(),
-                    a,
-                    b,
-                });
-            }
-            pads.push((slot(body), points));
-        }
     }
 
-    // the bodies as drawn, or the hull of their pads
+    // the bodies as drawn, or the hull of their pads; a body across an axis with its image
+    // about it, so that its two halves are one solid
+    let mut shapes: Vec<(usize, Solid)> = Vec::new();
     for (b, body) in d.bodies.iter().enumerate() {
         let mut points = Vec::with_capacity(body.points.len());
         for p in &body.points {
             points.push(one(v.point(p))?);
         }
-        let shapes: Vec<Vec<P>> = match (&body.link_width, points.len()) {
+        let mut drawn: Vec<Vec<P>> = match (&body.link_width, points.len()) {
             (Some(w), 2) => {
                 let width = v.length(w).map_err(|e| vec![e])?;
                 vec![band(points[0], points[1], 0.5 * width)]
             }
             (_, 0) => {
-                let all: Vec<P> = pads
+                let all: Vec<P> = cut
                     .iter()
-                    .filter(|(o, _)| *o == b + 1)
-                    .flat_map(|(_, p)| p.iter().copied())
+                    .flat_map(|c| {
+                        [(c.from, &c.pads[0].0), (c.to, &c.pads[1].0)]
+                            .into_iter()
+                            .filter(|(o, _)| *o == b + 1)
+                            .flat_map(|(_, p)| p.points.iter().copied())
+                    })
                     .collect();
                 vec![convex_hull(&all)]
             }
@@ -462,29 +535,111 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
                 }
             }
         };
-        for (i, shape) in shapes.into_iter().enumerate() {
-            let k = solids.len();
-            solids.push(Solid {
-                name: if i == 0 {
-                    format!("body {}", body.name)
-                } else {
-                    format!("body {} ({})", body.name, i + 1)
-                },
-                points: shape,
-            });
-            of_body[b + 1].push(k);
+        if !body.on_axis.is_empty() {
+            let selves: Vec<Image> = Image::all(&body.on_axis);
+            for shape in &mut drawn {
+                let all: Vec<P> = selves
+                    .iter()
+                    .flat_map(|t| shape.iter().map(|&p| t.point(p)))
+                    .collect();
+                *shape = convex_hull(&all);
+            }
+        }
+        for (i, points) in drawn.into_iter().enumerate() {
+            let name = if i == 0 {
+                format!("body {}", body.name)
+            } else {
+                format!("body {} ({})", body.name, i + 1)
+            };
+            shapes.push((b + 1, Solid { name, points }));
         }
     }
+
+    // the whole: each image of the described part
+    let images = Image::all(&d.mirror);
+    let mut solids: Vec<Solid> = Vec::new();
+    let mut hinges: Vec<HingeSite> = Vec::new();
+    let mut joints: Vec<(usize, usize)> = Vec::new();
+    let mut faces: Vec<Face> = Vec::new();
+    let mut owners: Vec<(BodyKey, usize)> = Vec::new();
+    let key = |b: usize, t: Image| -> BodyKey {
+        if b == 0 {
+            (0, Image::IDENTITY)
+        } else {
+            (b, t.of_body(own[b]))
+        }
+    };
+    // each hinge image's solid and the bodies it meets
+    let mut meets: Vec<(usize, BodyKey, BodyKey)> = Vec::new();
+    for &t in &images {
+        for c in &cut {
+            let k = solids.len();
+            solids.push(Solid {
+                name: format!("{}{}", c.solid.name, t.suffix()),
+                points: t.polygon(&c.solid.points),
+            });
+            hinges.push(HingeSite {
+                name: format!("{}{}", c.site.name, t.suffix()),
+                start: t.point(c.site.start),
+                end: t.point(c.site.end),
+                solid: k,
+                ..c.site.clone()
+            });
+            let (from, to) = (key(c.from, t), key(c.to, t));
+            meets.push((k, from, to));
+            for ((pad, clamp), body) in c.pads.iter().zip([from, to]) {
+                let p = solids.len();
+                solids.push(Solid {
+                    name: format!("{}{}", pad.name, t.suffix()),
+                    points: t.polygon(&pad.points),
+                });
+                joints.push((k, p));
+                owners.push((body, p));
+                if let Some((a, b)) = clamp {
+                    faces.push(Face {
+                        name: "clamp".into(),
+                        a: t.point(*a),
+                        b: t.point(*b),
+                    });
+                }
+            }
+        }
+        for (b, shape) in &shapes {
+            let body = key(*b, t);
+            if body.1 != t {
+                // the image of a body across an axis about that axis: the body itself
+                continue;
+            }
+            let k = solids.len();
+            solids.push(Solid {
+                name: format!("{}{}", shape.name, t.suffix()),
+                points: t.polygon(&shape.points),
+            });
+            owners.push((body, k));
+        }
+    }
+    let of = |body: BodyKey| -> Vec<usize> {
+        owners
+            .iter()
+            .filter(|(o, _)| *o == body)
+            .map(|&(_, k)| k)
+            .collect()
+    };
     // a hinge meets its two bodies through its faces, and every solid of a body is joined
     // to every other of it
     for &(own, from, to) in &meets {
-        for &k in of_body[from].iter().chain(&of_body[to]) {
+        for k in of(from).into_iter().chain(of(to)) {
             if !joints.contains(&(own, k)) {
                 joints.push((own, k));
             }
         }
     }
-    for list in &of_body {
+    let mut bodies: Vec<BodyKey> = owners.iter().map(|(o, _)| *o).collect();
+    bodies.dedup();
+    bodies.sort_by_key(|&(b, t)| (b, t.flip_x, t.flip_y));
+    bodies.dedup();
+    for &body in &bodies {
+        let list = of(body);
         for (i, &a) in list.iter().enumerate() {
             for &c in &list[i + 1..] {
                 joints.push((a, c));
@@ -492,102 +647,69 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
         }
     }
 
-    // the ports' faces, on the side the force comes from
+    // the ports' faces, on the side the force comes from, and their images
+    let mut problems = Vec::new();
     let ports = std::iter::once(("input".to_string(), &d.input))
         .chain(d.outputs.iter().map(|o| (format!("output_{}", o.name), o)));
-    let mut directions = Vec::new();
+    let mut placed: Vec<PlacedPort> = Vec::new();
     for (name, port) in ports {
         let at = one(v.point(&port.at))?;
         let dir = one(v.point(&port.direction))?;
         let norm = dir[0].hypot(dir[1]);
         let dir = [dir[0] / norm, dir[1] / norm];
-        directions.push(dir);
-        let back = [-dir[0], -dir[1]];
-        let hit = of_body[port.body + 1]
-            .iter()
-            .filter_map(|&k| {
-                let poly = &solids[k].points;
-                exit(poly, at, back).map(|(t, e)| (t, k, e))
-            })
-            .max_by(|x, y| x.0.total_cmp(&y.0));
-        let Some((t, k, e)) = hit else {
-            problems.push(format!(
-                "port {name} at ({:.3}, {:.3}) mm lies on no solid of body \"{}\": put it on \
-                 the body",
+        let body = key(port.body + 1, Image::IDENTITY);
+        let mine = of(body);
+        let body_name = &d.bodies[port.body].name;
+        match port_face(&solids, &mine, at, dir, s.face) {
+            Err(FaceProblem::Outside) => problems.push(format!(
+                "port {name} at ({:.3}, {:.3}) mm lies on no solid of body \"{body_name}\": put \
+                 it on the body",
                 at[0] * 1e3,
                 at[1] * 1e3,
-                d.bodies[port.body].name
-            ));
-            continue;
-        };
-        let q = add(at, scale(back, t));
-        let poly = &solids[k].points;
-        let (a, b) = (poly[e], poly[(e + 1) % poly.len()]);
-        let len = (b[0] - a[0]).hypot(b[1] - a[1]);
-        let along = ((q[0] - a[0]) * (b[0] - a[0]) + (q[1] - a[1]) * (b[1] - a[1])) / len;
-        let half = (0.5 * s.face).min(along).min(len - along);
-        if half < 1e-6 {
-            problems.push(format!(
-                "port {name}: its face falls on a corner of body \"{}\"; move the port along \
-                 the body's edge",
-                d.bodies[port.body].name
-            ));
-            continue;
+            )),
+            Err(FaceProblem::Corner) => problems.push(format!(
+                "port {name}: its face falls on a corner of body \"{body_name}\"; move the port \
+                 along the body's edge"
+            )),
+            Err(FaceProblem::Covered(q, other)) => problems.push(format!(
+                "port {name}: its face at ({:.3}, {:.3}) mm lies on {}; move the port clear of \
+                 it",
+                q[0] * 1e3,
+                q[1] * 1e3,
+                solids[other].name
+            )),
+            Ok(face) => placed.push(PlacedPort {
+                name,
+                face,
+                direction: dir,
+                across: port.across,
+                own: &d.bodies[port.body].on_axis,
+            }),
         }
-        let e_u = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
-        // the face keeps off every solid of another body or hinge, whose material stands on
-        // that edge there and leaves it no outline
-        let mut lo = -half;
-        let mut hi = half;
-        for (j, other) in solids.iter().enumerate() {
-            if of_body[port.body + 1].contains(&j) {
-                continue;
-            }
-            if let Some((c0, c1)) = covered(&other.points, q, e_u, -half, half) {
-                if c0 <= 0.0 && c1 >= 0.0 {
-                    lo = hi;
-                    problems.push(format!(
-                        "port {name}: its face at ({:.3}, {:.3}) mm lies on {}; move the port \
-                         clear of it",
-                        q[0] * 1e3,
-                        q[1] * 1e3,
-                        other.name
-                    ));
-                    break;
-                } else if c1 < 0.0 {
-                    lo = lo.max(c1);
-                } else {
-                    hi = hi.min(c0);
-                }
-            }
-        }
-        if hi <= lo {
-            continue;
-        }
-        faces.push(Face {
-            name: name.clone(),
-            a: add(q, scale(e_u, lo)),
-            b: add(q, scale(e_u, hi)),
-        });
     }
     if !problems.is_empty() {
         return Err(problems);
     }
-    let first_output = format!("output_{}", d.outputs[0].name);
-    let analysis = analysis(&first_output, directions[0], directions[1]);
+    let grounded = faces.iter().any(|f| f.name == "clamp");
+    let check = ports_check(&placed, &images, grounded, &mut faces).map_err(|e| vec![e])?;
     Ok(PartSpec {
         width: d.width,
         actuation: Some(part.actuation),
-        analysis: Some(analysis),
+        analysis: Some(check),
         solids,
         joints,
         hinges,
         faces,
         annotations: Vec::new(),
         caption: format!(
-            "flexure network: {} bodies, {} hinges",
+            "flexure network: {} bodies, {} hinges{}",
             d.bodies.len(),
-            d.hinges.len()
+            d.hinges.len(),
+            if images.len() > 1 {
+                format!(", {} images of the described part", images.len())
+            } else {
+                String::new()
+            }
         ),
         min_slot: s.min_slot,
         actuator: None,
@@ -595,14 +717,188 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
     })
 }
 
-/// The check through the ports: the test force on the input (the actuation case), the input's
-/// and the first output's motions under it; then on the first output, the input free.
-fn analysis(output: &str, d_in: P, d_out: P) -> Analysis {
+/// A port's face on the described part: its name, ends, the port's direction and axis.
+struct PlacedPort<'a> {
+    name: String,
+    face: (P, P),
+    direction: P,
+    across: Option<Axis>,
+    /// The axes its body lies across.
+    own: &'a [Axis],
+}
+
+enum FaceProblem {
+    Outside,
+    Corner,
+    /// Where the face would be, and the solid it lies on.
+    Covered(P, usize),
+}
+
+/// The face of the port at `at` along `dir` on the body whose solids are `mine`: where the
+/// line leaves the body on the side the force comes from, `length` long or shorter where the
+/// edge is, and off every other solid.
+fn port_face(
+    solids: &[Solid],
+    mine: &[usize],
+    at: P,
+    dir: P,
+    length: f64,
+) -> Result<(P, P), FaceProblem> {
+    let back = [-dir[0], -dir[1]];
+    let (t, k, e) = mine
+        .iter()
+        .filter_map(|&k| exit(&solids[k].points, at, back).map(|(t, e)| (t, k, e)))
+        .max_by(|x, y| x.0.total_cmp(&y.0))
+        .ok_or(FaceProblem::Outside)?;
+    let q = add(at, scale(back, t));
+    let poly = &solids[k].points;
+    let (a, b) = (poly[e], poly[(e + 1) % poly.len()]);
+    let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+    let along = ((q[0] - a[0]) * (b[0] - a[0]) + (q[1] - a[1]) * (b[1] - a[1])) / len;
+    let half = (0.5 * length).min(along).min(len - along);
+    if half < 1e-6 {
+        return Err(FaceProblem::Corner);
+    }
+    let e_u = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
+    // the face keeps off every solid of another body or hinge, whose material stands on
+    // that edge there and leaves it no outline
+    let (mut lo, mut hi) = (-half, half);
+    for (j, other) in solids.iter().enumerate() {
+        if mine.contains(&j) {
+            continue;
+        }
+        if let Some((c0, c1)) = covered(&other.points, q, e_u, -half, half) {
+            if c0 <= 0.0 && c1 >= 0.0 {
+                return Err(FaceProblem::Covered(q, j));
+            } else if c1 < 0.0 {
+                lo = lo.max(c1);
+            } else {
+                hi = hi.min(c0);
+            }
+        }
+    }
+    if hi <= lo {
+        return Err(FaceProblem::Covered(q, k));
+    }
+    Ok((add(q, scale(e_u, lo)), add(q, scale(e_u, hi))))
+}
+
+/// A port's faces on the whole part: the described one and its distinct images, each with
+/// its direction, and the share of the port's force each carries (the images on one body
+/// share it, as the model's port on a body across an axis does).
+struct PortFaces {
+    faces: Vec<(String, P, Image)>,
+    share: f64,
+}
+
+/// The check through the ports on the whole part, its faces added to `faces`. A part
+/// without ground is held on the first output's image across its axis (the input's where the
+/// output is across none), as the bridge's lower output block is.
+fn ports_check(
+    placed: &[PlacedPort<'_>],
+    images: &[Image],
+    grounded: bool,
+    faces: &mut Vec<Face>,
+) -> Result<Analysis, String> {
+    let held = match (grounded, placed[1].across, placed[0].across) {
+        (true, _, _) => None,
+        (false, Some(_), _) => Some(1),
+        (false, None, Some(_)) => Some(0),
+        (false, None, None) => {
+            return Err(
+                "the network has no ground, and neither its input nor its first output \
+                        is across a mirror axis: nothing holds its part for the check; join a \
+                        hinge to the ground"
+                    .into(),
+            )
+        }
+    };
+    let mut all = Vec::new();
+    for (i, p) in placed.iter().take(2).enumerate() {
+        let mut mine: Vec<(String, P, Image, (P, P))> = Vec::new();
+        for &t in images {
+            let f = (t.point(p.face.0), t.point(p.face.1));
+            if mine.iter().any(|m| same_face(m.3, f)) {
+                continue;
+            }
+            let d = t.point(p.direction);
+            let name = format!("{}{}", p.name, t.suffix());
+            mine.push((name, d, t, f));
+        }
+        // the images of the port on its own body (about the axes the body lies across)
+        // share the port's force, as the model's described half of such a body carries its
+        // share of it
+        let on_body = mine
+            .iter()
+            .filter(|m| m.2.of_body(p.own) == Image::IDENTITY)
+            .count();
+        let held_image = held.filter(|&h| h == i).and(p.across).map(Image::across);
+        let mut kept = Vec::new();
+        for (name, d, t, f) in mine {
+            if Some(t) == held_image {
+                faces.push(Face {
+                    name: "clamp".into(),
+                    a: f.0,
+                    b: f.1,
+                });
+                continue;
+            }
+            faces.push(Face {
+                name: name.clone(),
+                a: f.0,
+                b: f.1,
+            });
+            kept.push((name, d, t));
+        }
+        all.push(PortFaces {
+            faces: kept,
+            share: 1.0 / on_body as f64,
+        });
+    }
+    let (input, output) = (&all[0], &all[1]);
     let term = |face: &str, direction: P| Term {
         weight: 1.0,
         face: face.into(),
         direction,
     };
+    let loads = |p: &PortFaces| -> Vec<Load> {
+        p.faces
+            .iter()
+            .map(|(face, direction, _)| Load {
+                face: face.clone(),
+                direction: *direction,
+                share: p.share,
+            })
+            .collect()
+    };
+    // what the model reads: the port's motion, or across an axis the change of its
+    // distance from its image (the image's term where the image is not held)
+    let reads = |p: &PortFaces, across: Option<Axis>| -> Vec<Term> {
+        p.faces
+            .iter()
+            .filter(|(_, _, t)| {
+                *t == Image::IDENTITY || across.is_some_and(|a| *t == Image::across(a))
+            })
+            .map(|(face, direction, _)| term(face, *direction))
+            .collect()
+    };
+    Ok(analysis(
+        loads(input),
+        reads(input, placed[0].across),
+        loads(output),
+        reads(output, placed[1].across),
+    ))
+}
+
+/// The check through the ports: the test force on the input's faces (the actuation case),
+/// the input's and the first output's motions under it; then on the first output's faces,
+/// the input free.
+fn analysis(
+    input_loads: Vec<Load>,
+    input_reads: Vec<Term>,
+    output_loads: Vec<Load>,
+    output_reads: Vec<Term>,
+) -> Analysis {
     let out = |name: &'static str, dimension, meaning: &'static str, quantity| FeOutput {
         name,
         dimension,
@@ -617,33 +913,25 @@ fn analysis(output: &str, d_in: P, d_out: P) -> Analysis {
         cases: vec![
             LoadCase {
                 name: "on the input face".into(),
-                loads: vec![Load {
-                    face: "input".into(),
-                    direction: d_in,
-                    share: 1.0,
-                }],
+                loads: input_loads,
             },
             LoadCase {
                 name: "on the first output's face".into(),
-                loads: vec![Load {
-                    face: output.into(),
-                    direction: d_out,
-                    share: 1.0,
-                }],
+                loads: output_loads,
             },
         ],
         measures: vec![
             Measure {
                 case: 0,
-                terms: vec![term("input", d_in)],
+                terms: input_reads,
             },
             Measure {
                 case: 0,
-                terms: vec![term(output, d_out)],
+                terms: output_reads.clone(),
             },
             Measure {
                 case: 1,
-                terms: vec![term(output, d_out)],
+                terms: output_reads,
             },
         ],
         outputs: vec![
