@@ -190,6 +190,18 @@ fn is_convex(points: &[P]) -> bool {
     })
 }
 
+/// An outline as the part's solids: itself where it is convex, else its triangles.
+fn convex_pieces(mut points: Vec<P>) -> Vec<Vec<P>> {
+    if signed_area(&points) < 0.0 {
+        points.reverse();
+    }
+    if is_convex(&points) {
+        vec![points]
+    } else {
+        triangles(&points)
+    }
+}
+
 /// A simple polygon (counterclockwise) cut into triangles by ear clipping (Meisters, "Polygons
 /// have ears", Amer. Math. Monthly 82, 1975): convex pieces for the union. A body's outline
 /// has a handful of corners; geo's `earcut` feature is left out of the build (issue 28,
@@ -246,8 +258,10 @@ fn exit(poly: &[P], p: P, dir: P) -> Option<(f64, usize)> {
         .filter_map(|i| {
             let (a, b) = (poly[i], poly[(i + 1) % n]);
             let e = sub(b, a);
+            // only a side the ray leaves through (counterclockwise: its outward normal
+            // along the ray), not one it enters by or lies on
             let denom = cross(dir, e);
-            if denom.abs() < 1e-30 {
+            if denom < 1e-30 {
                 return None;
             }
             let s = cross(sub(a, p), e) / denom;
@@ -502,6 +516,20 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
     // the bodies as drawn, or the hull of their pads; a body across an axis with its image
     // about it, so that its two halves are one solid
     let mut shapes: Vec<(usize, Solid)> = Vec::new();
+    if d.ground.len() >= 3 {
+        let mut points = Vec::with_capacity(d.ground.len());
+        for p in &d.ground {
+            points.push(one(v.point(p))?);
+        }
+        for (i, points) in convex_pieces(points).into_iter().enumerate() {
+            let name = if i == 0 {
+                "the ground".to_string()
+            } else {
+                format!("the ground ({})", i + 1)
+            };
+            shapes.push((0, Solid { name, points }));
+        }
+    }
     for (b, body) in d.bodies.iter().enumerate() {
         let mut points = Vec::with_capacity(body.points.len());
         for p in &body.points {
@@ -524,16 +552,7 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
                     .collect();
                 vec![convex_hull(&all)]
             }
-            _ => {
-                if signed_area(&points) < 0.0 {
-                    points.reverse();
-                }
-                if is_convex(&points) {
-                    vec![points]
-                } else {
-                    triangles(&points)
-                }
-            }
+            _ => convex_pieces(points),
         };
         if !body.on_axis.is_empty() {
             let selves: Vec<Image> = Image::all(&body.on_axis);
@@ -569,6 +588,8 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
             (b, t.of_body(own[b]))
         }
     };
+    // the sides the ground may be held on: (its solid, its ends)
+    let mut held: Vec<(usize, P, P)> = Vec::new();
     // each hinge image's solid and the bodies it meets
     let mut meets: Vec<(usize, BodyKey, BodyKey)> = Vec::new();
     for &t in &images {
@@ -596,28 +617,37 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
                 joints.push((k, p));
                 owners.push((body, p));
                 if let Some((a, b)) = clamp {
-                    faces.push(Face {
-                        name: "clamp".into(),
-                        a: t.point(*a),
-                        b: t.point(*b),
-                    });
+                    held.push((p, t.point(*a), t.point(*b)));
                 }
             }
         }
         for (b, shape) in &shapes {
             let body = key(*b, t);
-            if body.1 != t {
+            if t.of_body(own[*b]) != t {
                 // the image of a body across an axis about that axis: the body itself
                 continue;
             }
             let k = solids.len();
+            let points = t.polygon(&shape.points);
+            if *b == 0 {
+                let n = points.len();
+                held.extend((0..n).map(|i| (k, points[i], points[(i + 1) % n])));
+            }
             solids.push(Solid {
                 name: format!("{}{}", shape.name, t.suffix()),
-                points: t.polygon(&shape.points),
+                points,
             });
             owners.push((body, k));
         }
     }
+    // the ground is held wherever its outline and its pads' far sides are the part's
+    faces.extend(held.iter().flat_map(|&(k, a, b)| {
+        exposed(&solids, k, a, b).into_iter().map(|(a, b)| Face {
+            name: "clamp".into(),
+            a,
+            b,
+        })
+    }));
     let of = |body: BodyKey| -> Vec<usize> {
         owners
             .iter()
@@ -717,6 +747,45 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
     })
 }
 
+/// The stretches of the side `a`-`b` of solid `own` that no other solid covers: the part's
+/// outline there. The side itself where nothing covers it.
+fn exposed(solids: &[Solid], own: usize, a: P, b: P) -> Vec<(P, P)> {
+    // shorter stretches are left free: a sliver beside a pad is no place to hold a part
+    const SHORTEST: f64 = 0.1e-3;
+    let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+    let e = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
+    let mut cover: Vec<(f64, f64)> = solids
+        .iter()
+        .enumerate()
+        .filter(|&(j, _)| j != own)
+        .filter_map(|(_, s)| covered(&s.points, a, e, 0.0, len))
+        .filter(|&(c0, c1)| c1 - c0 > 1e-9)
+        .collect();
+    if cover.is_empty() {
+        return vec![(a, b)];
+    }
+    cover.sort_by(|x, y| x.0.total_cmp(&y.0));
+    cover.push((len, len));
+    let at = |s: f64| {
+        if s <= 1e-9 {
+            a
+        } else if s >= len - 1e-9 {
+            b
+        } else {
+            add(a, scale(e, s))
+        }
+    };
+    let mut out = Vec::new();
+    let mut from = 0.0;
+    for (c0, c1) in cover {
+        if c0 - from >= SHORTEST {
+            out.push((at(from), at(c0)));
+        }
+        from = f64::max(from, c1);
+    }
+    out
+}
+
 /// A port's face on the described part: its name, ends, the port's direction and axis.
 struct PlacedPort<'a> {
     name: String,
@@ -745,12 +814,24 @@ fn port_face(
     length: f64,
 ) -> Result<(P, P), FaceProblem> {
     let back = [-dir[0], -dir[1]];
-    let (t, k, e) = mine
-        .iter()
-        .filter_map(|&k| exit(&solids[k].points, at, back).map(|(t, e)| (t, k, e)))
-        .max_by(|x, y| x.0.total_cmp(&y.0))
-        .ok_or(FaceProblem::Outside)?;
-    let q = add(at, scale(back, t));
+    // through the body's convex pieces (its triangles, its pads) until the line leaves them
+    // all: a piece's exit inside another piece goes on through that one
+    let leave = |p: P| {
+        mine.iter()
+            .filter_map(|&k| exit(&solids[k].points, p, back).map(|(t, e)| (t, k, e)))
+            .max_by(|x, y| x.0.total_cmp(&y.0))
+    };
+    let (t, mut k, mut e) = leave(at).ok_or(FaceProblem::Outside)?;
+    let mut q = add(at, scale(back, t));
+    for _ in 0..mine.len() {
+        match leave(q) {
+            Some((t, k2, e2)) if t > 1e-12 => {
+                (k, e) = (k2, e2);
+                q = add(q, scale(back, t));
+            }
+            _ => break,
+        }
+    }
     let poly = &solids[k].points;
     let (a, b) = (poly[e], poly[(e + 1) % poly.len()]);
     let len = (b[0] - a[0]).hypot(b[1] - a[1]);
@@ -760,6 +841,8 @@ fn port_face(
         return Err(FaceProblem::Corner);
     }
     let e_u = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
+    // on the side itself, whatever the steps through the pieces rounded
+    let q = add(a, scale(e_u, along));
     // the face keeps off every solid of another body or hinge, whose material stands on
     // that edge there and leaves it no outline
     let (mut lo, mut hi) = (-half, half);
