@@ -2,7 +2,7 @@
 # Regenerates every committed file of results/ but the benchmarks': the study of each problem
 # in problems/ (the flexure networks too: wei2017_network, paper 004's bridge, and the rhombus, guide, lever, Scott-Russell and bridge-lever; but the sweep-only wei2017_fig9; wei2017's optimum refined by FE too, in
 # wei2017_refined/; ti_first_mode's refined by its own [refine] section), the finite-element checks of wei2017's optimum and printed design and of bridge_circular's
-# and lever_network's optima, the hinges' accuracy table, the trade-off front of wei2017_dynamic, and the
+# and the lever, guide, rhombus and wei2017 networks' optima, the hinges' accuracy table, the trade-off front of wei2017_dynamic, and the
 # sweeps of the three sweep scripts. With a folder as argument it writes there instead
 # of results/ (scripts/check_results.sh compares such a copy with the committed files).
 set -euo pipefail
@@ -26,9 +26,12 @@ done
   --design l2=1.96,delta2=4.07,t2=0.4,l3=8.1,delta3=4.01,l4=1.96,delta4=4.07,t4=0.4 >/dev/null
 ./target/release/flexopt verify problems/bridge_circular.toml \
   --optimum "$RESULTS/bridge_circular/optimum.json" --out "$RESULTS/bridge_circular/verify" >/dev/null
-# the lever network's part checked whole through its ports
-./target/release/flexopt verify problems/lever_network.toml \
-  --optimum "$RESULTS/lever_network/optimum.json" --out "$RESULTS/lever_network/verify" >/dev/null
+# the networks' parts checked through their ports (the lever and the guide whole, the
+# rhombus and wei2017's network on their halves)
+for n in lever_network guide_network rhombus_network wei2017_network; do
+  ./target/release/flexopt verify "problems/$n.toml" \
+    --optimum "$RESULTS/$n/optimum.json" --out "$RESULTS/$n/verify" >/dev/null
+done
 # the accuracy table of the hinge kinds (results/hinges/)
 cargo run --release --quiet --example hinge_accuracy >/dev/null
 ./target/release/flexopt pareto problems/wei2017_dynamic.toml --vary natural_frequency \
