@@ -823,10 +823,11 @@ fn port_face(
     };
     let (t, mut k, mut e) = leave(at).ok_or(FaceProblem::Outside)?;
     let mut q = add(at, scale(back, t));
+    let mut stepped = false;
     for _ in 0..mine.len() {
         match leave(q) {
             Some((t, k2, e2)) if t > 1e-12 => {
-                (k, e) = (k2, e2);
+                (k, e, stepped) = (k2, e2, true);
                 q = add(q, scale(back, t));
             }
             _ => break,
@@ -842,7 +843,11 @@ fn port_face(
     }
     let e_u = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
     // on the side itself, whatever the steps through the pieces rounded
-    let q = add(a, scale(e_u, along));
+    let q = if stepped {
+        add(a, scale(e_u, along))
+    } else {
+        q
+    };
     // the face keeps off every solid of another body or hinge, whose material stands on
     // that edge there and leaves it no outline
     let (mut lo, mut hi) = (-half, half);
