@@ -25,7 +25,7 @@
 //!
 //! A clearance more than [`CAP`] beyond its rule is not worked out: the rule reads
 //! [`CAP`] there, continuously, as no pair is nearer than that, and the study's search
-//! looks only at the pieces whose bounding circles come within it.
+//! looks only at the pieces whose bounding circles and boxes come within it.
 
 use std::sync::OnceLock;
 
@@ -494,6 +494,44 @@ pub struct Selection {
     link: [Reach; 2],
 }
 
+/// A piece's bounding box: its least and largest `x`, then `y`.
+type Bounds = [f64; 4];
+
+fn bounds(p: &Piece<f64>) -> Bounds {
+    let fold = |k: usize, f: fn(f64, f64) -> f64, from: f64| p.iter().map(|q| q[k]).fold(from, f);
+    [
+        fold(0, f64::min, f64::INFINITY),
+        fold(0, f64::max, f64::NEG_INFINITY),
+        fold(1, f64::min, f64::INFINITY),
+        fold(1, f64::max, f64::NEG_INFINITY),
+    ]
+}
+
+/// How far beyond a search's bound a bounding box's gap must be for its pair to be left
+/// out (m): far above the rounding of the pieces' millimetres (1e-19 m), so that a pair
+/// the boxes leave out is one whose clearance would not have been below the bound either,
+/// and the search finds what it found without them, to the bit.
+const BOX_MARGIN: f64 = 1e-12;
+
+/// Whether the bounding boxes `a` and `b` show that their pieces' clearance is not below
+/// `bound`. The gaps along `x` and `y` are gaps along axes, which the clearance is never
+/// below (apart, the distance is at least either; overlapping, the least shift that parts
+/// the pieces is along a side's normal and no longer than the shift along any other axis,
+/// Ericson, Real-Time Collision Detection, 2005, Sec. 4.2 and 5.2.1), and where the boxes
+/// are apart along both, so is the distance their hypotenuse. The blocks' pieces and the
+/// actuator are rectangles along the axes, whose bounding circles are far looser: measured
+/// on the studies of wei2017 and wei2017_min_stress, the circles leave out 88 and 86 % of
+/// the pairs, the boxes 5.5 and 4.4 % more: 46 and 32 % of the pairs that went on to the
+/// separating axes before.
+fn boxes_apart(a: &Bounds, b: &Bounds, bound: f64) -> bool {
+    let gx = (b[0] - a[1]).max(a[0] - b[1]);
+    let gy = (b[2] - a[3]).max(a[2] - b[3]);
+    let bound = bound + BOX_MARGIN;
+    gx >= bound
+        || gy >= bound
+        || (bound > 0.0 && gx > 0.0 && gy > 0.0 && gx * gx + gy * gy >= bound * bound)
+}
+
 /// The least over `term`'s pairs of pieces of their clearance less the slot it asks, where
 /// that is below `least` (the rule's least margin so far, or [`CAP`]): the pair and its
 /// feature, or `None`. Pairs are taken in their order and a later one only where strictly
@@ -501,6 +539,7 @@ pub struct Selection {
 fn nearest(
     real: &[Piece<f64>; PIECES],
     circles: &[(P, f64); PIECES],
+    boxes: &[Bounds; PIECES],
     term: Term,
     slot: f64,
     mut least: f64,
@@ -517,7 +556,9 @@ fn nearest(
             // the bounding circles' gap, a lower bound of the clearance
             let ((ca, sa), (cb, sb)) = (circles[pa], circles[pb]);
             let reach = least + need + sa + sb;
-            if (ca[0] - cb[0]).powi(2) + (ca[1] - cb[1]).powi(2) >= reach * reach {
+            if (ca[0] - cb[0]).powi(2) + (ca[1] - cb[1]).powi(2) >= reach * reach
+                || boxes_apart(&boxes[pa], &boxes[pb], least + need)
+            {
                 continue;
             }
             if let Some((c, feature)) = clearance_below(solid(pa), solid(pb), least + need) {
@@ -577,12 +618,13 @@ impl Selection {
     pub fn find(s: &PartSettings, layout: &Layout, g: &Geometry<f64>, out: &mut [f64]) -> Self {
         let real = pieces(s, layout, g);
         let circles = real.each_ref().map(circle);
+        let boxes = real.each_ref().map(bounds);
         let rows = rows(with_actuator(s));
         let mut nearest = [None; MAX_RULES];
         for ((o, row), chosen) in out.iter_mut().zip(rows).zip(&mut nearest) {
             let mut least = CAP;
             for &t in &row.terms {
-                if let Some((m, n)) = self::nearest(&real, &circles, t, s.min_slot, least) {
+                if let Some((m, n)) = self::nearest(&real, &circles, &boxes, t, s.min_slot, least) {
                     least = m;
                     *chosen = Some(n);
                 }
@@ -703,5 +745,42 @@ mod tests {
             .filter(|t| (BAND_B..=BAND_D_START).contains(&t.a) || t.a >= BAND_B_END)
             .count();
         assert!(bands >= 15, "{bands}");
+    }
+
+    #[test]
+    fn a_pair_the_boxes_leave_out_is_no_nearer_than_the_bound() {
+        use crate::model::clearance::clearance;
+        use rand::{Rng, SeedableRng};
+        // convex quadrilaterals of millimetres, from far apart to overlapping, some along
+        // the axes as the blocks are: where the boxes say a pair is not below a bound, its
+        // clearance is not
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(23);
+        let mut left_out = 0;
+        for k in 0..20_000 {
+            let mut quad = || -> Piece<f64> {
+                let (cx, cy) = (rng.random_range(-4e-3..4e-3), rng.random_range(-4e-3..4e-3));
+                let (w, h) = (rng.random_range(1e-4..3e-3), rng.random_range(1e-4..3e-3));
+                let turn = if k % 3 == 0 {
+                    0.0
+                } else {
+                    rng.random_range(0.0..6.3)
+                };
+                let (s, c) = f64::sin_cos(turn);
+                [[-w, -h], [w, -h], [w, h], [-w, h]]
+                    .map(|[x, y]| [cx + c * x - s * y, cy + s * x + c * y])
+            };
+            let (a, b) = (quad(), quad());
+            let bound = rng.random_range(-2e-3..CAP);
+            if boxes_apart(&bounds(&a), &bounds(&b), bound) {
+                left_out += 1;
+                let solid = |p| Solid {
+                    corners: p,
+                    sides: &IN_ORDER,
+                };
+                let (c, _) = clearance(solid(&a), solid(&b));
+                assert!(c >= bound, "pair {k}: clearance {c} below {bound}");
+            }
+        }
+        assert!(left_out > 2_000, "{left_out}");
     }
 }
