@@ -77,6 +77,8 @@ pub struct NetworkModel {
     tape: Tape,
     /// The degrees of freedom the mirror axes hold, sorted, the same at every design.
     held: Vec<(usize, Dof)>,
+    /// Each expression's [`Role`], by its slot.
+    roles: Vec<Role>,
 }
 
 /// The network at one design, with its ports.
@@ -166,13 +168,15 @@ fn give<D: 'static>(work: Box<Work<D>>) {
 
 impl NetworkModel {
     pub fn new(mut description: Description, material: Material, actuator: Actuator) -> Self {
+        let mut roles = Vec::new();
         let tape = {
             let names = description.parameters.len() + 1;
             let mut all = expressions(&mut description);
-            for (slot, e) in all.iter_mut().enumerate() {
+            for (slot, (e, role)) in all.iter_mut().enumerate() {
                 e.slot = slot;
+                roles.push(*role);
             }
-            Tape::compile(all.iter().map(|e| &e.expression), names)
+            Tape::compile(all.iter().map(|(e, _)| &e.expression), names)
         };
         let mut outputs = Vec::new();
         let mut quantities = Vec::new();
@@ -330,7 +334,31 @@ impl NetworkModel {
             fit,
             tape,
             held,
+            roles,
         }
+    }
+
+    /// The value of every expression of the description at the design `x` (SI), by slot;
+    /// `None` where one has none.
+    fn expression_values(&self, x: &[f64]) -> Option<Vec<f64>> {
+        let mut work = Work::default();
+        let Work {
+            values, registers, ..
+        } = &mut work;
+        let unit = self.description.unit;
+        values.extend(x.iter().zip(&self.description.parameters).map(|(&v, p)| {
+            if p.dimension == Dimension::Length {
+                v * unit.recip()
+            } else {
+                v
+            }
+        }));
+        values.push(std::f64::consts::PI / 180.0);
+        self.tape.run(values, registers).then(|| {
+            (0..self.roles.len())
+                .map(|slot| registers[self.tape.output(slot)])
+                .collect()
+        })
     }
 
     /// The network and its ports at the design `x` (SI, every parameter) into
@@ -752,30 +780,95 @@ impl Message for Infallible {
     }
 }
 
-/// Every expression [`NetworkModel::at`] evaluates.
-fn expressions(d: &mut Description) -> Vec<&mut Keyed> {
+/// What an expression of the description is, for [`NetworkModel::mirror`]: how its value
+/// changes when the mechanism is reflected about the `x` axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Role {
+    /// A point's `x`, kept; its `y` (the next expression), negated.
+    PointX,
+    PointY,
+    /// A hinge's dimension, kept.
+    Dimension,
+    /// A hinge's angle, negated (its sine negated, its cosine kept).
+    Angle,
+    /// A port's direction `(x, y)`: reflected, or reflected and reversed (the port then
+    /// reads its motion with the other sign, an output up to sign).
+    DirectionX,
+    DirectionY,
+    /// A measure: kept or negated (an output up to sign).
+    Measure,
+}
+
+/// Every expression [`NetworkModel::at`] evaluates, with its [`Role`].
+fn expressions(d: &mut Description) -> Vec<(&mut Keyed, Role)> {
     let mut all = Vec::new();
+    fn point<'a>(all: &mut Vec<(&'a mut Keyed, Role)>, p: &'a mut Point) {
+        let [x, y] = p;
+        all.push((x, Role::PointX));
+        all.push((y, Role::PointY));
+    }
     for b in &mut d.bodies {
         for p in &mut b.points {
-            all.extend(p.iter_mut());
+            point(&mut all, p);
         }
     }
     for p in &mut d.ground {
-        all.extend(p.iter_mut());
+        point(&mut all, p);
     }
     for h in &mut d.hinges {
-        all.extend(h.dimensions.iter_mut());
-        all.extend(h.start.iter_mut());
-        all.push(&mut h.angle);
+        all.extend(h.dimensions.iter_mut().map(|e| (e, Role::Dimension)));
+        point(&mut all, &mut h.start);
+        all.push((&mut h.angle, Role::Angle));
     }
     for p in std::iter::once(&mut d.input).chain(&mut d.outputs) {
-        all.extend(p.at.iter_mut());
-        all.extend(p.direction.iter_mut());
+        point(&mut all, &mut p.at);
+        let [x, y] = &mut p.direction;
+        all.push((x, Role::DirectionX));
+        all.push((y, Role::DirectionY));
     }
     for m in &mut d.measures {
-        all.push(&mut m.value);
+        all.push((&mut m.value, Role::Measure));
     }
     all
+}
+
+/// Whether `mirrored`, the values of the description's expressions at the design with its
+/// angles negated, are those of `values` reflected about the `x` axis, each by its role
+/// (relative 1e-12; a point's coordinates against the largest of them).
+fn reflects(roles: &[Role], values: &[f64], mirrored: &[f64]) -> bool {
+    let size = roles
+        .iter()
+        .zip(values)
+        .filter(|(r, _)| matches!(r, Role::PointX | Role::PointY))
+        .fold(0.0f64, |m, (_, v)| m.max(v.abs()));
+    let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-12 * scale;
+    let mut i = 0;
+    while i < roles.len() {
+        let (a, b) = (values[i], mirrored[i]);
+        let fine = match roles[i] {
+            Role::PointX => close(b, a, size),
+            Role::PointY => close(b, -a, size),
+            Role::Dimension => close(b, a, a.abs()),
+            Role::Angle => {
+                let ((s, c), (sm, cm)) = (a.sin_cos(), b.sin_cos());
+                close(sm, -s, 1.0) && close(cm, c, 1.0)
+            }
+            Role::DirectionX => {
+                let (ay, by) = (values[i + 1], mirrored[i + 1]);
+                let norm = a.hypot(ay);
+                i += 1;
+                (close(b, a, norm) && close(by, -ay, norm))
+                    || (close(b, -a, norm) && close(by, ay, norm))
+            }
+            Role::DirectionY => unreachable!("read with its DirectionX"),
+            Role::Measure => close(b, a, a.abs()) || close(b, -a, a.abs()),
+        };
+        if !fine {
+            return false;
+        }
+        i += 1;
+    }
+    true
 }
 
 /// Why hinge `h`'s dimensions `dims` (SI) make no hinge of its kind, named by their keys;
@@ -895,10 +988,28 @@ impl Model for NetworkModel {
         None
     }
 
-    /// No mirror image: a description's angles are its own, and negating them is the same
-    /// geometry only for some descriptions (the bridge's), which the model cannot tell.
-    fn mirror(&self, _: &mut [f64]) -> bool {
-        false
+    /// Every angle negated, as the bridge's, where that reflects the described mechanism
+    /// about the `x` axis at this design: each point's `y` and each hinge's angle negated,
+    /// the rest kept, each port's direction reflected (or reflected and reversed: the port
+    /// reads its motion with the other sign) and each measure kept up to sign, so that the
+    /// outputs are the same up to sign. A description written so (wei2017's, with
+    /// `l2*sin(delta2)`) has its mirror image at every design; one that is not (a point at
+    /// `l2*sin(delta2) + 1`) has none, and the study keeps its mirror images apart.
+    fn mirror(&self, x: &mut [f64]) -> bool {
+        let mut m = x.to_vec();
+        if !crate::model::negate_angles(&self.description.parameters, &mut m) {
+            return false;
+        }
+        let (Some(values), Some(mirrored)) =
+            (self.expression_values(x), self.expression_values(&m))
+        else {
+            return false;
+        };
+        if !reflects(&self.roles, &values, &mirrored) {
+            return false;
+        }
+        x.copy_from_slice(&m);
+        true
     }
 
     fn fit_limits(&self) -> &[FitLimit] {
