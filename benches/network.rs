@@ -116,6 +116,11 @@ fn main() {
             "rounds": ROUNDS, "calls_per_round": CALLS,
         }));
     }
+    // FLEXOPT_BENCH_QUICK: the first table alone, printed and not written, to iterate on
+    if std::env::var_os("FLEXOPT_BENCH_QUICK").is_some() {
+        print!("{text}");
+        return;
+    }
     shipped(&mut text, &mut json);
     studies(&mut text, &mut json);
     print!("{text}");

@@ -79,3 +79,47 @@ fn every_network_output_has_its_central_difference_gradient() {
     assert!(kinks * 50 < checks, "{kinks} kinks in {checks} checks");
     assert!(worst.0 < 1e-6, "{worst:?}");
 }
+
+/// The network's mirror image is the bridge's, every angle negated, and has the same
+/// outputs up to sign; a description that is not symmetric about the `x` axis (hinge d
+/// started off the reflected point) has none.
+#[test]
+fn the_networks_mirror_image_is_the_bridges_with_the_same_outputs_up_to_sign() {
+    let p = network();
+    let net = p.model();
+    let bridge = wei2017();
+    let all = net.available_outputs();
+    let mut r = rng(26);
+    for _ in 0..25 {
+        let x = random_design(&mut r);
+        let (mut y, mut yb) = (x, x);
+        assert!(net.mirror(&mut y), "{x:?}");
+        assert!(Model::mirror(&bridge, &mut yb));
+        assert_eq!(y, yb, "the bridge's mirror image");
+        let (mut vx, mut vy) = (vec![0.0; all.len()], vec![0.0; all.len()]);
+        net.evaluate(&x, &all, &mut vx);
+        net.evaluate(&y, &all, &mut vy);
+        for ((a, b), &k) in vx.iter().zip(&vy).zip(&all) {
+            assert!(
+                rel(a.abs(), b.abs(), 1e-300) < 1e-12 && a.is_finite(),
+                "{}: {a} against {b}",
+                net.outputs()[k].name
+            );
+        }
+        let mut back = y;
+        assert!(net.mirror(&mut back));
+        assert_eq!(back, x, "the mirror image's mirror image");
+    }
+    let text = std::fs::read_to_string("problems/wei2017_network.toml").unwrap();
+    let off = text.replacen(
+        "start = [\"l2*cos(delta2) + l3*cos(delta3)\", \"l2*sin(delta2) + l3*sin(delta3)\"]",
+        "start = [\"l2*cos(delta2) + l3*cos(delta3)\", \"l2*sin(delta2) + l3*sin(delta3) + 0.1\"]",
+        1,
+    );
+    assert_ne!(off, text);
+    let asymmetric = Problem::parse(Path::new("off.toml"), &off).unwrap();
+    let x = random_design(&mut r);
+    let mut y = x;
+    assert!(!asymmetric.model().mirror(&mut y));
+    assert_eq!(y, x, "left as it was");
+}

@@ -17,10 +17,13 @@
 //! output stroke times the output stiffness with the actuator in place (Thevenin's
 //! equivalent of the linear mechanism: Lobontiu, "Compliant Mechanisms", CRC 2002, Sec. 4.4).
 
+use std::any::Any;
 use std::borrow::Cow;
+use std::cell::RefCell;
+use std::convert::Infallible;
 
 use super::file::{Axis, Description, HingeDescription, Keyed, Point};
-use super::structure::{Body, Displacements, Dof, Flexure, Load, Network};
+use super::structure::{Body, Displacements, Dof, Flexure, Load, Network, SolveBuffers};
 use crate::model::expression::Tape;
 use crate::model::fit::FitLimit;
 use crate::model::hinge::HingeLoads;
@@ -72,9 +75,14 @@ pub struct NetworkModel {
     fit: Vec<FitLimit>,
     /// Every expression of the description, compiled together (each [`Keyed::slot`]).
     tape: Tape,
+    /// The degrees of freedom the mirror axes hold, sorted, the same at every design.
+    held: Vec<(usize, Dof)>,
+    /// Each expression's [`Role`], by its slot.
+    roles: Vec<Role>,
 }
 
 /// The network at one design, with its ports.
+#[derive(Debug)]
 struct Evaluated<D> {
     network: Network<D>,
     /// Input first, then the outputs: (body, point, unit direction).
@@ -89,15 +97,86 @@ struct Evaluated<D> {
     measures: Vec<D>,
 }
 
+impl<D> Default for Evaluated<D> {
+    fn default() -> Self {
+        Evaluated {
+            network: Network {
+                references: Vec::new(),
+                flexures: Vec::new(),
+                springs: Vec::new(),
+                held: Vec::new(),
+            },
+            ports: Vec::new(),
+            read: Vec::new(),
+            share: Vec::new(),
+            points: Vec::new(),
+            dims: Vec::new(),
+            measures: Vec::new(),
+        }
+    }
+}
+
+/// Everything one evaluation builds, its buffers kept from one design to the next on the
+/// thread that evaluates ([`take`], [`give`]): a network of a few bodies costs otherwise
+/// about as much in allocations as in arithmetic. The study shares the model across its
+/// threads, so the buffers are the thread's, not the model's.
+#[derive(Debug)]
+struct Work<D> {
+    values: Vec<D>,
+    registers: Vec<D>,
+    /// Each body's reference point, the first of its points met.
+    first: Vec<Option<[D; 2]>>,
+    evaluated: Evaluated<D>,
+    solve: SolveBuffers<D>,
+    stresses: Vec<(D, D)>,
+}
+
+impl<D> Default for Work<D> {
+    fn default() -> Self {
+        Work {
+            values: Vec::new(),
+            registers: Vec::new(),
+            first: Vec::new(),
+            evaluated: Evaluated::default(),
+            solve: SolveBuffers::default(),
+            stresses: Vec::new(),
+        }
+    }
+}
+
+thread_local! {
+    /// The thread's spare [`Work`]s, one per scalar type it evaluated with.
+    static SPARE: RefCell<Vec<Box<dyn Any>>> = const { RefCell::new(Vec::new()) };
+}
+
+/// The thread's spare [`Work`] for `D`, or a new one. Taken out rather than borrowed, so
+/// that an evaluation inside another (none today) would only allocate its own.
+fn take<D: 'static>() -> Box<Work<D>> {
+    SPARE
+        .with(|spare| {
+            let mut spare = spare.borrow_mut();
+            let i = spare.iter().position(|w| w.is::<Work<D>>())?;
+            spare.swap_remove(i).downcast().ok()
+        })
+        .unwrap_or_default()
+}
+
+/// `work` back among the thread's spares.
+fn give<D: 'static>(work: Box<Work<D>>) {
+    SPARE.with(|spare| spare.borrow_mut().push(work));
+}
+
 impl NetworkModel {
     pub fn new(mut description: Description, material: Material, actuator: Actuator) -> Self {
+        let mut roles = Vec::new();
         let tape = {
             let names = description.parameters.len() + 1;
             let mut all = expressions(&mut description);
-            for (slot, e) in all.iter_mut().enumerate() {
+            for (slot, (e, role)) in all.iter_mut().enumerate() {
                 e.slot = slot;
+                roles.push(*role);
             }
-            Tape::compile(all.iter().map(|e| &e.expression), names)
+            Tape::compile(all.iter().map(|(e, _)| &e.expression), names)
         };
         let mut outputs = Vec::new();
         let mut quantities = Vec::new();
@@ -219,6 +298,15 @@ impl NetworkModel {
                 }
             })
             .collect();
+        let mut held = Vec::new();
+        for (b, body) in d.bodies.iter().enumerate() {
+            for a in &body.on_axis {
+                held.push((b, if *a == Axis::X { Dof::Y } else { Dof::X }));
+                held.push((b, Dof::Rotation));
+            }
+        }
+        held.sort_by_key(|&(b, dof)| (b, dof as usize));
+        held.dedup();
         let mut fit = Vec::new();
         for hinge in &d.hinges {
             // a range of fit binds a ratio of parameters: only where each dimension is one
@@ -245,16 +333,55 @@ impl NetworkModel {
             max_of,
             fit,
             tape,
+            held,
+            roles,
         }
     }
 
-    /// The network and its ports at the design `x` (SI, every parameter): the expressions
-    /// from the tape, or where it fails, from their trees, which say which one and why.
-    fn at<D: Scalar>(&self, x: &[D], modulus: Option<D>) -> Result<Evaluated<D>, String> {
+    /// The value of every expression of the description at the design `x` (SI), by slot;
+    /// `None` where one has none.
+    fn expression_values(&self, x: &[f64]) -> Option<Vec<f64>> {
+        let mut work = Work::default();
+        let Work {
+            values, registers, ..
+        } = &mut work;
+        let unit = self.description.unit;
+        values.extend(x.iter().zip(&self.description.parameters).map(|(&v, p)| {
+            if p.dimension == Dimension::Length {
+                v * unit.recip()
+            } else {
+                v
+            }
+        }));
+        values.push(std::f64::consts::PI / 180.0);
+        self.tape.run(values, registers).then(|| {
+            (0..self.roles.len())
+                .map(|slot| registers[self.tape.output(slot)])
+                .collect()
+        })
+    }
+
+    /// The network and its ports at the design `x` (SI, every parameter) into
+    /// `work.evaluated`: the expressions from the tape, or where it fails, from their trees,
+    /// which say which one and why.
+    fn at<D: Scalar>(
+        &self,
+        x: &[D],
+        modulus: Option<D>,
+        extent: bool,
+        work: &mut Work<D>,
+    ) -> Result<(), String> {
         let d = &self.description;
         let unit = d.unit;
+        let Work {
+            values,
+            registers,
+            first,
+            evaluated,
+            ..
+        } = work;
         // the parameters in the expressions' units, then `deg`
-        let mut values: Vec<D> = Vec::with_capacity(x.len() + 1);
+        values.clear();
         values.extend(x.iter().zip(&d.parameters).map(|(&v, p)| {
             if p.dimension == Dimension::Length {
                 v * unit.recip()
@@ -263,59 +390,96 @@ impl NetworkModel {
             }
         }));
         values.push(D::from(std::f64::consts::PI / 180.0));
-        let mut registers = Vec::new();
-        if self.tape.run(&values, &mut registers) {
-            self.build(modulus, |e: &Keyed| Ok(registers[self.tape.output(e.slot)]))
+        if self.tape.run(values, registers) {
+            let registers = &*registers;
+            self.build(
+                modulus,
+                extent,
+                |e: &Keyed| Ok::<_, Infallible>(registers[self.tape.output(e.slot)]),
+                evaluated,
+                first,
+            )
         } else {
-            self.build(modulus, |e: &Keyed| {
-                e.expression
-                    .eval(&values)
-                    .map_err(|err| format!("{} = \"{}\": {err}", e.key, e.expression.source()))
-            })
+            let values = &*values;
+            self.build(
+                modulus,
+                extent,
+                |e: &Keyed| {
+                    e.expression
+                        .eval(values)
+                        .map_err(|err| format!("{} = \"{}\": {err}", e.key, e.expression.source()))
+                },
+                evaluated,
+                first,
+            )
         }
     }
 
-    /// [`NetworkModel::at`] with each expression's value from `eval`.
-    fn build<D: Scalar>(
+    /// [`NetworkModel::at`] with each expression's value from `eval`, into `out`'s buffers;
+    /// the described points for the extent only if `extent`. The tape's `eval` cannot fail
+    /// (`E` is [`Infallible`]): its values then pass through no `Result`, whose moves of
+    /// `[Jet<8>; 2]` were a copy each.
+    fn build<D: Scalar, E: Message>(
         &self,
         modulus: Option<D>,
-        eval: impl Fn(&Keyed) -> Result<D, String>,
-    ) -> Result<Evaluated<D>, String> {
+        extent: bool,
+        eval: impl Fn(&Keyed) -> Result<D, E>,
+        out: &mut Evaluated<D>,
+        first: &mut Vec<Option<[D; 2]>>,
+    ) -> Result<(), String> {
         let d = &self.description;
         let unit = d.unit;
-        let eval = &eval;
-        let length = |e: &Keyed| eval(e).map(|v| v * unit);
-        let point = |p: &Point| -> Result<[D; 2], String> { Ok([length(&p[0])?, length(&p[1])?]) };
-        let mut points = Vec::new();
-        let mut references: Vec<Option<[D; 2]>> = vec![None; d.bodies.len()];
+        let raw = &eval;
+        let eval = |e: &Keyed| raw(e).map_err(Message::message);
+        let length = |e: &Keyed| raw(e).map(|v| v * unit);
+        let point = |p: &Point| -> Result<[D; 2], E> { Ok([length(&p[0])?, length(&p[1])?]) };
+        let Evaluated {
+            network,
+            ports,
+            read,
+            share,
+            points,
+            dims,
+            measures,
+        } = out;
+        points.clear();
+        first.clear();
+        first.resize(d.bodies.len(), None);
         for (b, body) in d.bodies.iter().enumerate() {
             for p in &body.points {
-                let q = point(p)?;
-                references[b].get_or_insert(q);
-                points.push(q);
+                let q = point(p).map_err(Message::message)?;
+                if first[b].is_none() {
+                    first[b] = Some(q);
+                }
+                if extent {
+                    points.push(q);
+                }
             }
         }
         for p in &d.ground {
-            points.push(point(p)?);
+            let q = point(p).map_err(Message::message)?;
+            if extent {
+                points.push(q);
+            }
         }
-        let mut flexures = Vec::with_capacity(d.hinges.len());
-        let mut dims = Vec::with_capacity(d.hinges.len());
-        for h in &d.hinges {
-            let mut dd = Vec::with_capacity(h.dimensions.len());
+        network.flexures.clear();
+        dims.resize_with(d.hinges.len(), Vec::new);
+        for (h, dd) in d.hinges.iter().zip(dims.iter_mut()) {
+            dd.clear();
             for (e, info) in h.dimensions.iter().zip(h.kind.dimensions()) {
                 dd.push(if info.dimension == Dimension::Length {
-                    length(e)?
+                    length(e).map_err(Message::message)?
                 } else {
                     eval(e)?
                 });
             }
-            if let Some(why) = domain_error(h, &dd) {
+            if let Some(why) = domain_error(h, dd) {
                 return Err(format!("hinge \"{}\": {why}", h.name));
             }
-            let start = point(&h.start)?;
+            let start = point(&h.start).map_err(Message::message)?;
             let (s, c) = eval(&h.angle)?.sin_cos();
-            let l = h.kind.length(&dd);
-            let mut compliance = h.kind.compliance(&dd, d.width, &self.material);
+            let l = h.kind.length(dd);
+            let mut compliance = h.kind.compliance(dd, d.width, &self.material);
             if let Some(m) = modulus {
                 compliance = compliance.with_modulus(m);
             }
@@ -330,76 +494,89 @@ impl NetworkModel {
             let end = f.start_plus_length();
             for (body, p) in [(h.from, start), (h.to, end)] {
                 if let Some(b) = body {
-                    references[b].get_or_insert(p);
+                    if first[b].is_none() {
+                        first[b] = Some(p);
+                    }
                 }
             }
-            points.push(start);
-            points.push(end);
-            flexures.push(f);
-            dims.push(dd);
-        }
-        let mut held = Vec::new();
-        for (b, body) in d.bodies.iter().enumerate() {
-            for a in &body.on_axis {
-                held.push((b, if *a == Axis::X { Dof::Y } else { Dof::X }));
-                held.push((b, Dof::Rotation));
+            if extent {
+                points.push(start);
+                points.push(end);
             }
+            network.flexures.push(f);
         }
-        held.sort_by_key(|&(b, dof)| (b, dof as usize));
-        held.dedup();
-        let network = Network {
-            references: references
-                .into_iter()
-                .map(|r| r.expect("every body has a hinge, whose end is a point of it"))
-                .collect(),
-            flexures,
-            springs: Vec::new(),
-            held,
-        };
-        let mut ports = Vec::new();
-        let (mut read, mut share) = (Vec::new(), Vec::new());
+        network.held.clear();
+        network.held.extend_from_slice(&self.held);
+        network.springs.clear();
+        network.references.clear();
+        network.references.extend(
+            first
+                .iter()
+                .map(|r| r.expect("every body has a hinge, whose end is a point of it")),
+        );
+        ports.clear();
+        read.clear();
+        share.clear();
         for p in std::iter::once(&d.input).chain(&d.outputs) {
-            let [dx, dy] = point(&p.direction)?;
+            let [dx, dy] = point(&p.direction).map_err(Message::message)?;
             let norm = (dx * dx + dy * dy).sqrt();
             if norm.re() == 0.0 {
                 return Err(format!("port \"{}\": its direction is zero", p.name));
             }
-            ports.push((p.body, point(&p.at)?, [dx / norm, dy / norm]));
+            ports.push((
+                p.body,
+                point(&p.at).map_err(Message::message)?,
+                [dx / norm, dy / norm],
+            ));
             read.push(if p.across.is_some() { 2.0 } else { 1.0 });
             share.push(0.5f64.powi(d.bodies[p.body].on_axis.len() as i32));
         }
-        let measures = d
-            .measures
-            .iter()
-            .map(|m| {
-                let v = eval(&m.value)?;
-                Ok(if m.dimension == Dimension::Length {
-                    v * unit
-                } else {
-                    v
-                })
-            })
-            .collect::<Result<_, String>>()?;
-        Ok(Evaluated {
-            network,
-            ports,
-            read,
-            share,
-            points,
-            dims,
-            measures,
-        })
+        measures.clear();
+        for m in &d.measures {
+            let v = eval(&m.value)?;
+            measures.push(if m.dimension == Dimension::Length {
+                v * unit
+            } else {
+                v
+            });
+        }
+        Ok(())
     }
 
     /// The wanted outputs at `x` into `out`, or why the design has none.
-    pub fn evaluate_generic<D: Scalar>(
+    pub fn evaluate_generic<D: Scalar + 'static>(
         &self,
         x: &[D],
         modulus: Option<D>,
         wanted: &[usize],
         out: &mut [D],
     ) -> Result<(), String> {
-        let e = self.at(x, modulus)?;
+        let mut work = take::<D>();
+        let result = self.evaluate_in(x, modulus, wanted, out, &mut work);
+        give(work);
+        result
+    }
+
+    /// [`NetworkModel::evaluate_generic`] in the buffers of `work`.
+    fn evaluate_in<D: Scalar>(
+        &self,
+        x: &[D],
+        modulus: Option<D>,
+        wanted: &[usize],
+        out: &mut [D],
+        work: &mut Work<D>,
+    ) -> Result<(), String> {
+        let extent = wanted
+            .iter()
+            .any(|&w| matches!(self.quantities[w], Quantity::SpanX | Quantity::SpanY));
+        self.at(x, modulus, extent, work)?;
+        let Work {
+            evaluated: e,
+            solve,
+            stresses,
+            ..
+        } = work;
+        let e = &*e;
         let free = |err: super::structure::NetworkError| match err {
             super::structure::NetworkError::Free { body, direction } => format!(
                 "body \"{}\" ({}) is free to move ({direction}): nothing holds it against the \
@@ -431,20 +608,26 @@ impl NetworkModel {
         };
         // the load cases wanted, from one factorization: the input's, the first output's
         let (load_in, load_out) = ([unit_load(0)], [unit_load(1)]);
-        let mut cases: Vec<&[Load<D>]> = Vec::with_capacity(2);
-        if needs_input {
-            cases.push(&load_in);
+        let mut cases: [&[Load<D>]; 2] = [&[], &[]];
+        let mut count = 0;
+        for (needed, loads) in [(needs_input, &load_in), (needs_output, &load_out)] {
+            if needed {
+                cases[count] = loads;
+                count += 1;
+            }
         }
-        if needs_output {
-            cases.push(&load_out);
-        }
-        let mut solved = if cases.is_empty() {
-            Vec::new()
+        let solved = if count == 0 {
+            None
         } else {
-            e.network.solve_cases(&cases).map_err(free)?
+            Some(
+                e.network
+                    .solve_cases_in(&cases[..count], solve)
+                    .map_err(free)?,
+            )
         };
-        let output: Option<Displacements<D>> = if needs_output { solved.pop() } else { None };
-        let input: Option<Displacements<D>> = if needs_input { solved.pop() } else { None };
+        let case = |c: usize| solved.as_ref().map(|s| s.case(c));
+        let input: Option<Displacements<D>> = if needs_input { case(0) } else { None };
+        let output: Option<Displacements<D>> = if needs_output { case(count - 1) } else { None };
         // W_ij = read_i C_ij share_j
         let w = |u: &Displacements<D>, i: usize, j: usize| along(u, i) * (e.read[i] * e.share[j]);
         let w_ii = input.as_ref().map(|u| w(u, 0, 0));
@@ -491,12 +674,11 @@ impl NetworkModel {
             (from, to)
         };
         // each hinge's two end stresses once, however many outputs read them
-        let stresses: Vec<(D, D)> =
-            if needs(&|q| matches!(q, StressMax | Stress(_) | StressEnd(..))) {
-                (0..self.description.hinges.len()).map(ends).collect()
-            } else {
-                Vec::new()
-            };
+        stresses.clear();
+        if needs(&|q| matches!(q, StressMax | Stress(_) | StressEnd(..))) {
+            stresses.extend((0..self.description.hinges.len()).map(ends));
+        }
+        let stresses = &*stresses;
         let ends = |h: usize| stresses[h];
         let extent = |i: usize| {
             let hi = e
@@ -581,30 +763,112 @@ impl NetworkModel {
     }
 }
 
-/// Every expression [`NetworkModel::at`] evaluates.
-fn expressions(d: &mut Description) -> Vec<&mut Keyed> {
+/// The message of an expression's failure: the trees' own, or none from the tape.
+trait Message {
+    fn message(self) -> String;
+}
+
+impl Message for String {
+    fn message(self) -> String {
+        self
+    }
+}
+
+impl Message for Infallible {
+    fn message(self) -> String {
+        match self {}
+    }
+}
+
+/// What an expression of the description is, for [`NetworkModel::mirror`]: how its value
+/// changes when the mechanism is reflected about the `x` axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Role {
+    /// A point's `x`, kept; its `y` (the next expression), negated.
+    PointX,
+    PointY,
+    /// A hinge's dimension, kept.
+    Dimension,
+    /// A hinge's angle, negated (its sine negated, its cosine kept).
+    Angle,
+    /// A port's direction `(x, y)`: reflected, or reflected and reversed (the port then
+    /// reads its motion with the other sign, an output up to sign).
+    DirectionX,
+    DirectionY,
+    /// A measure: kept or negated (an output up to sign).
+    Measure,
+}
+
+/// Every expression [`NetworkModel::at`] evaluates, with its [`Role`].
+fn expressions(d: &mut Description) -> Vec<(&mut Keyed, Role)> {
     let mut all = Vec::new();
+    fn point<'a>(all: &mut Vec<(&'a mut Keyed, Role)>, p: &'a mut Point) {
+        let [x, y] = p;
+        all.push((x, Role::PointX));
+        all.push((y, Role::PointY));
+    }
     for b in &mut d.bodies {
         for p in &mut b.points {
-            all.extend(p.iter_mut());
+            point(&mut all, p);
         }
     }
     for p in &mut d.ground {
-        all.extend(p.iter_mut());
+        point(&mut all, p);
     }
     for h in &mut d.hinges {
-        all.extend(h.dimensions.iter_mut());
-        all.extend(h.start.iter_mut());
-        all.push(&mut h.angle);
+        all.extend(h.dimensions.iter_mut().map(|e| (e, Role::Dimension)));
+        point(&mut all, &mut h.start);
+        all.push((&mut h.angle, Role::Angle));
     }
     for p in std::iter::once(&mut d.input).chain(&mut d.outputs) {
-        all.extend(p.at.iter_mut());
-        all.extend(p.direction.iter_mut());
+        point(&mut all, &mut p.at);
+        let [x, y] = &mut p.direction;
+        all.push((x, Role::DirectionX));
+        all.push((y, Role::DirectionY));
     }
     for m in &mut d.measures {
-        all.push(&mut m.value);
+        all.push((&mut m.value, Role::Measure));
     }
     all
+}
+
+/// Whether `mirrored`, the values of the description's expressions at the design with its
+/// angles negated, are those of `values` reflected about the `x` axis, each by its role
+/// (relative 1e-12; a point's coordinates against the largest of them).
+fn reflects(roles: &[Role], values: &[f64], mirrored: &[f64]) -> bool {
+    let size = roles
+        .iter()
+        .zip(values)
+        .filter(|(r, _)| matches!(r, Role::PointX | Role::PointY))
+        .fold(0.0f64, |m, (_, v)| m.max(v.abs()));
+    let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-12 * scale;
+    let mut i = 0;
+    while i < roles.len() {
+        let (a, b) = (values[i], mirrored[i]);
+        let fine = match roles[i] {
+            Role::PointX => close(b, a, size),
+            Role::PointY => close(b, -a, size),
+            Role::Dimension => close(b, a, a.abs()),
+            Role::Angle => {
+                let ((s, c), (sm, cm)) = (a.sin_cos(), b.sin_cos());
+                close(sm, -s, 1.0) && close(cm, c, 1.0)
+            }
+            Role::DirectionX => {
+                let (ay, by) = (values[i + 1], mirrored[i + 1]);
+                let norm = a.hypot(ay);
+                i += 1;
+                (close(b, a, norm) && close(by, -ay, norm))
+                    || (close(b, -a, norm) && close(by, ay, norm))
+            }
+            Role::DirectionY => unreachable!("read with its DirectionX"),
+            Role::Measure => close(b, a, a.abs()) || close(b, -a, a.abs()),
+        };
+        if !fine {
+            return false;
+        }
+        i += 1;
+    }
+    true
 }
 
 /// Why hinge `h`'s dimensions `dims` (SI) make no hinge of its kind, named by their keys;
@@ -724,10 +988,28 @@ impl Model for NetworkModel {
         None
     }
 
-    /// No mirror image: a description's angles are its own, and negating them is the same
-    /// geometry only for some descriptions (the bridge's), which the model cannot tell.
-    fn mirror(&self, _: &mut [f64]) -> bool {
-        false
+    /// Every angle negated, as the bridge's, where that reflects the described mechanism
+    /// about the `x` axis at this design: each point's `y` and each hinge's angle negated,
+    /// the rest kept, each port's direction reflected (or reflected and reversed: the port
+    /// reads its motion with the other sign) and each measure kept up to sign, so that the
+    /// outputs are the same up to sign. A description written so (wei2017's, with
+    /// `l2*sin(delta2)`) has its mirror image at every design; one that is not (a point at
+    /// `l2*sin(delta2) + 1`) has none, and the study keeps its mirror images apart.
+    fn mirror(&self, x: &mut [f64]) -> bool {
+        let mut m = x.to_vec();
+        if !crate::model::negate_angles(&self.description.parameters, &mut m) {
+            return false;
+        }
+        let (Some(values), Some(mirrored)) =
+            (self.expression_values(x), self.expression_values(&m))
+        else {
+            return false;
+        };
+        if !reflects(&self.roles, &values, &mirrored) {
+            return false;
+        }
+        x.copy_from_slice(&m);
+        true
     }
 
     fn fit_limits(&self) -> &[FitLimit] {

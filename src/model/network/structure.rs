@@ -31,6 +31,7 @@
 //! every body is held): a pivot that vanishes against the diagonal's scale is a motion
 //! that nothing resists, reported with the body and the direction it moves in.
 
+use std::borrow::Cow;
 use std::fmt;
 
 use crate::model::hinge::{Compliance, HingeLoads};
@@ -130,9 +131,47 @@ const FREE_PIVOT: f64 = 1e-13;
 
 /// The displacements of each body's reference point, `(u, v, theta)`.
 #[derive(Debug, Clone)]
-pub struct Displacements<'a, D> {
-    pub bodies: Vec<[D; 3]>,
+pub struct Displacements<'a, D: Clone> {
+    pub bodies: Cow<'a, [[D; 3]]>,
     references: &'a [[D; 2]],
+}
+
+/// The buffers of [`Network::solve_cases_in`]: the free numbering, the factor, a load
+/// vector, the displacements of every case.
+#[derive(Debug, Clone)]
+pub struct SolveBuffers<D> {
+    index: Vec<usize>,
+    k: Vec<D>,
+    f: Vec<D>,
+    moved: Vec<[D; 3]>,
+}
+
+impl<D> Default for SolveBuffers<D> {
+    fn default() -> Self {
+        SolveBuffers {
+            index: Vec::new(),
+            k: Vec::new(),
+            f: Vec::new(),
+            moved: Vec::new(),
+        }
+    }
+}
+
+/// The displacements of [`Network::solve_cases_in`]'s cases, in its buffers.
+pub struct Solved<'a, D> {
+    moved: &'a [[D; 3]],
+    references: &'a [[D; 2]],
+}
+
+impl<'a, D: Clone> Solved<'a, D> {
+    /// Case `c`'s displacements.
+    pub fn case(&self, c: usize) -> Displacements<'a, D> {
+        let n = self.references.len();
+        Displacements {
+            bodies: Cow::Borrowed(&self.moved[c * n..(c + 1) * n]),
+            references: self.references,
+        }
+    }
 }
 
 impl<D: Scalar> Displacements<'_, D> {
@@ -251,14 +290,33 @@ impl<D: Scalar> Network<D> {
         &self,
         cases: &[&[Load<D>]],
     ) -> Result<Vec<Displacements<'_, D>>, NetworkError> {
+        let mut buffers = SolveBuffers::default();
+        let solved = self.solve_cases_in(cases, &mut buffers)?;
+        Ok((0..cases.len())
+            .map(|c| Displacements {
+                bodies: Cow::Owned(solved.case(c).bodies.into_owned()),
+                references: &self.references,
+            })
+            .collect())
+    }
+
+    /// [`Network::solve_cases`] in `buffers`, which a caller keeps from one design to the
+    /// next: the evaluation of a small network is otherwise mostly its allocations.
+    pub fn solve_cases_in<'a>(
+        &'a self,
+        cases: &[&[Load<D>]],
+        buffers: &'a mut SolveBuffers<D>,
+    ) -> Result<Solved<'a, D>, NetworkError> {
         let bodies = self.references.len();
-        let (index, m) = self.free_numbering();
-        let mut k = vec![D::from(0.0); m * m];
-        for (i, f) in self.flexures.iter().enumerate() {
-            if f.from == f.to {
+        let SolveBuffers { index, k, f, moved } = buffers;
+        let m = self.free_numbering(index);
+        k.clear();
+        k.resize(m * m, D::from(0.0));
+        for (i, fl) in self.flexures.iter().enumerate() {
+            if fl.from == fl.to {
                 return Err(NetworkError::SelfJoined { flexure: i });
             }
-            self.add_flexure_free(f, &index, &mut k, m);
+            self.add_flexure_free(fl, index, k, m);
         }
         for s in &self.springs {
             let r = sub(s.point, self.references[s.body]);
@@ -274,47 +332,49 @@ impl<D: Scalar> Network<D> {
                 }
             }
         }
-        factor(&mut k, m).map_err(|free| {
+        factor(k, m).map_err(|free| {
             let dof = index.iter().position(|&i| i == free).unwrap_or(0);
             NetworkError::Free {
                 body: dof / 3,
                 direction: ["x", "y", "rotation"][dof % 3],
             }
         })?;
-        Ok(cases
-            .iter()
-            .map(|loads| {
-                let mut f = vec![D::from(0.0); m];
-                for l in loads.iter() {
-                    let r = sub(l.point, self.references[l.body]);
-                    let o = 3 * l.body;
-                    let moment = l.moment + (r[0] * l.force[1] - r[1] * l.force[0]);
-                    for (dof, v) in [(o, l.force[0]), (o + 1, l.force[1]), (o + 2, moment)] {
-                        if index[dof] != HELD {
-                            f[index[dof]] = f[index[dof]] + v;
-                        }
+        // written in place: a pushed [Jet<8>; 3] is a call to memcpy
+        moved.clear();
+        moved.resize(cases.len() * bodies, [D::from(0.0); 3]);
+        for (loads, moved) in cases.iter().zip(moved.chunks_exact_mut(bodies.max(1))) {
+            f.clear();
+            f.resize(m, D::from(0.0));
+            for l in loads.iter() {
+                let r = sub(l.point, self.references[l.body]);
+                let o = 3 * l.body;
+                let moment = l.moment + (r[0] * l.force[1] - r[1] * l.force[0]);
+                for (dof, v) in [(o, l.force[0]), (o + 1, l.force[1]), (o + 2, moment)] {
+                    if index[dof] != HELD {
+                        f[index[dof]] = f[index[dof]] + v;
                     }
                 }
-                substitute(&k, m, &mut f);
-                Displacements {
-                    bodies: (0..bodies)
-                        .map(|b| {
-                            std::array::from_fn(|d| match index[3 * b + d] {
-                                HELD => D::from(0.0),
-                                i => f[i],
-                            })
-                        })
-                        .collect(),
-                    references: &self.references,
+            }
+            substitute(k, m, f);
+            for (u, index) in moved.iter_mut().zip(index.chunks_exact(3)) {
+                for (v, &i) in u.iter_mut().zip(index) {
+                    if i != HELD {
+                        *v = f[i];
+                    }
                 }
-            })
-            .collect())
+            }
+        }
+        Ok(Solved {
+            moved,
+            references: &self.references,
+        })
     }
 
-    /// Each degree of freedom's place among those not held ([`HELD`] if held), and their
-    /// count.
-    fn free_numbering(&self) -> (Vec<usize>, usize) {
-        let mut index = vec![0; 3 * self.references.len()];
+    /// Each degree of freedom's place among those not held ([`HELD`] if held) into `index`,
+    /// and their count.
+    fn free_numbering(&self, index: &mut Vec<usize>) -> usize {
+        index.clear();
+        index.resize(3 * self.references.len(), 0);
         for &(body, dof) in &self.held {
             index[3 * body + dof as usize] = HELD;
         }
@@ -323,7 +383,7 @@ impl<D: Scalar> Network<D> {
             *i = m;
             m += 1;
         }
-        (index, m)
+        m
     }
 
     /// Flexure `f`'s stiffness into the lower triangle of `k`, the free degrees of freedom
@@ -338,33 +398,46 @@ impl<D: Scalar> Network<D> {
         // an end's map R T(r) from its body's reference motion to the end's motion in the
         // flexure's frame, by columns (u, v, theta); its third row is (0, 0, 1). The
         // clamped start's carries G (its v gains l theta) and enters with a minus sign.
-        let end = |body: Body, point: [D; 2], lever: Option<D>| {
+        // each end's map and K times it built where they stay: returned in an `Option` or
+        // through `array::from_fn`, or zeroed first, the Jet<8>s were mostly copies
+        let end = |body: Body, point: [D; 2], lever: Option<D>| -> Option<End<D>> {
             let Body::Rigid(b) = body else { return None };
             let r = sub(point, self.references[b]);
             let mut turn = [ey * r[0] - ex * r[1], ey * r[1] + ex * r[0]];
             if let Some(l) = lever {
                 turn[1] = turn[1] + l;
             }
-            let columns = [[ex, -ey], [ey, ex], turn];
             // K A by columns, the third row of A supplying the bending block's column
-            let ka: [[D; 3]; 3] = std::array::from_fn(|q| {
-                let [a0, a1] = columns[q];
-                if q == 2 {
-                    [k11 * a0, k22 * a1 + k23, k23 * a1 + k33]
-                } else {
-                    [k11 * a0, k22 * a1, k23 * a1]
-                }
-            });
-            Some((b, columns, ka))
+            Some(End {
+                body: b,
+                ka: [
+                    [k11 * ex, k22 * -ey, k23 * -ey],
+                    [k11 * ey, k22 * ex, k23 * ex],
+                    [k11 * turn[0], k22 * turn[1] + k23, k23 * turn[1] + k33],
+                ],
+                columns: [[ex, -ey], [ey, ex], turn],
+            })
         };
         let ends = [
             end(f.from, f.start, Some(f.length)),
             end(f.to, f.start_plus_length(), None),
         ];
         for (ei, one) in ends.iter().enumerate() {
-            let Some((bi, ai, _)) = one else { continue };
+            let Some(End {
+                body: bi,
+                columns: ai,
+                ..
+            }) = one
+            else {
+                continue;
+            };
             for (ej, other) in ends.iter().enumerate() {
-                let Some((bj, _, kaj)) = other else { continue };
+                let Some(End {
+                    body: bj, ka: kaj, ..
+                }) = other
+                else {
+                    continue;
+                };
                 for p in 0..3 {
                     let gi = index[3 * bi + p];
                     if gi == HELD {
@@ -388,6 +461,15 @@ impl<D: Scalar> Network<D> {
             }
         }
     }
+}
+
+/// A flexure's end on a body: the body, the map `A` from its reference motion to the end's
+/// motion in the flexure's frame by columns (the third row `(0, 0, 1)` left out), and the
+/// flexure's stiffness times it, `K A`, by columns.
+struct End<D> {
+    body: usize,
+    columns: [[D; 2]; 3],
+    ka: [[D; 3]; 3],
 }
 
 /// [`Network::free_numbering`]'s mark of a held degree of freedom.
