@@ -93,6 +93,22 @@ pub fn run_ccx(name: &str, deck: &str, model: &FullModel, plane: usize) -> Vec<V
         .collect()
 }
 
+/// The constants a plane strain deck is written with to solve `idealization`: the material
+/// itself for plane strain; for plane stress `E (1 + 2 nu) / (1 + nu)^2` and `nu / (1 + nu)`,
+/// which make plane strain plane stress (CalculiX's plane stress elements handle the
+/// thickness otherwise).
+pub fn as_plane_strain(material: Elastic, idealization: Idealization) -> Elastic {
+    let (nu, e) = (material.poisson_ratio, material.youngs_modulus);
+    match idealization {
+        Idealization::PlaneStrain => material,
+        Idealization::PlaneStress => Elastic {
+            youngs_modulus: e * (1.0 + 2.0 * nu) / ((1.0 + nu) * (1.0 + nu)),
+            poisson_ratio: nu / (1.0 + nu),
+            ..material
+        },
+    }
+}
+
 /// Each element's mid-side nodes moved to the middle of their sides: straight-sided
 /// elements, which both programs integrate exactly.
 pub fn straighten(model: &mut FullModel) {
@@ -149,15 +165,7 @@ fn ccx_and_flexopt_agree_on_the_same_mesh_and_3d_lies_between_the_2d_bounds() {
         let u = model.solve(&v.material, v.width, idealization).unwrap();
         let ours = model.measures(&u);
         // ccx on the 2D deck agrees to its printed precision (7 digits)
-        let (nu, e) = (v.material.poisson_ratio, v.material.youngs_modulus);
-        let exact = match idealization {
-            Idealization::PlaneStrain => v.material,
-            Idealization::PlaneStress => Elastic {
-                youngs_modulus: e * (1.0 + 2.0 * nu) / ((1.0 + nu) * (1.0 + nu)),
-                poisson_ratio: nu / (1.0 + nu),
-                ..v.material
-            },
-        };
+        let exact = as_plane_strain(v.material, idealization);
         let deck = model
             .deck("printed design", &exact, v.width, 1.0)
             .two_d(Idealization::PlaneStrain);
@@ -298,20 +306,12 @@ fn ccx_and_flexopt_agree_on_a_part_solved_whole() {
     let v = verify(&spec, &material, &settings).unwrap();
     assert!(v.whole_part);
     let model = v.full_model(1).unwrap();
-    let (nu, e) = (material.poisson_ratio, material.youngs_modulus);
     for (k, idealization) in Idealization::BOTH.into_iter().enumerate() {
         let u = model.solve(&material, v.width, idealization).unwrap();
         let ours = model.measures(&u);
         // the whole model is the verification's own mesh at that level
         assert!(rel(ours[0], v.results[k].outputs[0].values[1]) < 1e-9);
-        let exact = match idealization {
-            Idealization::PlaneStrain => material,
-            Idealization::PlaneStress => Elastic {
-                youngs_modulus: e * (1.0 + 2.0 * nu) / ((1.0 + nu) * (1.0 + nu)),
-                poisson_ratio: nu / (1.0 + nu),
-                ..material
-            },
-        };
+        let exact = as_plane_strain(material, idealization);
         let deck = model
             .deck("cantilever", &exact, v.width, 1.0)
             .two_d(Idealization::PlaneStrain);

@@ -7,7 +7,7 @@
 use std::path::Path;
 
 use flexopt::fe::verify::{verify_design, Verification, VerifySettings};
-use flexopt::fe::{Elastic, Fidelity, Idealization};
+use flexopt::fe::{Fidelity, Idealization};
 use flexopt::part::Part;
 use flexopt::problem::Problem;
 
@@ -208,7 +208,10 @@ fn ccx_agrees(v: &Verification, model: &mut flexopt::fe::verify::FullModel, name
             .solve(&v.material, v.width, Idealization::PlaneStress)
             .unwrap(),
     );
-    let deck = plane_stress_deck(v, model);
+    let exact = crate::fe_calculix::as_plane_strain(v.material, Idealization::PlaneStress);
+    let deck = model
+        .deck(name, &exact, v.width, 1.0)
+        .two_d(Idealization::PlaneStrain);
     let theirs = model.measures(&crate::fe_calculix::run_ccx(name, &deck, model, 0));
     eprintln!("{name}, plane stress: flexopt {ours:?}, ccx {theirs:?}");
     let scale = ours[0].abs();
@@ -218,21 +221,6 @@ fn ccx_agrees(v: &Verification, model: &mut flexopt::fe::verify::FullModel, name
             "{name}: ccx {t:e} against flexopt {o:e}"
         );
     }
-}
-
-/// The deck of `model` in plane stress, written as plane strain through the constants that
-/// make plane strain plane stress (CalculiX's plane stress elements differ in their
-/// thickness handling).
-fn plane_stress_deck(v: &Verification, model: &flexopt::fe::verify::FullModel) -> String {
-    let (nu, e) = (v.material.poisson_ratio, v.material.youngs_modulus);
-    let exact = Elastic {
-        youngs_modulus: e * (1.0 + 2.0 * nu) / ((1.0 + nu) * (1.0 + nu)),
-        poisson_ratio: nu / (1.0 + nu),
-        ..v.material
-    };
-    model
-        .deck("network", &exact, v.width, 1.0)
-        .two_d(Idealization::PlaneStrain)
 }
 
 /// The rhombus's optimum: the leaf's closed form (paper 004 Eq. 2) stiffer than the part,

@@ -198,6 +198,10 @@ impl<'a> Values<'a> {
     fn point(&self, p: &Point) -> Result<P, String> {
         Ok([self.length(&p[0])?, self.length(&p[1])?])
     }
+
+    fn points(&self, ps: &[Point]) -> Result<Vec<P>, String> {
+        ps.iter().map(|p| self.point(p)).collect()
+    }
 }
 
 /// A physical body of the whole part: its slot (0 the ground) and which of its images.
@@ -304,25 +308,22 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
     // the bodies as drawn, or the hull of their pads; a body across an axis with its image
     // about it, so that its two halves are one solid
     let mut shapes: Vec<(usize, Solid)> = Vec::new();
-    if d.ground.len() >= 3 {
-        let mut points = Vec::with_capacity(d.ground.len());
-        for p in &d.ground {
-            points.push(one(v.point(p))?);
-        }
-        for (i, points) in convex_pieces(points).into_iter().enumerate() {
+    let mut named = |slot: usize, name: String, drawn: Vec<Vec<P>>| {
+        for (i, points) in drawn.into_iter().enumerate() {
             let name = if i == 0 {
-                "the ground".to_string()
+                name.clone()
             } else {
-                format!("the ground ({})", i + 1)
+                format!("{name} ({})", i + 1)
             };
-            shapes.push((0, Solid { name, points }));
+            shapes.push((slot, Solid { name, points }));
         }
+    };
+    if d.ground.len() >= 3 {
+        let points = v.points(&d.ground).map_err(|e| vec![e])?;
+        named(0, "the ground".into(), convex_pieces(points));
     }
     for (b, body) in d.bodies.iter().enumerate() {
-        let mut points = Vec::with_capacity(body.points.len());
-        for p in &body.points {
-            points.push(one(v.point(p))?);
-        }
+        let points = v.points(&body.points).map_err(|e| vec![e])?;
         let mut drawn: Vec<Vec<P>> = match (&body.link_width, points.len()) {
             (Some(w), 2) => {
                 let width = v.length(w).map_err(|e| vec![e])?;
@@ -352,14 +353,7 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
                 *shape = convex_hull(&all);
             }
         }
-        for (i, points) in drawn.into_iter().enumerate() {
-            let name = if i == 0 {
-                format!("body {}", body.name)
-            } else {
-                format!("body {} ({})", body.name, i + 1)
-            };
-            shapes.push((b + 1, Solid { name, points }));
-        }
+        named(b + 1, format!("body {}", body.name), drawn);
     }
 
     // the whole: each image of the described part
@@ -453,7 +447,6 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
         }
     }
     let mut bodies: Vec<BodyKey> = owners.iter().map(|(o, _)| *o).collect();
-    bodies.dedup();
     bodies.sort_by_key(|&(b, t)| (b, t.flip_x, t.flip_y));
     bodies.dedup();
     for &body in &bodies {
