@@ -12,15 +12,7 @@ const FILE: &str = "problems/wei2017_network.toml";
 /// The file with each `[from, to]` made in order (each `from` must occur), parsed: its
 /// error's key and message.
 fn refused(edits: &[(&str, &str)]) -> (String, String) {
-    let mut text = std::fs::read_to_string(FILE).unwrap();
-    for (from, to) in edits {
-        assert!(text.contains(from), "fixture text {from:?} not in {FILE}");
-        text = text.replacen(from, to, 1);
-    }
-    let Err(e) = Problem::parse(Path::new("net.toml"), &text) else {
-        panic!("the description must be refused");
-    };
-    (e.key.clone(), e.to_string())
+    refused_in(FILE, edits)
 }
 
 fn says(edits: &[(&str, &str)], key: &str, words: &[&str]) {
@@ -135,4 +127,64 @@ fn a_dimension_the_hinges_kind_has_not_is_refused() {
         "network.hinges[0].r",
         &["unknown key \"r\" of a strip hinge", "\"l\", \"t\""],
     );
+}
+
+/// `file` with each `[from, to]` made in order, parsed: its error's key and message.
+fn refused_in(file: &str, edits: &[(&str, &str)]) -> (String, String) {
+    let mut text = std::fs::read_to_string(file).unwrap();
+    for (from, to) in edits {
+        assert!(text.contains(from), "fixture text {from:?} not in {file}");
+        text = text.replacen(from, to, 1);
+    }
+    let Err(e) = Problem::parse(Path::new("net.toml"), &text) else {
+        panic!("the description must be refused");
+    };
+    (e.key.clone(), e.to_string())
+}
+
+const LEVER: &str = "problems/lever_network.toml";
+const F1_LIMIT: &str =
+    "\n[[constraints]]\noutput = \"f1\"\nunit = \"Hz\"\nlower = 1000\n\n[part]\n";
+
+/// The natural frequencies as a limit: refused, with the reason, where the network cannot
+/// give them (issue 25).
+#[test]
+fn a_frequency_the_network_cannot_give_is_refused_with_why() {
+    // a quarter holds only the modes symmetric about its axes
+    let (key, shown) = refused_in(FILE, &[("\n[part]\n", F1_LIMIT)]);
+    assert!(key.starts_with("constraints["), "{key}: {shown}");
+    assert!(shown.contains("mirror axes"), "{shown}");
+    // the input stands on the actuator in every mode
+    let (key, shown) = refused_in(
+        LEVER,
+        &[("\n[part]\n", F1_LIMIT), ("stiffness = \"60 N/um\"", "")],
+    );
+    assert!(key.starts_with("constraints["), "{key}: {shown}");
+    assert!(shown.contains("needs the actuator's stiffness"), "{shown}");
+    // the bodies' masses need a density
+    let (key, shown) = refused_in(
+        LEVER,
+        &[
+            ("\n[part]\n", F1_LIMIT),
+            (
+                "preset = \"al7075-t6\"",
+                "youngs_modulus = \"71.7 GPa\"\npoisson_ratio = 0.33\nyield_strength = \"503 MPa\"",
+            ),
+        ],
+    );
+    assert!(key.starts_with("constraints["), "{key}: {shown}");
+    assert!(shown.contains("needs the material's density"), "{shown}");
+}
+
+#[test]
+fn a_payload_on_the_input_is_refused() {
+    let (key, shown) = refused_in(
+        LEVER,
+        &[(
+            "[network.input]\nbody = \"lever\"",
+            "[network.input]\nbody = \"lever\"\npayload = \"10 g\"",
+        )],
+    );
+    assert_eq!(key, "network.input.payload", "{shown}");
+    assert!(shown.contains("give the payload to an output"), "{shown}");
 }

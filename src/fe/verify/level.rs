@@ -314,7 +314,12 @@ pub(super) fn solve_level(
         f_output = lowest(symmetric, &loads[modal.start])?;
         let payload = stated.payload.as_ref().map_or(&modal.payload, |p| &p.0);
         let sideways = loads::uniform_force(m, edges.get(payload), w, [force, 0.0]);
-        f_first = f_output.min(lowest(held(&holds.cut_y), &sideways)?);
+        // a part solved whole has one family, found above
+        f_first = if holds.cut_y.is_empty() {
+            f_output
+        } else {
+            f_output.min(lowest(held(&holds.cut_y), &sideways)?)
+        };
     }
     let values = output_values(&setup.analysis, &measured, force, |q| match q {
         Quantity::SectionStress => best.0,

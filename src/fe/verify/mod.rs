@@ -8,9 +8,10 @@
 //! Where the part is symmetric about the y axis, and every load case too, the half at
 //! `x >= 0` is solved, its cut held in x (the symmetric response), or in y for the
 //! antisymmetric modes; `statement.rs` derives the half's loads and measures from the
-//! whole part's statement. Any other part is solved whole, its statement as it stands (its
-//! natural modes are not yet computed whole: the modal outputs are left out, and the
-//! verification says so). What the quantities mean:
+//! whole part's statement. Any other part is solved whole, its statement as it stands: its
+//! natural modes are one family, computed where its actuator stands on the held faces (a
+//! spring from its face to the ground) or it has none; otherwise the modal outputs are left
+//! out, and the verification says so. What the quantities mean:
 //!
 //! - a stiffness is `test force / measure`, a ratio one measure over another.
 //! - the section stress: the largest `|N| / (w t) + 6 |M| / (w t^2)` over the hinges' root
@@ -340,10 +341,18 @@ pub fn verify(
         stated,
     };
     let asked_modal = settings.modal && material.density > 0.0 && setup.analysis.modal.is_some();
-    let modal = asked_modal && !whole_part;
-    let modal_note = (asked_modal && whole_part).then(|| {
-        "left out: the part is not symmetric about the y axis, and its modes are not yet \
-         computed on the whole part"
+    // a whole part's modes are one family; its actuator must stand on the ground (a
+    // spring from one face to the held ones) for the statement to hold it in them
+    let whole_modes = setup.stated.spring.is_some()
+        || setup
+            .analysis
+            .modal
+            .as_ref()
+            .is_some_and(|m| m.actuator.is_none());
+    let modal = asked_modal && (!whole_part || whole_modes);
+    let modal_note = (asked_modal && !modal).then(|| {
+        "left out: the part is not symmetric about the y axis, and its actuator does not \
+         stand on its held faces: its modes are not yet computed on the whole part"
             .to_string()
     });
     let (base, coarse) = size_function(&setup.domain, settings.per_thickness);

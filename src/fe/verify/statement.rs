@@ -143,7 +143,17 @@ pub(super) fn whole(analysis: &Analysis, force: f64) -> Stated {
             })
             .collect(),
         payload: analysis.modal.as_ref().map(|m| (m.payload.clone(), 1.0)),
-        spring: None,
+        // an actuator whose far face is held stands on the ground: a spring on its near face
+        spring: analysis
+            .modal
+            .as_ref()
+            .and_then(|m| m.actuator.as_ref())
+            .filter(|s| analysis.clamped.contains(&s.faces[1]))
+            .map(|s| HalfSpring {
+                face: s.faces[0].clone(),
+                direction: s.direction,
+                factor: 1.0,
+            }),
     }
 }
 

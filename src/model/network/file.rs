@@ -24,7 +24,8 @@
 //!   normalised), and `across` (a mirror axis): the port acts between its point and its
 //!   mirror image about that axis, an actuator pushing the two apart or an output read as
 //!   the change of their distance. A port on a body across an axis shares its load with
-//!   the body's mirror half: the described part carries half of it per such axis.
+//!   the body's mirror half: the described part carries half of it per such axis. An
+//!   output may carry a `payload` (a mass, e.g. `"20 g"`), for the natural frequencies.
 //! - `[[network.measures]]`: named expressions reported as outputs (`name`, `dimension`,
 //!   `value`); one named `span_x` or `span_y` replaces the described part's extent (a
 //!   signed span, as the bridge's).
@@ -49,7 +50,7 @@ use crate::model::{Dimension, Mechanism, ParameterInfo};
 use crate::part::Actuation;
 use crate::vocab::error::Segment;
 use crate::vocab::reader::{k, quoted, Res};
-use crate::vocab::schema::{Measured, PositiveLength};
+use crate::vocab::schema::{Measured, NonNegativeMass, PositiveLength};
 use crate::vocab::sections::Sections;
 use crate::vocab::units::{self, Unit};
 
@@ -122,6 +123,8 @@ struct RawNetworkPort {
     at: [String; 2],
     direction: [String; 2],
     across: Option<String>,
+    /// The mass the output carries (outputs only), for the natural frequencies.
+    payload: Option<Measured<NonNegativeMass>>,
 }
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -187,6 +190,8 @@ pub struct PortDescription {
     pub at: Point,
     pub direction: Point,
     pub across: Option<Axis>,
+    /// The mass it carries (kg), at its point: an output's payload (zero if none).
+    pub payload: f64,
 }
 
 /// A named expression reported as an output.
@@ -252,7 +257,7 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         nominal_stroke: actuator.nominal_stroke,
         preload: actuator.preload,
         stiffness: actuator.stiffness,
-        payload_mass: 0.0,
+        payload_mass: description.outputs[0].payload,
     };
     let drawn = part.map(|settings| (settings, description.clone()));
     let model = NetworkModel::new(description, material, actuator);
@@ -261,6 +266,7 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         k_in: model.output_index("k_in"),
         k_out: model.output_index("k_out"),
         stress_max: model.output_index("stress_max"),
+        f1: model.output_index("f1"),
     };
     let mut mechanism = Mechanism::physics_only(std::sync::Arc::new(model));
     if let Some((settings, description)) = drawn {
@@ -576,16 +582,29 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
                 ));
             }
         }
+        let payload = p
+            .payload
+            .as_ref()
+            .map(|m| s.measured(&sub("payload"), m))
+            .transpose()?
+            .unwrap_or(0.0);
         Ok(PortDescription {
             name,
             body,
             at: point(sub("at"), &p.at)?,
             direction: point(sub("direction"), &p.direction)?,
             across,
+            payload,
         })
     };
     if n.input.name.is_some() {
         return Err(s.err(&net(&[k("input"), k("name")]), "the input takes no name"));
+    }
+    if n.input.payload.is_some() {
+        return Err(s.err(
+            &net(&[k("input"), k("payload")]),
+            "the input carries the actuator, not a payload: give the payload to an output",
+        ));
     }
     let input = port(net(&[k("input")]), &n.input, "input".into())?;
     if n.outputs.is_empty() {
@@ -602,6 +621,15 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
             .ok_or_else(|| s.err(&q, "missing: each output port has a name"))?;
         if outputs.iter().any(|o| o.name == name) {
             return Err(s.err(&q, format!("output \"{name}\" is named twice")));
+        }
+        if i > 0 && p.payload.is_some() {
+            let mut q = path.clone();
+            q.push(k("payload"));
+            return Err(s.err(
+                &q,
+                "only the first output carries a payload (the part's check loads one face with \
+                 it): move it there, or add its mass to the body's outline",
+            ));
         }
         outputs.push(port(path, p, name)?);
     }

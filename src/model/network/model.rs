@@ -23,7 +23,10 @@ use std::cell::RefCell;
 use std::convert::Infallible;
 
 use super::file::{Axis, Description, HingeDescription, Keyed, Point};
-use super::structure::{Body, Displacements, Dof, Flexure, Load, Network, SolveBuffers};
+use super::modes::{Inertia, ModeError};
+use super::structure::{
+    Body, Displacements, Dof, Flexure, Load, Network, NetworkError, SolveBuffers, Spring,
+};
 use crate::model::expression::Tape;
 use crate::model::fit::FitLimit;
 use crate::model::hinge::HingeLoads;
@@ -60,7 +63,12 @@ enum Quantity {
     SpanX,
     SpanY,
     Measure(usize),
+    /// The natural frequency of mode `i` (from 0).
+    Frequency(usize),
 }
+
+/// How many natural frequencies the model names (`f1`, `f2`, ...).
+const FREQUENCIES: usize = 3;
 
 /// A planar flexure network described in a problem file.
 #[derive(Debug, Clone)]
@@ -90,8 +98,12 @@ struct Evaluated<D> {
     /// Each port's read factor and load share.
     read: Vec<f64>,
     share: Vec<f64>,
-    /// Every described point (m), for the extent.
+    /// Every described point (m), for the extent and the masses: each body's first, from
+    /// `offsets[b]`, then the ground's and the hinges' ends.
     points: Vec<[D; 2]>,
+    offsets: Vec<usize>,
+    /// Each body's link width (m), where it is a link; kept with `points`.
+    link_widths: Vec<Option<D>>,
     /// Each hinge's dimensions (SI).
     dims: Vec<Vec<D>>,
     measures: Vec<D>,
@@ -110,6 +122,8 @@ impl<D> Default for Evaluated<D> {
             read: Vec::new(),
             share: Vec::new(),
             points: Vec::new(),
+            offsets: Vec::new(),
+            link_widths: Vec::new(),
             dims: Vec::new(),
             measures: Vec::new(),
         }
@@ -280,6 +294,18 @@ impl NetworkModel {
                 );
             }
         }
+        for i in 0..FREQUENCIES {
+            add(
+                Quantity::Frequency(i),
+                format!("f{}", i + 1),
+                Frequency,
+                format!(
+                    "natural frequency of mode {} (the bodies' masses from their outlines or links, \
+                     the outputs' payloads; the flexures massless; the actuator a spring)",
+                    i + 1
+                ),
+            );
+        }
         let max_of = quantities
             .iter()
             .map(|q| {
@@ -439,13 +465,26 @@ impl NetworkModel {
             read,
             share,
             points,
+            offsets,
+            link_widths,
             dims,
             measures,
         } = out;
         points.clear();
+        offsets.clear();
+        link_widths.clear();
         first.clear();
         first.resize(d.bodies.len(), None);
         for (b, body) in d.bodies.iter().enumerate() {
+            if extent {
+                offsets.push(points.len());
+                link_widths.push(
+                    body.link_width
+                        .as_ref()
+                        .map(|w| length(w).map_err(Message::message))
+                        .transpose()?,
+                );
+            }
             for p in &body.points {
                 let q = point(p).map_err(Message::message)?;
                 if first[b].is_none() {
@@ -455,6 +494,9 @@ impl NetworkModel {
                     points.push(q);
                 }
             }
+        }
+        if extent {
+            offsets.push(points.len());
         }
         for p in &d.ground {
             let q = point(p).map_err(Message::message)?;
@@ -566,9 +608,17 @@ impl NetworkModel {
         out: &mut [D],
         work: &mut Work<D>,
     ) -> Result<(), String> {
-        let extent = wanted
+        let modes = wanted
             .iter()
-            .any(|&w| matches!(self.quantities[w], Quantity::SpanX | Quantity::SpanY));
+            .filter_map(|&w| match self.quantities[w] {
+                Quantity::Frequency(i) => Some(i + 1),
+                _ => None,
+            })
+            .max();
+        let extent = modes.is_some()
+            || wanted
+                .iter()
+                .any(|&w| matches!(self.quantities[w], Quantity::SpanX | Quantity::SpanY));
         self.at(x, modulus, extent, work)?;
         let Work {
             evaluated: e,
@@ -577,14 +627,7 @@ impl NetworkModel {
             ..
         } = work;
         let e = &*e;
-        let free = |err: super::structure::NetworkError| match err {
-            super::structure::NetworkError::Free { body, direction } => format!(
-                "body \"{}\" ({}) is free to move ({direction}): nothing holds it against the \
-                 ground",
-                self.description.bodies[body].name, self.description.bodies[body].key
-            ),
-            other => other.to_string(),
-        };
+        let free = |err| self.network_error(err);
         let needs = |f: &dyn Fn(Quantity) -> bool| wanted.iter().any(|&w| f(self.quantities[w]));
         use Quantity::*;
         let needs_input = needs(&|q| {
@@ -693,6 +736,10 @@ impl NetworkModel {
                 .fold(-e.points[0][i], |m, p| max(m, -p[i]));
             hi + lo
         };
+        let frequencies = match modes {
+            Some(count) => self.frequencies(e, count)?,
+            None => Vec::new(),
+        };
         for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
             *slot = match self.quantities[k] {
                 Amplification(o) => amplification(o),
@@ -731,6 +778,7 @@ impl NetworkModel {
                 SpanX => extent(0),
                 SpanY => extent(1),
                 Measure(m) => e.measures[m],
+                Frequency(i) => frequencies[i],
             };
             if !slot.re().is_finite() {
                 return Err(format!(
@@ -740,6 +788,74 @@ impl NetworkModel {
             }
         }
         Ok(())
+    }
+
+    /// What keeps the network from being solved, its body named as the file names it.
+    fn network_error(&self, err: NetworkError) -> String {
+        match err {
+            NetworkError::Free { body, direction } => format!(
+                "body \"{}\" ({}) is free to move ({direction}): nothing holds it against the \
+                 ground",
+                self.description.bodies[body].name, self.description.bodies[body].key
+            ),
+            other => other.to_string(),
+        }
+    }
+
+    /// The `count` lowest natural frequencies of the network `e` (Hz): each body a plate of
+    /// the material's density and the part's width cut to its outline or its link, the
+    /// first output's payload at its point, the actuator a spring to the ground at the
+    /// input along its direction (the stack's far end on the base), the flexures massless
+    /// ([`super::modes`]). [`Model::unavailable`] has checked that every body has a shape
+    /// and that there are no mirror axes.
+    fn frequencies<D: Scalar>(&self, e: &Evaluated<D>, count: usize) -> Result<Vec<D>, String> {
+        let d = &self.description;
+        let (density, width) = (self.material.density, d.width);
+        let mut inertia: Vec<Inertia<D>> = d
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(b, _)| {
+                let points = &e.points[e.offsets[b]..e.offsets[b + 1]];
+                match e.link_widths[b] {
+                    Some(t) => Inertia::link(points[0], points[1], t, density, width),
+                    None if points.len() >= 3 => Inertia::polygon(points, density, width),
+                    None => Inertia {
+                        mass: D::from(0.0),
+                        centroid: e.network.references[b],
+                        moment: D::from(0.0),
+                    },
+                }
+            })
+            .collect();
+        for (o, port) in d.outputs.iter().enumerate() {
+            let (body, at, _) = e.ports[o + 1];
+            inertia[body] = inertia[body].with_point_mass(port.payload, at);
+        }
+        let mut network = e.network.clone();
+        if let Some(k) = self.actuator.stiffness {
+            let (body, point, direction) = e.ports[0];
+            network.springs.push(Spring {
+                body,
+                point,
+                direction,
+                stiffness: D::from(k * e.read[0] * e.share[0]),
+            });
+        }
+        let modes = network.modes(&inertia, count).map_err(|err| match err {
+            ModeError::Network(err) => self.network_error(err),
+            ModeError::Massless { body } => format!(
+                "body \"{}\" ({}) has no mass where it can move",
+                d.bodies[body].name, d.bodies[body].key
+            ),
+        })?;
+        if modes.len() < count {
+            return Err(format!(
+                "the network has {} modes; f{count} asks for more",
+                modes.len()
+            ));
+        }
+        Ok(modes.into_iter().map(|m| m.frequency).collect())
     }
 
     fn gradients<const N: usize>(
@@ -807,10 +923,12 @@ fn expressions(d: &mut Description) -> Vec<(&mut Keyed, Role)> {
         all.push((x, Role::PointX));
         all.push((y, Role::PointY));
     }
+    let mut widths = Vec::new();
     for b in &mut d.bodies {
         for p in &mut b.points {
             point(&mut all, p);
         }
+        widths.extend(b.link_width.iter_mut());
     }
     for p in &mut d.ground {
         point(&mut all, p);
@@ -829,6 +947,8 @@ fn expressions(d: &mut Description) -> Vec<(&mut Keyed, Role)> {
     for m in &mut d.measures {
         all.push((&mut m.value, Role::Measure));
     }
+    // the links' widths, for the bodies' masses: last, so that the others keep their slots
+    all.extend(widths.into_iter().map(|e| (e, Role::Dimension)));
     all
 }
 
@@ -967,7 +1087,11 @@ impl Model for NetworkModel {
         {
             return Some(why);
         }
-        let all: Vec<usize> = (0..self.outputs.len()).collect();
+        // the statics' outputs: the modes add an eigensolve and no condition of the design
+        // that the statics do not check (every body's mass is checked once, by `unavailable`)
+        let all: Vec<usize> = (0..self.outputs.len())
+            .filter(|&i| !matches!(self.quantities[i], Quantity::Frequency(_)))
+            .collect();
         let mut out = vec![0.0; all.len()];
         self.evaluate_generic(x, None, &all, &mut out).err()
     }
@@ -993,7 +1117,48 @@ impl Model for NetworkModel {
         self.max_of[output].as_deref()
     }
 
-    fn unavailable(&self, _: usize) -> Option<String> {
+    fn unavailable(&self, output: usize) -> Option<String> {
+        let Quantity::Frequency(i) = self.quantities[output] else {
+            return None;
+        };
+        let name = &self.outputs[output].name;
+        let d = &self.description;
+        if !self.material.density.is_finite() {
+            return Some(format!(
+                "output \"{name}\" needs the material's density: give `[material] density` \
+                 (e.g. \"2810 kg/m3\") or a preset"
+            ));
+        }
+        if !d.mirror.is_empty() {
+            return Some(format!(
+                "output \"{name}\": the natural frequencies of a network with mirror axes are not \
+                 computed yet (its described part holds only the modes symmetric about them): \
+                 describe the whole mechanism, without `network.mirror`"
+            ));
+        }
+        if self.actuator.stiffness.is_none() {
+            return Some(format!(
+                "output \"{name}\" needs the actuator's stiffness (`[actuator] stiffness`): the \
+                 input stands on it in every mode"
+            ));
+        }
+        if let Some(body) = d
+            .bodies
+            .iter()
+            .find(|body| body.link_width.is_none() && body.points.len() < 3)
+        {
+            return Some(format!(
+                "output \"{name}\" needs every body's mass: body \"{}\" ({}) has no outline or \
+                 link to give it",
+                body.name, body.key
+            ));
+        }
+        let dofs = 3 * d.bodies.len() - self.held.len();
+        if i >= dofs {
+            return Some(format!(
+                "output \"{name}\": the network has {dofs} degrees of freedom, so {dofs} modes"
+            ));
+        }
         None
     }
 

@@ -25,6 +25,79 @@ pub struct Inertia<D> {
     pub moment: D,
 }
 
+impl<D: Scalar> Inertia<D> {
+    /// A plate of `density` and thickness `width` cut to the polygon `points` (either
+    /// winding), by the polygon's area moments from its edges (Green's theorem; Steger, "On
+    /// the calculation of arbitrary moments of polygons", TU Munich report FGBV-96-05, 1996,
+    /// Eq. 6-8): with `c_i = x_i y_{i+1} - x_{i+1} y_i`,
+    ///
+    /// ```text
+    /// A = 1/2 sum c_i,   A x_c = 1/6 sum (x_i + x_{i+1}) c_i,   A y_c likewise,
+    /// J_O = 1/12 sum (x_i^2 + x_i x_{i+1} + x_{i+1}^2 + y_i^2 + y_i y_{i+1} + y_{i+1}^2) c_i
+    /// ```
+    ///
+    /// and the moment about the centroid `J_O - A |c|^2` (Steiner).
+    pub fn polygon(points: &[[D; 2]], density: f64, width: f64) -> Self {
+        let zero = D::from(0.0);
+        let (mut a, mut sx, mut sy, mut j) = (zero, zero, zero, zero);
+        // about the first vertex, so that the sums do not cancel far from the origin
+        let o = points[0];
+        for (i, p) in points.iter().enumerate() {
+            let q = points[(i + 1) % points.len()];
+            let (x0, y0, x1, y1) = (p[0] - o[0], p[1] - o[1], q[0] - o[0], q[1] - o[1]);
+            let c = x0 * y1 - x1 * y0;
+            a = a + c;
+            sx = sx + (x0 + x1) * c;
+            sy = sy + (y0 + y1) * c;
+            j = j + (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1) * c;
+        }
+        let area = a * 0.5;
+        let (cx, cy) = (sx / (area * 6.0), sy / (area * 6.0));
+        let polar = j / 12.0 - area * (cx * cx + cy * cy);
+        // a clockwise polygon has its area and moments negative alike
+        let sign = if area.re() < 0.0 { -1.0 } else { 1.0 };
+        Inertia {
+            mass: area * (sign * density * width),
+            centroid: [cx + o[0], cy + o[1]],
+            moment: polar * (sign * density * width),
+        }
+    }
+
+    /// A link: the rectangle `thickness` wide around the segment `a b`, `J = m (L^2 + h^2)
+    /// / 12` about its middle.
+    pub fn link(a: [D; 2], b: [D; 2], thickness: D, density: f64, width: f64) -> Self {
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let l2 = dx * dx + dy * dy;
+        let mass = l2.sqrt() * thickness * (density * width);
+        Inertia {
+            mass,
+            centroid: [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5],
+            moment: mass * (l2 + thickness * thickness) / 12.0,
+        }
+    }
+
+    /// This body with a point mass `m` added at `at`.
+    pub fn with_point_mass(self, m: f64, at: [D; 2]) -> Self {
+        if m == 0.0 {
+            return self;
+        }
+        let mass = self.mass + m;
+        let c = [
+            (self.centroid[0] * self.mass + at[0] * m) / mass,
+            (self.centroid[1] * self.mass + at[1] * m) / mass,
+        ];
+        let d2 = |p: [D; 2]| {
+            let (x, y) = (p[0] - c[0], p[1] - c[1]);
+            x * x + y * y
+        };
+        Inertia {
+            mass,
+            centroid: c,
+            moment: self.moment + self.mass * d2(self.centroid) + d2(at) * m,
+        }
+    }
+}
+
 /// One mode: its frequency (Hz) and its shape, each body's `(u, v, theta)` at its
 /// reference point (held ones zero), scaled to unit modal mass.
 #[derive(Debug, Clone)]
@@ -259,6 +332,68 @@ mod tests {
             "{} against {fd}",
             first.frequency.grad[0]
         );
+    }
+
+    /// A rectangle's mass, centroid and moment, `m (a^2 + b^2) / 12`, whichever its winding,
+    /// far from the origin; an L of two rectangles by Steiner's rule; a link as its
+    /// rectangle; a point mass added by the parallel-axis rule.
+    #[test]
+    fn plates_have_their_handbook_inertias() {
+        let (rho, w) = (2810.0, 0.01);
+        let (a, b, cx, cy) = (0.03, 0.012, 0.25, -0.4);
+        let corners = [
+            [cx - a / 2.0, cy - b / 2.0],
+            [cx + a / 2.0, cy - b / 2.0],
+            [cx + a / 2.0, cy + b / 2.0],
+            [cx - a / 2.0, cy + b / 2.0],
+        ];
+        let m = rho * w * a * b;
+        let j = m * (a * a + b * b) / 12.0;
+        let mut clockwise = corners;
+        clockwise.reverse();
+        for pts in [corners, clockwise] {
+            let r = Inertia::polygon(&pts, rho, w);
+            assert!(close(r.mass, m, 1e-12), "{} against {m}", r.mass);
+            assert!(close(r.moment, j, 1e-9), "{} against {j}", r.moment);
+            assert!((r.centroid[0] - cx).abs() < 1e-14 && (r.centroid[1] - cy).abs() < 1e-14);
+        }
+        let link = Inertia::link([cx - a / 2.0, cy], [cx + a / 2.0, cy], b, rho, w);
+        assert!(close(link.mass, m, 1e-12) && close(link.moment, j, 1e-12));
+        // an L: a 0.02 x 0.004 foot and a 0.004 x 0.016 leg on its left end
+        let l_shape = [
+            [0.0, 0.0],
+            [0.02, 0.0],
+            [0.02, 0.004],
+            [0.004, 0.004],
+            [0.004, 0.02],
+            [0.0, 0.02],
+        ];
+        let parts = [(0.02, 0.004, 0.01, 0.002), (0.004, 0.016, 0.002, 0.012)];
+        let mass: f64 = parts.iter().map(|p| rho * w * p.0 * p.1).sum();
+        let c = [
+            parts.iter().map(|p| rho * w * p.0 * p.1 * p.2).sum::<f64>() / mass,
+            parts.iter().map(|p| rho * w * p.0 * p.1 * p.3).sum::<f64>() / mass,
+        ];
+        let moment: f64 = parts
+            .iter()
+            .map(|p| {
+                let mi = rho * w * p.0 * p.1;
+                mi * (p.0 * p.0 + p.1 * p.1) / 12.0
+                    + mi * ((p.2 - c[0]).powi(2) + (p.3 - c[1]).powi(2))
+            })
+            .sum();
+        let r = Inertia::polygon(&l_shape, rho, w);
+        assert!(close(r.mass, mass, 1e-12) && close(r.moment, moment, 1e-12));
+        assert!(close(r.centroid[0], c[0], 1e-12) && close(r.centroid[1], c[1], 1e-12));
+        // a point mass at a corner
+        let p = 0.005;
+        let loaded = Inertia::polygon(&corners, rho, w).with_point_mass(p, corners[2]);
+        let shift = [a / 2.0 * p / (m + p), b / 2.0 * p / (m + p)];
+        let d_body = shift[0].powi(2) + shift[1].powi(2);
+        let d_point = (a / 2.0 - shift[0]).powi(2) + (b / 2.0 - shift[1]).powi(2);
+        assert!(close(loaded.mass, m + p, 1e-14));
+        assert!(close(loaded.moment, j + m * d_body + p * d_point, 1e-12));
+        assert!(close(loaded.centroid[0], cx + shift[0], 1e-12));
     }
 
     #[test]

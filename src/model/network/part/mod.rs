@@ -36,13 +36,17 @@
 //! output's image across its axis, as the bridge's lower output block is. The part is
 //! symmetric about the y axis where the description is, so the check solves its right half.
 //!
-//! Not yet: the natural modes.
+//! The natural modes, where the model has them (no mirror axes, the actuator's stiffness
+//! given): `fe_f1`, the part's lowest mode, solved whole, the stack a spring from the input's
+//! face to the clamped faces, the payload on the first output's face ([`modes_check`]).
 
 use serde::Deserialize;
 
 use super::file::{Axis, Description, Keyed, Point};
 use crate::model::{Dimension, PartMaker};
-use crate::part::analysis::{FeCounterpart, FeOutputId};
+use crate::part::analysis::{
+    Analysis, FeCounterpart, FeOutput, FeOutputId, Modal, Quantity, Spring as FeSpring,
+};
 use crate::part::{convex_hull, Actuation, Face, HingeSite, PartSpec, Solid};
 use crate::vocab::reader::{k, Res};
 use crate::vocab::schema::{Measured, NonNegativeLength, PositiveLength};
@@ -122,6 +126,8 @@ pub struct Counterparts {
     pub k_in: Option<usize>,
     pub k_out: Option<usize>,
     pub stress_max: Option<usize>,
+    /// The lowest natural frequency, `f1`.
+    pub f1: Option<usize>,
 }
 
 /// A network's part: the description, the settings, the actuator.
@@ -137,6 +143,8 @@ const FE_K_IN: FeOutputId = FeOutputId(0);
 const FE_AMPLIFICATION: FeOutputId = FeOutputId(1);
 const FE_K_OUT: FeOutputId = FeOutputId(2);
 const FE_STRESS_SECTION: FeOutputId = FeOutputId(3);
+/// After `fe_stress_max` ([`faces::analysis`]), where the part has its modes checked.
+const FE_F1: FeOutputId = FeOutputId(5);
 
 impl PartMaker for NetworkPart {
     fn part(&self, x: &[f64]) -> Result<PartSpec, Vec<String>> {
@@ -156,10 +164,42 @@ impl PartMaker for NetworkPart {
             // the hinges' beam stress with each notch's concentration: the section stress
             // is its FE counterpart for strips, whose concentration is 1
             Some(FeCounterpart::Output(FE_STRESS_SECTION))
+        } else if is(c.f1) {
+            Some(FeCounterpart::Output(FE_F1))
         } else {
             None
         }
     }
+}
+
+/// The natural modes beside the static check, as the model's `f1` has them
+/// ([`super::model`]): the first output's face carries the payload, the actuator is a spring
+/// from the input's face to the ground (the part's clamped faces, where the stack's far end
+/// sits on the base). Only for a network without mirror axes, whose model has modes, and
+/// with the actuator's stiffness.
+fn modes_check(check: &mut Analysis) {
+    let input = &check.cases[0].loads[0];
+    let (face, direction) = (input.face.clone(), input.direction);
+    let payload = check.cases[1].loads[0].face.clone();
+    check.modal = Some(Modal {
+        payload,
+        actuator: Some(FeSpring {
+            faces: [face, "clamp".into()],
+            direction,
+        }),
+        start: 0,
+    });
+    debug_assert_eq!(check.outputs.len(), FE_F1.0);
+    check.outputs.push(FeOutput {
+        name: "fe_f1",
+        dimension: Dimension::Frequency,
+        meaning: "the part's lowest natural frequency, the actuator a spring from the input face \
+                  to the ground, the payload on the first output's face",
+        quantity: Quantity::SymmetricFrequency,
+        converges: true,
+        display: None,
+        analytic: None,
+    });
 }
 
 /// The description's expressions evaluated at `x` (SI) in f64.
@@ -502,7 +542,10 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
         return Err(problems);
     }
     let grounded = faces.iter().any(|f| f.name == "clamp");
-    let check = ports_check(&placed, &images, grounded, &mut faces).map_err(|e| vec![e])?;
+    let mut check = ports_check(&placed, &images, grounded, &mut faces).map_err(|e| vec![e])?;
+    if d.mirror.is_empty() && part.actuation.stiffness.is_some() {
+        modes_check(&mut check);
+    }
     Ok(PartSpec {
         width: d.width,
         actuation: Some(part.actuation),
