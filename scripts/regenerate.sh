@@ -35,6 +35,9 @@ done
 # the Scott-Russell mechanism's part (its guided form) checked whole
 ./target/release/flexopt verify problems/scott_russell_network.toml \
   --optimum "$RESULTS/scott_russell_network/optimum.json" --out "$RESULTS/scott_russell_network/verify" >/dev/null
+# the two-stage amplifier's part (its frame closed by the half's image) checked on its half
+./target/release/flexopt verify problems/bridge_lever_network.toml \
+  --optimum "$RESULTS/bridge_lever_network/optimum.json" --out "$RESULTS/bridge_lever_network/verify" >/dev/null
 # the accuracy table of the hinge kinds (results/hinges/)
 cargo run --release --quiet --example hinge_accuracy >/dev/null
 ./target/release/flexopt pareto problems/wei2017_dynamic.toml --vary natural_frequency \
