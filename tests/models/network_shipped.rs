@@ -392,9 +392,8 @@ fn every_shipped_networks_outputs_have_their_central_difference_gradients() {
         // the guide's parasitic motion and its leaves' turns are zero and its stage's motion
         // is the input's; the two-stage amplifier's bridge arms do not turn (their ends are
         // the held upper block, the ground and the input block between them, which the
-        // symmetric pair keeps from turning) and its span along x is the levers' fixed
-        // reach (its least x ties, to rounding, at points of the axis): their gradients are
-        // rounding
+        // symmetric pair keeps from turning) and its span along x is its ground frame's
+        // fixed reach, from the axis to its post: their gradients are rounding
         let constant: &[&str] = match i {
             1 => &[
                 "amplification",

@@ -170,7 +170,9 @@ fn check_mirrored(file: &str, x: &[f64], bands: [(f64, f64); 3], half_whole: f64
             "{file}: {ratio}"
         );
     }
-    ccx_agrees(&v, &mut model, "network");
+    // named by the file: tests run side by side, each ccx in its own folder
+    let name = Path::new(file).file_stem().unwrap().to_str().unwrap();
+    ccx_agrees(&v, &mut model, name);
     v
 }
 
