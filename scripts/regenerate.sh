@@ -32,6 +32,12 @@ for n in lever_network guide_network rhombus_network wei2017_network; do
   ./target/release/flexopt verify "problems/$n.toml" \
     --optimum "$RESULTS/$n/optimum.json" --out "$RESULTS/$n/verify" >/dev/null
 done
+# the Scott-Russell mechanism's part (its guided form) checked whole
+./target/release/flexopt verify problems/scott_russell_network.toml \
+  --optimum "$RESULTS/scott_russell_network/optimum.json" --out "$RESULTS/scott_russell_network/verify" >/dev/null
+# the two-stage amplifier's part (its frame closed by the half's image) checked on its half
+./target/release/flexopt verify problems/bridge_lever_network.toml \
+  --optimum "$RESULTS/bridge_lever_network/optimum.json" --out "$RESULTS/bridge_lever_network/verify" >/dev/null
 # the accuracy table of the hinge kinds (results/hinges/)
 cargo run --release --quiet --example hinge_accuracy >/dev/null
 ./target/release/flexopt pareto problems/wei2017_dynamic.toml --vary natural_frequency \

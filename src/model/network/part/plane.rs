@@ -121,6 +121,13 @@ pub(super) fn exit(poly: &[P], p: P, dir: P) -> Option<(f64, usize)> {
 /// The stretch `[c0, c1]` of the line `q + s e` (`s` in `[lo, hi]`) that the convex polygon
 /// `poly` covers, its boundary included (to 1e-12 m), if any.
 pub(super) fn covered(poly: &[P], q: P, e: P, lo: f64, hi: f64) -> Option<(f64, f64)> {
+    covered_to(poly, q, e, lo, hi, 1e-12)
+}
+
+/// [`covered`] with the boundary's tolerance `tol` (m) where an edge crosses the line: at 0
+/// the stretch ends where the edge crosses the line, as the union's vertex there does (a
+/// line along an edge stays covered to 1e-12 m).
+fn covered_to(poly: &[P], q: P, e: P, lo: f64, hi: f64, tol: f64) -> Option<(f64, f64)> {
     let (mut a, mut b) = (lo, hi);
     let n = poly.len();
     for i in 0..n {
@@ -128,15 +135,15 @@ pub(super) fn covered(poly: &[P], q: P, e: P, lo: f64, hi: f64) -> Option<(f64, 
         let edge = sub(p1, p0);
         let len = edge[0].hypot(edge[1]);
         // inside: cross(edge, point - p0) / len >= -tol, linear in s
-        let at0 = cross(edge, sub(q, p0)) / len + 1e-12;
+        let at0 = cross(edge, sub(q, p0)) / len;
         let slope = cross(edge, e) / len;
         if slope.abs() < 1e-15 {
-            if at0 < 0.0 {
+            if at0 + 1e-12 < 0.0 {
                 return None;
             }
             continue;
         }
-        let root = -at0 / slope;
+        let root = -(at0 + tol) / slope;
         if slope > 0.0 {
             a = a.max(root);
         } else {
@@ -163,7 +170,9 @@ pub(super) fn exposed(solids: &[Solid], own: usize, a: P, b: P) -> Vec<(P, P)> {
         .iter()
         .enumerate()
         .filter(|&(j, _)| j != own)
-        .filter_map(|(_, s)| covered(&s.points, a, e, 0.0, len))
+        // the stretches end where the union's outline turns, not 1e-12 m short of it: the
+        // mesh splits the outline at a face's end, and a split that close is a sliver
+        .filter_map(|(_, s)| covered_to(&s.points, a, e, 0.0, len, 0.0))
         .filter(|&(c0, c1)| c1 - c0 > 1e-9)
         .collect();
     if cover.is_empty() {
