@@ -295,7 +295,9 @@ pub(super) fn solve_level(
                 .iter()
                 .enumerate()
                 .filter(|(_, &v)| v != 0.0)
-                .map(|(dof, &v)| (dof, s.factor * ka * v))
+                // each node's share of the spring along the direction: `share n n^T`,
+                // whose diagonal `share n_i^2` is `v n_i` (positive whichever way it acts)
+                .map(|(dof, &v)| (dof, s.factor * ka * v * s.direction[dof % 2]))
                 .collect(),
         };
         let lowest = |springs: Vec<(usize, f64)>, load: &[f64]| -> Result<f64, FeError> {
