@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Regenerates every committed file of results/ but the benchmarks': the study of each problem
-# in problems/ (the flexure networks too: wei2017_network, paper 004's bridge, and the rhombus, guide, lever, Scott-Russell and bridge-lever; but the sweep-only wei2017_fig9; wei2017's optimum refined by FE too, in
-# wei2017_refined/; ti_first_mode's refined by its own [refine] section), the finite-element checks of wei2017's optimum and printed design and of bridge_circular's
-# and the lever, guide, rhombus and wei2017 networks' optima, the hinges' accuracy table, the trade-off front of wei2017_dynamic, and the
-# sweeps of the three sweep scripts. With a folder as argument it writes there instead
+# in problems/ (the flexure networks too: wei2017_network, paper 004's bridge, and the
+# rhombus, guide, lever, Scott-Russell and bridge-lever; but the sweep-only wei2017_fig9;
+# wei2017's optimum refined by FE too, in wei2017_refined/; ti_first_mode's refined by its
+# own [refine] section), the finite-element checks of wei2017's optimum and printed design,
+# of bridge_circular's and of every network's optimum, the hinges' accuracy table, the
+# trade-off front of wei2017_dynamic, and the sweeps of the three sweep scripts. With a folder as argument it writes there instead
 # of results/ (scripts/check_results.sh compares such a copy with the committed files).
 set -euo pipefail
 cd "$(dirname "$0")/.."
