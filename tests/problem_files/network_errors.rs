@@ -188,3 +188,40 @@ fn a_payload_on_the_input_is_refused() {
     assert_eq!(key, "network.input.payload", "{shown}");
     assert!(shown.contains("give the payload to an output"), "{shown}");
 }
+
+/// A first output written as the input (a stage read where it is pushed) is read: its
+/// stiffness with the input held is infinite, so `k_out_blocked` is left out and says why,
+/// and with the actuator's spring `k_out_actuated` is `k_in + k_a` exactly.
+#[test]
+fn a_first_output_at_the_input_is_read_without_its_blocked_stiffness() {
+    let text = std::fs::read_to_string(LEVER).unwrap().replacen(
+        "at = [\"arm\", \"0\"]",
+        "at = [\"a\", \"0\"]",
+        1,
+    );
+    let p = Problem::parse(Path::new("net.toml"), &text).unwrap();
+    let m = p.model();
+    let blocked = m.output_index("k_out_blocked").unwrap();
+    let why = m.unavailable(blocked).expect("left out");
+    assert!(why.contains("the first output is the input"), "{why}");
+    assert!(!m.available_outputs().contains(&blocked));
+    let x = [1.174e-3, 1.174e-3, 6e-3, 40e-3];
+    let names = ["k_in", "k_out", "k_out_actuated", "amplification"];
+    let wanted: Vec<usize> = names.iter().map(|n| m.output_index(n).unwrap()).collect();
+    let mut v = [0.0; 4];
+    m.evaluate(&x, &wanted, &mut v);
+    let k_a = 60e6;
+    assert!(
+        (v[1] / v[0] - 1.0).abs() < 1e-12,
+        "k_out {} k_in {}",
+        v[1],
+        v[0]
+    );
+    assert!(
+        (v[2] / (v[0] + k_a) - 1.0).abs() < 1e-12,
+        "{} against {}",
+        v[2],
+        v[0] + k_a
+    );
+    assert!((v[3] - 1.0).abs() < 1e-12, "{}", v[3]);
+}

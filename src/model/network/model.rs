@@ -790,6 +790,18 @@ impl NetworkModel {
         Ok(())
     }
 
+    /// Whether the first output is written as the input: the same body and the same
+    /// expressions for its point and direction (a guide's stage read where it is pushed).
+    fn first_output_is_input(&self) -> bool {
+        let (i, o) = (&self.description.input, &self.description.outputs[0]);
+        let same = |a: &Point, b: &Point| {
+            a.iter()
+                .zip(b)
+                .all(|(p, q)| p.expression.source() == q.expression.source())
+        };
+        i.body == o.body && same(&i.at, &o.at) && same(&i.direction, &o.direction)
+    }
+
     /// What keeps the network from being solved, its body named as the file names it.
     fn network_error(&self, err: NetworkError) -> String {
         match err {
@@ -1089,7 +1101,9 @@ impl Model for NetworkModel {
         }
         // the statics' outputs: the modes add an eigensolve and no condition of the design
         // that the statics do not check (every body's mass is checked once, by `unavailable`)
-        let all: Vec<usize> = (0..self.outputs.len())
+        let all: Vec<usize> = self
+            .available_outputs()
+            .into_iter()
             .filter(|&i| !matches!(self.quantities[i], Quantity::Frequency(_)))
             .collect();
         let mut out = vec![0.0; all.len()];
@@ -1118,6 +1132,18 @@ impl Model for NetworkModel {
     }
 
     fn unavailable(&self, output: usize) -> Option<String> {
+        let held_input = match self.quantities[output] {
+            Quantity::KOutBlocked => true,
+            Quantity::KOutActuated | Quantity::BlockedForce => self.actuator.stiffness.is_none(),
+            _ => false,
+        };
+        if held_input && self.first_output_is_input() {
+            return Some(format!(
+                "output \"{}\": the first output is the input (the same body, point and \
+                 direction), which holding the input holds: its stiffness there is infinite",
+                self.outputs[output].name
+            ));
+        }
         let Quantity::Frequency(i) = self.quantities[output] else {
             return None;
         };
