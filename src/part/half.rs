@@ -78,6 +78,32 @@ impl PartSpec {
                     });
                 }
             }
+            if !straddles {
+                // an edge on the axis where the solid's mirror image is joined to it (a
+                // frame drawn to the axis from both sides) is a cut as well: left free, the
+                // half would have a slit where the whole part is one piece
+                let mirror = mirrored(&s.points);
+                let joined = self.solids.iter().enumerate().any(|(j, t)| {
+                    same(&mirror, &t.points, tol)
+                        && self
+                            .joints
+                            .iter()
+                            .any(|&(a, b)| (a, b) == (k, j) || (a, b) == (j, k))
+                });
+                if joined {
+                    for (i, &p) in points.iter().enumerate() {
+                        let q = points[(i + 1) % points.len()];
+                        if p[0].abs() <= tol && q[0].abs() <= tol && p[1] != q[1] {
+                            let (lo, hi) = if p[1] < q[1] { (p, q) } else { (q, p) };
+                            faces.push(Face {
+                                name: SYMMETRY.into(),
+                                a: [0.0, lo[1]],
+                                b: [0.0, hi[1]],
+                            });
+                        }
+                    }
+                }
+            }
             index[k] = Some(solids.len());
             solids.push(Solid {
                 name: s.name.clone(),
