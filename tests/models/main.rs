@@ -15,6 +15,7 @@ mod fit_ranges;
 mod hinges;
 mod layout;
 mod model_stability;
+mod network_beams;
 mod network_bridge;
 mod network_shipped;
 mod paper001;

@@ -32,8 +32,11 @@
 //! - `[actuator]`: `nominal_stroke`, `preload`, optional `stiffness`, the bridge's section
 //!   (its `length` and `height`, the stack's size, are for the part, still to come).
 //!
-//! Flexible beams (frame elements between bodies) are not read yet: a strip hinge is the
-//! network's flexible member.
+//! - `[[network.beams]]`: `name`, `from`, `to` (bodies or `"ground"`), `start` and `end`
+//!   (points) and `thickness` (in plane): a uniform straight beam clamped into both bodies
+//!   at its ends, the plate's `width` out of plane. Unlike a hinge it is placed by its two
+//!   ends, not by a start, an angle and a length: a frame member between two bodies is
+//!   drawn from point to point, and its length and direction follow.
 
 use indexmap::IndexMap;
 use serde::Deserialize;
@@ -75,6 +78,8 @@ struct RawNetwork {
     bodies: Vec<RawNetworkBody>,
     #[serde(default)]
     hinges: Vec<RawNetworkHinge>,
+    #[serde(default)]
+    beams: Vec<RawNetworkBeam>,
     input: RawNetworkPort,
     outputs: Vec<RawNetworkPort>,
     #[serde(default)]
@@ -112,6 +117,17 @@ struct RawNetworkHinge {
     #[serde(flatten)]
     #[schemars(with = "std::collections::BTreeMap<String, String>")]
     dimensions: IndexMap<String, String>,
+}
+
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+struct RawNetworkBeam {
+    name: String,
+    from: String,
+    to: String,
+    start: [String; 2],
+    end: [String; 2],
+    thickness: String,
 }
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -182,6 +198,20 @@ pub struct HingeDescription {
     pub parameter_of: Vec<Option<usize>>,
 }
 
+/// A flexible beam: which bodies it joins (`None` the ground), from its `start` on `from`
+/// to its `end` on `to`, and its in-plane thickness.
+#[derive(Debug, Clone)]
+pub struct BeamDescription {
+    pub name: String,
+    /// Its key in the file (`network.beams[0]`).
+    pub key: String,
+    pub from: Option<usize>,
+    pub to: Option<usize>,
+    pub start: Point,
+    pub end: Point,
+    pub thickness: Keyed,
+}
+
 /// A port: a point of a body and a direction, maybe across a mirror axis.
 #[derive(Debug, Clone)]
 pub struct PortDescription {
@@ -215,6 +245,7 @@ pub struct Description {
     /// The ground's outline points, for the extent.
     pub ground: Vec<Point>,
     pub hinges: Vec<HingeDescription>,
+    pub beams: Vec<BeamDescription>,
     pub input: PortDescription,
     pub outputs: Vec<PortDescription>,
     pub measures: Vec<MeasureDescription>,
@@ -539,9 +570,51 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
             parameter_of,
         });
     }
+    // the beams
+    let mut beams: Vec<BeamDescription> = Vec::new();
+    for (i, r) in n.beams.iter().enumerate() {
+        let path = net(&at("beams", i));
+        let sub = |key: &str| {
+            let mut p = path.clone();
+            p.push(k(key));
+            p
+        };
+        // a beam's outputs are named as a hinge's: one name among both
+        if beams.iter().any(|o| o.name == r.name) || hinges.iter().any(|o| o.name == r.name) {
+            return Err(s.err(
+                &sub("name"),
+                format!(
+                    "\"{}\" names another beam or hinge: their outputs share the names",
+                    r.name
+                ),
+            ));
+        }
+        let from = find_body(&sub("from"), &r.from)?;
+        let to = find_body(&sub("to"), &r.to)?;
+        if from == to {
+            return Err(s.err(
+                &sub("to"),
+                format!(
+                    "beam \"{}\" joins \"{}\" to itself: a beam joins two bodies",
+                    r.name, r.to
+                ),
+            ));
+        }
+        beams.push(BeamDescription {
+            name: r.name.clone(),
+            key: written(&path),
+            from,
+            to,
+            start: point(sub("start"), &r.start)?,
+            end: point(sub("end"), &r.end)?,
+            thickness: parse(sub("thickness"), &r.thickness)?,
+        });
+    }
     // every body is joined to something
     for (b, body) in bodies.iter().enumerate() {
-        if !hinges.iter().any(|h| h.from == Some(b) || h.to == Some(b)) {
+        if !hinges.iter().any(|h| h.from == Some(b) || h.to == Some(b))
+            && !beams.iter().any(|h| h.from == Some(b) || h.to == Some(b))
+        {
             let i = n
                 .bodies
                 .iter()
@@ -550,7 +623,7 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
             return Err(s.err(
                 &net(&[k("bodies"), Segment::Index(i), k("name")]),
                 format!(
-                    "body \"{}\" is joined to nothing: no hinge has it as `from` or `to`",
+                    "body \"{}\" is joined to nothing: no hinge or beam has it as `from` or `to`",
                     body.name
                 ),
             ));
@@ -670,6 +743,7 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
         bodies,
         ground,
         hinges,
+        beams,
         input,
         outputs,
         measures,

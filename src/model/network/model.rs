@@ -24,12 +24,13 @@ use std::convert::Infallible;
 
 use super::file::{Axis, Description, HingeDescription, Keyed, Point};
 use super::modes::{Inertia, ModeError};
+use super::structure::beam_compliance;
 use super::structure::{
     Body, Displacements, Dof, Flexure, Load, Network, NetworkError, SolveBuffers, Spring,
 };
 use crate::model::expression::Tape;
 use crate::model::fit::FitLimit;
-use crate::model::hinge::HingeLoads;
+use crate::model::hinge::{HingeKind, HingeLoads};
 use crate::model::material::Material;
 use crate::model::scalar::{max, Jet, Scalar};
 use crate::model::{unseed, Dimension, Model, OutputInfo, ParameterInfo};
@@ -55,9 +56,9 @@ enum Quantity {
     StrokeIn,
     StrokeOut,
     StressMax,
-    /// Hinge `h`'s largest stress.
+    /// Flexure `h`'s largest stress: the hinges', then the beams'.
     Stress(usize),
-    /// Hinge `h`'s stress at its end on `from` (false) or on `to` (true).
+    /// Flexure `h`'s stress at its end on `from` (false) or on `to` (true).
     StressEnd(usize, bool),
     Rotation(usize),
     SpanX,
@@ -99,12 +100,12 @@ struct Evaluated<D> {
     read: Vec<f64>,
     share: Vec<f64>,
     /// Every described point (m), for the extent and the masses: each body's first, from
-    /// `offsets[b]`, then the ground's and the hinges' ends.
+    /// `offsets[b]`, then the ground's, the hinges' ends and the beams'.
     points: Vec<[D; 2]>,
     offsets: Vec<usize>,
     /// Each body's link width (m), where it is a link; kept with `points`.
     link_widths: Vec<Option<D>>,
-    /// Each hinge's dimensions (SI).
+    /// Each hinge's dimensions (SI), then each beam's length and thickness (a strip's).
     dims: Vec<Vec<D>>,
     measures: Vec<D>,
 }
@@ -233,37 +234,45 @@ impl NetworkModel {
         ] {
             add(q, name.into(), dim, what);
         }
-        for (h, hinge) in d.hinges.iter().enumerate() {
+        // the flexures: the hinges, then the beams, each named and called as the file does
+        let members: Vec<(&str, String)> = d
+            .hinges
+            .iter()
+            .map(|h| (h.name.as_str(), format!("hinge \"{}\"", h.name)))
+            .chain(
+                d.beams
+                    .iter()
+                    .map(|b| (b.name.as_str(), format!("beam \"{}\"", b.name))),
+            )
+            .collect();
+        for (h, (name, what)) in members.iter().enumerate() {
+            let kind = match d.hinges.get(h) {
+                Some(hinge) => hinge.kind.name(),
+                None => "Timoshenko beam, no stress concentration",
+            };
             add(
                 Quantity::Stress(h),
-                format!("stress_{}", hinge.name),
+                format!("stress_{name}"),
                 Stress,
-                format!(
-                    "largest stress in hinge \"{}\" ({})",
-                    hinge.name,
-                    hinge.kind.name()
-                ),
+                format!("largest stress in {what} ({kind})"),
             );
         }
-        for (h, hinge) in d.hinges.iter().enumerate() {
+        for (h, (name, what)) in members.iter().enumerate() {
             for (to, end) in [(false, "from"), (true, "to")] {
                 add(
                     Quantity::StressEnd(h, to),
-                    format!("stress_{}_{end}", hinge.name),
+                    format!("stress_{name}_{end}"),
                     Stress,
-                    format!(
-                        "stress in hinge \"{}\" at its end on its `{end}` body",
-                        hinge.name
-                    ),
+                    format!("stress in {what} at its end on its `{end}` body"),
                 );
             }
         }
-        for (h, hinge) in d.hinges.iter().enumerate() {
+        for (h, (name, what)) in members.iter().enumerate() {
             add(
                 Quantity::Rotation(h),
-                format!("rotation_{}", hinge.name),
+                format!("rotation_{name}"),
                 Angle,
-                format!("rotation of hinge \"{}\" (its `to` end against its `from` end) under the largest actuator force", hinge.name),
+                format!("rotation of {what} (its `to` end against its `from` end) under the largest actuator force"),
             );
         }
         for axis in ["x", "y"] {
@@ -505,7 +514,7 @@ impl NetworkModel {
             }
         }
         network.flexures.clear();
-        dims.resize_with(d.hinges.len(), Vec::new);
+        dims.resize_with(d.hinges.len() + d.beams.len(), Vec::new);
         for (h, dd) in d.hinges.iter().zip(dims.iter_mut()) {
             dd.clear();
             for (e, info) in h.dimensions.iter().zip(h.kind.dimensions()) {
@@ -533,19 +542,54 @@ impl NetworkModel {
                 length: l,
                 compliance,
             };
-            let end = f.start_plus_length();
-            for (body, p) in [(h.from, start), (h.to, end)] {
-                if let Some(b) = body {
-                    if first[b].is_none() {
-                        first[b] = Some(p);
-                    }
-                }
+            join(
+                f,
+                first,
+                extent.then_some(&mut *points),
+                &mut network.flexures,
+            );
+        }
+        for (b, dd) in d.beams.iter().zip(dims[d.hinges.len()..].iter_mut()) {
+            let start = point(&b.start).map_err(Message::message)?;
+            let end = point(&b.end).map_err(Message::message)?;
+            let thickness = length(&b.thickness).map_err(Message::message)?;
+            let (dx, dy) = (end[0] - start[0], end[1] - start[1]);
+            let l = (dx * dx + dy * dy).sqrt();
+            if l.re() == 0.0 {
+                return Err(format!(
+                    "beam \"{}\" ({}): its start and end are the same point",
+                    b.name, b.key
+                ));
             }
-            if extent {
-                points.push(start);
-                points.push(end);
+            if thickness.re() <= 0.0 || !thickness.re().is_finite() {
+                return Err(format!(
+                    "beam \"{}\" ({}.thickness): the thickness {} m is not positive",
+                    b.name,
+                    b.key,
+                    thickness.re()
+                ));
             }
-            network.flexures.push(f);
+            dd.clear();
+            dd.push(l);
+            dd.push(thickness);
+            let mut compliance = beam_compliance(l, thickness, d.width, &self.material);
+            if let Some(m) = modulus {
+                compliance = compliance.with_modulus(m);
+            }
+            let f = Flexure {
+                from: b.from.map_or(Body::Ground, Body::Rigid),
+                to: b.to.map_or(Body::Ground, Body::Rigid),
+                start,
+                axis: [dx / l, dy / l],
+                length: l,
+                compliance,
+            };
+            join(
+                f,
+                first,
+                extent.then_some(&mut *points),
+                &mut network.flexures,
+            );
         }
         network.held.clear();
         network.held.extend_from_slice(&self.held);
@@ -554,7 +598,7 @@ impl NetworkModel {
         network.references.extend(
             first
                 .iter()
-                .map(|r| r.expect("every body has a hinge, whose end is a point of it")),
+                .map(|r| r.expect("every body has a hinge or a beam, whose end is a point of it")),
         );
         ports.clear();
         read.clear();
@@ -708,18 +752,22 @@ impl NetworkModel {
                 moment: l.moment * f,
             }
         };
+        let flexures = e.network.flexures.len();
         let ends = |h: usize| {
-            let hinge = &self.description.hinges[h];
+            // a beam's stresses are a strip's: the same beam, the same linear moment
+            let kind = self
+                .description
+                .hinges
+                .get(h)
+                .map_or(HingeKind::Strip, |hinge| hinge.kind);
             // (loaded end, clamped end): the loads are at its end on `to`
-            let (to, from) = hinge
-                .kind
-                .end_stresses(&e.dims[h], self.description.width, &loads(h));
+            let (to, from) = kind.end_stresses(&e.dims[h], self.description.width, &loads(h));
             (from, to)
         };
         // each hinge's two end stresses once, however many outputs read them
         stresses.clear();
         if needs(&|q| matches!(q, StressMax | Stress(_) | StressEnd(..))) {
-            stresses.extend((0..self.description.hinges.len()).map(ends));
+            stresses.extend((0..flexures).map(ends));
         }
         let stresses = &*stresses;
         let ends = |h: usize| stresses[h];
@@ -750,7 +798,7 @@ impl NetworkModel {
                 StrokeIn => stroke_in(),
                 StrokeOut => amplification(0) * stroke_in(),
                 BlockedForce => amplification(0) * stroke_in() * condensed(self.actuator.stiffness),
-                StressMax => (0..self.description.hinges.len())
+                StressMax => (0..flexures)
                     .map(|h| {
                         let (a, b) = ends(h);
                         max(a, b)
@@ -844,6 +892,18 @@ impl NetworkModel {
             let (body, at, _) = e.ports[o + 1];
             inertia[body] = inertia[body].with_point_mass(port.payload, at);
         }
+        // each beam's mass lumped at its ends, half to each body (the consistent mass of a
+        // frame element would couple the bodies; the lumped one keeps them apart, and is
+        // close while a beam weighs little against the bodies it joins)
+        let flexures = e.network.flexures[d.hinges.len()..].iter();
+        for ((b, f), dims) in d.beams.iter().zip(flexures).zip(&e.dims[d.hinges.len()..]) {
+            let half = dims[0] * dims[1] * (0.5 * density * width);
+            for (body, at) in [(b.from, f.start), (b.to, f.start_plus_length())] {
+                if let Some(body) = body {
+                    inertia[body] = inertia[body].with_point_mass(half, at);
+                }
+            }
+        }
         let mut network = e.network.clone();
         if let Some(k) = self.actuator.stiffness {
             let (body, point, direction) = e.ports[0];
@@ -889,6 +949,29 @@ impl NetworkModel {
         }
         unseed(&y, out, jacobian);
     }
+}
+
+/// `f` added to `flexures`: its ends the reference points of the bodies that have none yet,
+/// and among the described `points` when they are kept.
+fn join<D: Scalar>(
+    f: Flexure<D>,
+    first: &mut [Option<[D; 2]>],
+    points: Option<&mut Vec<[D; 2]>>,
+    flexures: &mut Vec<Flexure<D>>,
+) {
+    let end = f.start_plus_length();
+    for (body, p) in [(f.from, f.start), (f.to, end)] {
+        if let Body::Rigid(b) = body {
+            if first[b].is_none() {
+                first[b] = Some(p);
+            }
+        }
+    }
+    if let Some(points) = points {
+        points.push(f.start);
+        points.push(end);
+    }
+    flexures.push(f);
 }
 
 /// The message of an expression's failure: the trees' own, or none from the tape.
@@ -961,6 +1044,12 @@ fn expressions(d: &mut Description) -> Vec<(&mut Keyed, Role)> {
     }
     // the links' widths, for the bodies' masses: last, so that the others keep their slots
     all.extend(widths.into_iter().map(|e| (e, Role::Dimension)));
+    // the beams after them, for the same reason
+    for b in &mut d.beams {
+        point(&mut all, &mut b.start);
+        point(&mut all, &mut b.end);
+        all.push((&mut b.thickness, Role::Dimension));
+    }
     all
 }
 

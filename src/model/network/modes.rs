@@ -76,9 +76,11 @@ impl<D: Scalar> Inertia<D> {
         }
     }
 
-    /// This body with a point mass `m` added at `at`.
-    pub fn with_point_mass(self, m: f64, at: [D; 2]) -> Self {
-        if m == 0.0 {
+    /// This body with a point mass `m` added at `at`: a constant (a payload) or one of the
+    /// design (a beam's end's share).
+    pub fn with_point_mass(self, m: impl Into<D>, at: [D; 2]) -> Self {
+        let m: D = m.into();
+        if m.re() == 0.0 {
             return self;
         }
         let mass = self.mass + m;

@@ -35,7 +35,44 @@ use std::borrow::Cow;
 use std::fmt;
 
 use crate::model::hinge::{Compliance, HingeLoads};
+use crate::model::material::Material;
 use crate::model::scalar::Scalar;
+
+/// The compliance at the free end of a uniform straight beam `length` long, of rectangular
+/// section `thickness` (in plane) by `width`, clamped at its start: the Timoshenko
+/// cantilever (Timoshenko and Gere, "Mechanics of Materials", 1972, Sec. 9.10 for the
+/// shear deflection; Przemieniecki, "Theory of Matrix Structural Analysis", 1968, Sec. 5.4,
+/// Eq. 5.112 for the frame element with shear), with `A = w t`, `I = w t^3 / 12`:
+///
+/// ```text
+/// c11 = L / (E A)
+/// c22 = L^3 / (3 E I) + L / (kappa G A)
+/// c23 = L^2 / (2 E I)
+/// c33 = L / (E I)
+/// ```
+///
+/// and the shear coefficient of a rectangle `kappa = 10 (1 + nu) / (12 + 11 nu)` (Cowper,
+/// J. Appl. Mech. 33 (1966) 335, Table 1). The strip hinge's is the same beam with
+/// `kappa = 1`, paper 004's Eq. 2: a network's frame member is long, where the shear term
+/// is small and Cowper's is the better one, while the strip keeps the paper's.
+pub fn beam_compliance<D: Scalar>(
+    length: D,
+    thickness: D,
+    width: f64,
+    material: &Material,
+) -> Compliance<D> {
+    let nu = material.poisson_ratio;
+    let inv = (thickness * thickness * thickness * (material.youngs_modulus * width)).recip();
+    let l_inv = length * inv;
+    let t2 = thickness * thickness;
+    // E / (kappa G) = 2 (1 + nu) / kappa = (12 + 11 nu) / 5
+    Compliance {
+        c11: l_inv * t2,
+        c22: l_inv * (length * length * 4.0 + t2 * ((12.0 + 11.0 * nu) / 5.0)),
+        c23: l_inv * length * 6.0,
+        c33: l_inv * 12.0,
+    }
+}
 
 /// A body of the network, or the ground.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -262,6 +262,12 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
     let d = &part.description;
     let s = &part.settings;
     let v = Values::new(d, x);
+    if let Some(b) = d.beams.first() {
+        return Err(vec![format!(
+            "beam \"{}\" ({}): the part does not draw flexible beams yet",
+            b.name, b.key
+        )]);
+    }
     let one = |r: Result<P, String>| r.map_err(|e| vec![e]);
     let slot = |b: Option<usize>| b.map_or(0, |b| b + 1);
     // the axes each body (by slot) lies across: a body's images about them are itself
