@@ -44,13 +44,15 @@ impl PartSpec {
     /// mirror image is a solid, to `1e-12` m); `None` otherwise.
     pub fn right_half(&self) -> Option<PartSpec> {
         let tol = 1e-12;
-        let symmetric = self.solids.iter().all(|s| {
-            let m = mirrored(&s.points);
-            self.solids.iter().any(|t| same(&m, &t.points, tol))
-        });
-        if !symmetric {
-            return None;
-        }
+        // each solid's mirror image among the solids
+        let image: Vec<usize> = self
+            .solids
+            .iter()
+            .map(|s| {
+                let m = mirrored(&s.points);
+                self.solids.iter().position(|t| same(&m, &t.points, tol))
+            })
+            .collect::<Option<_>>()?;
         let mut index = vec![None; self.solids.len()];
         let mut solids = Vec::new();
         let mut faces = Vec::new();
@@ -82,14 +84,11 @@ impl PartSpec {
                 // an edge on the axis where the solid's mirror image is joined to it (a
                 // frame drawn to the axis from both sides) is a cut as well: left free, the
                 // half would have a slit where the whole part is one piece
-                let mirror = mirrored(&s.points);
-                let joined = self.solids.iter().enumerate().any(|(j, t)| {
-                    same(&mirror, &t.points, tol)
-                        && self
-                            .joints
-                            .iter()
-                            .any(|&(a, b)| (a, b) == (k, j) || (a, b) == (j, k))
-                });
+                let j = image[k];
+                let joined = self
+                    .joints
+                    .iter()
+                    .any(|&(a, b)| (a, b) == (k, j) || (a, b) == (j, k));
                 if joined {
                     for (i, &p) in points.iter().enumerate() {
                         let q = points[(i + 1) % points.len()];

@@ -530,20 +530,17 @@ impl NetworkModel {
             let start = point(&h.start).map_err(Message::message)?;
             let (s, c) = eval(&h.angle)?.sin_cos();
             let l = h.kind.length(dd);
-            let mut compliance = h.kind.compliance(dd, d.width, &self.material);
-            if let Some(m) = modulus {
-                compliance = compliance.with_modulus(m);
-            }
             let f = Flexure {
                 from: h.from.map_or(Body::Ground, Body::Rigid),
                 to: h.to.map_or(Body::Ground, Body::Rigid),
                 start,
                 axis: [c, s],
                 length: l,
-                compliance,
+                compliance: h.kind.compliance(dd, d.width, &self.material),
             };
             join(
                 f,
+                modulus,
                 first,
                 extent.then_some(&mut *points),
                 &mut network.flexures,
@@ -572,20 +569,17 @@ impl NetworkModel {
             dd.clear();
             dd.push(l);
             dd.push(thickness);
-            let mut compliance = beam_compliance(l, thickness, d.width, &self.material);
-            if let Some(m) = modulus {
-                compliance = compliance.with_modulus(m);
-            }
             let f = Flexure {
                 from: b.from.map_or(Body::Ground, Body::Rigid),
                 to: b.to.map_or(Body::Ground, Body::Rigid),
                 start,
                 axis: [dx / l, dy / l],
                 length: l,
-                compliance,
+                compliance: beam_compliance(l, thickness, d.width, &self.material),
             };
             join(
                 f,
+                modulus,
                 first,
                 extent.then_some(&mut *points),
                 &mut network.flexures,
@@ -951,14 +945,19 @@ impl NetworkModel {
     }
 }
 
-/// `f` added to `flexures`: its ends the reference points of the bodies that have none yet,
-/// and among the described `points` when they are kept.
+/// `f` added to `flexures`, its compliance at the evaluation's modulus where one is given:
+/// its ends the reference points of the bodies that have none yet, and among the described
+/// `points` when they are kept.
 fn join<D: Scalar>(
-    f: Flexure<D>,
+    mut f: Flexure<D>,
+    modulus: Option<D>,
     first: &mut [Option<[D; 2]>],
     points: Option<&mut Vec<[D; 2]>>,
     flexures: &mut Vec<Flexure<D>>,
 ) {
+    if let Some(m) = modulus {
+        f.compliance = f.compliance.with_modulus(m);
+    }
     let end = f.start_plus_length();
     for (body, p) in [(f.from, f.start), (f.to, end)] {
         if let Body::Rigid(b) = body {
