@@ -140,9 +140,11 @@ impl HighFidelity for FeFidelity<'_> {
         match self.counterpart(&analysis, output) {
             None => false,
             Some(FeCounterpart::ActuationForce) => true,
-            Some(FeCounterpart::Output(id)) => {
-                self.settings.modal || !analysis.outputs[id.0].quantity.is_modal()
-            }
+            // a part may leave out an output its model has (a mode it cannot check)
+            Some(FeCounterpart::Output(id)) => analysis
+                .outputs
+                .get(id.0)
+                .is_some_and(|o| self.settings.modal || !o.quantity.is_modal()),
         }
     }
 

@@ -150,10 +150,24 @@ const F1_LIMIT: &str =
 /// give them (issue 25).
 #[test]
 fn a_frequency_the_network_cannot_give_is_refused_with_why() {
-    // a quarter holds only the modes symmetric about its axes
-    let (key, shown) = refused_in(FILE, &[("\n[part]\n", F1_LIMIT)]);
+    // a quarter standing on its output's image, its input across no axis: the stack has no
+    // far end
+    let (key, shown) = refused_in(
+        FILE,
+        &[
+            ("\n[part]\n", F1_LIMIT),
+            (
+                "preload = \"40 N\"",
+                "preload = \"40 N\"\nstiffness = \"20 N/um\"",
+            ),
+            ("across = \"y\"\n", ""),
+        ],
+    );
     assert!(key.starts_with("constraints["), "{key}: {shown}");
-    assert!(shown.contains("mirror axes"), "{shown}");
+    assert!(
+        shown.contains("the stack's far end has no place"),
+        "{shown}"
+    );
     // the input stands on the actuator in every mode
     let (key, shown) = refused_in(
         LEVER,

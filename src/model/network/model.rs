@@ -23,7 +23,7 @@ use std::cell::RefCell;
 use std::convert::Infallible;
 
 use super::file::{Axis, Description, HingeDescription, Keyed, Point};
-use super::modes::{Inertia, ModeError};
+use super::modes::{described_piece, Inertia, ModeError};
 use super::structure::beam_compliance;
 use super::structure::{
     Body, Displacements, Dof, Flexure, Load, Network, NetworkError, SolveBuffers, Spring,
@@ -310,8 +310,14 @@ impl NetworkModel {
                 Frequency,
                 format!(
                     "natural frequency of mode {} (the bodies' masses from their outlines or links, \
-                     the outputs' payloads; the flexures massless; the actuator a spring)",
-                    i + 1
+                     the outputs' payloads; the flexures massless; the actuator a spring){}",
+                    i + 1,
+                    if d.mirror.is_empty() {
+                        ""
+                    } else {
+                        "; of the modes symmetric about the mirror axes, or, on a part standing \
+                         on an output's image, about the other axis"
+                    }
                 ),
             );
         }
@@ -333,15 +339,7 @@ impl NetworkModel {
                 }
             })
             .collect();
-        let mut held = Vec::new();
-        for (b, body) in d.bodies.iter().enumerate() {
-            for a in &body.on_axis {
-                held.push((b, if *a == Axis::X { Dof::Y } else { Dof::X }));
-                held.push((b, Dof::Rotation));
-            }
-        }
-        held.sort_by_key(|&(b, dof)| (b, dof as usize));
-        held.dedup();
+        let held = axis_holds(d, None);
         let mut fit = Vec::new();
         for hinge in &d.hinges {
             // a range of fit binds a ratio of parameters: only where each dimension is one
@@ -832,6 +830,49 @@ impl NetworkModel {
         Ok(())
     }
 
+    /// How many modes [`Self::frequencies`] finds: the degrees of freedom of the described
+    /// part, or of the whole about the axis its mounting stands across.
+    fn mode_dofs(&self) -> usize {
+        let d = &self.description;
+        let Some((port, line)) = self.mounting() else {
+            return 3 * d.bodies.len() - self.held.len();
+        };
+        let mount = if port == 0 {
+            d.input.body
+        } else {
+            d.outputs[0].body
+        };
+        let held = axis_holds(d, Some(line));
+        let mut dofs = 3 * d.bodies.len() - held.len();
+        for (b, body) in d.bodies.iter().enumerate() {
+            if b != mount && !body.on_axis.contains(&line) {
+                dofs += 3 - held.iter().filter(|h| h.0 == b).count();
+            }
+        }
+        dofs
+    }
+
+    /// Whether a hinge or a beam joins the ground.
+    fn grounded(&self) -> bool {
+        let d = &self.description;
+        d.hinges.iter().any(|h| h.from.is_none() || h.to.is_none())
+            || d.beams.iter().any(|b| b.from.is_none() || b.to.is_none())
+    }
+
+    /// The port whose image across its axis holds a part with mirror axes and no ground:
+    /// the first output's, else the input's, as the part's check clamps it. `None` where
+    /// the ground holds the part, or there are no mirror axes.
+    fn mounting(&self) -> Option<(usize, Axis)> {
+        let d = &self.description;
+        if d.mirror.is_empty() || self.grounded() {
+            return None;
+        }
+        d.outputs[0]
+            .across
+            .map(|a| (1, a))
+            .or(d.input.across.map(|a| (0, a)))
+    }
+
     /// Whether the first output is written as the input: the same body and the same
     /// expressions for its point and direction (a guide's stage read where it is pushed).
     fn first_output_is_input(&self) -> bool {
@@ -861,19 +902,44 @@ impl NetworkModel {
     /// first output's payload at its point, the actuator a spring to the ground at the
     /// input along its direction (the stack's far end on the base), the flexures massless
     /// ([`super::modes`]). [`Model::unavailable`] has checked that every body has a shape
-    /// and that there are no mirror axes.
+    /// and that the part has a mounting.
+    ///
+    /// With mirror axes these are the modes symmetric about them, the described part
+    /// carrying its share of each body across an axis ([`described_piece`]). A grounded
+    /// part's payload rides on each image of the first output's face, as the symmetry has
+    /// it. A part without ground stands on the image of a port across an axis
+    /// ([`Self::mounting`]), which breaks the symmetry about that axis: the described part
+    /// is joined to its image across it, that port's image the ground
+    /// ([`Network::unfolded`]), and the payload rides on the port's face alone. The modes
+    /// are then those of the whole part symmetric about the other axis, as the FE check
+    /// solves them on its half.
     fn frequencies<D: Scalar>(&self, e: &Evaluated<D>, count: usize) -> Result<Vec<D>, String> {
         let d = &self.description;
         let (density, width) = (self.material.density, d.width);
+        let mounting = self.mounting();
+        let unfold = mounting.map(|(_, axis)| axis);
+        let mut images = Vec::new();
         let mut inertia: Vec<Inertia<D>> = d
             .bodies
             .iter()
             .enumerate()
-            .map(|(b, _)| {
+            .map(|(b, body)| {
                 let points = &e.points[e.offsets[b]..e.offsets[b + 1]];
+                let axes: Vec<bool> = body.on_axis.iter().map(|a| *a == Axis::X).collect();
                 match e.link_widths[b] {
-                    Some(t) => Inertia::link(points[0], points[1], t, density, width),
-                    None if points.len() >= 3 => Inertia::polygon(points, density, width),
+                    Some(t) if axes.is_empty() => {
+                        Inertia::link(points[0], points[1], t, density, width)
+                    }
+                    Some(t) => {
+                        let band = link_band(points[0], points[1], t);
+                        Inertia::polygon(&described_piece(&band, &axes), density, width)
+                    }
+                    None if points.len() >= 3 && axes.is_empty() => {
+                        Inertia::polygon(points, density, width)
+                    }
+                    None if points.len() >= 3 => {
+                        Inertia::polygon(&described_piece(points, &axes), density, width)
+                    }
                     None => Inertia {
                         mass: D::from(0.0),
                         centroid: e.network.references[b],
@@ -882,10 +948,6 @@ impl NetworkModel {
                 }
             })
             .collect();
-        for (o, port) in d.outputs.iter().enumerate() {
-            let (body, at, _) = e.ports[o + 1];
-            inertia[body] = inertia[body].with_point_mass(port.payload, at);
-        }
         // each beam's mass lumped at its ends, half to each body (the consistent mass of a
         // frame element would couple the bodies; the lumped one keeps them apart, and is
         // close while a beam weighs little against the bodies it joins)
@@ -908,12 +970,39 @@ impl NetworkModel {
                 stiffness: D::from(k * e.read[0] * e.share[0]),
             });
         }
+        let mut payload_share = e.share[1];
+        if let Some((port, line)) = mounting {
+            let flip_y = line == Axis::X;
+            let across: Vec<bool> = d.bodies.iter().map(|b| b.on_axis.contains(&line)).collect();
+            let held = axis_holds(d, unfold);
+            let (whole, image) = network.unfolded(flip_y, &across, &held, e.ports[port].0);
+            for (b, im) in image.iter().enumerate() {
+                match *im {
+                    Body::Rigid(i) if i == b => inertia[b] = inertia[b].doubled(flip_y),
+                    Body::Rigid(_) => inertia.push(inertia[b].reflected(flip_y)),
+                    Body::Ground => {}
+                }
+            }
+            if across[d.outputs[0].body] {
+                payload_share *= 2.0;
+            }
+            network = whole;
+            images = image;
+        }
+        let (body, at, _) = e.ports[1];
+        inertia[body] = inertia[body].with_point_mass(d.outputs[0].payload * payload_share, at);
         let modes = network.modes(&inertia, count).map_err(|err| match err {
             ModeError::Network(err) => self.network_error(err),
-            ModeError::Massless { body } => format!(
-                "body \"{}\" ({}) has no mass where it can move",
-                d.bodies[body].name, d.bodies[body].key
-            ),
+            ModeError::Massless { body } => {
+                // an image is named by the body it images
+                let b = (0..d.bodies.len())
+                    .find(|&b| body == b || images.get(b) == Some(&Body::Rigid(body)))
+                    .unwrap_or(0);
+                format!(
+                    "body \"{}\" ({}) has no mass where it can move",
+                    d.bodies[b].name, d.bodies[b].key
+                )
+            }
         })?;
         if modes.len() < count {
             return Err(format!(
@@ -988,6 +1077,34 @@ impl Message for Infallible {
     fn message(self) -> String {
         match self {}
     }
+}
+
+/// The degrees of freedom the mirror axes hold (all but `except`), sorted: a body across
+/// an axis keeps its motion across it and its rotation at zero.
+fn axis_holds(d: &Description, except: Option<Axis>) -> Vec<(usize, Dof)> {
+    let mut held = Vec::new();
+    for (b, body) in d.bodies.iter().enumerate() {
+        for a in body.on_axis.iter().filter(|&&a| Some(a) != except) {
+            held.push((b, if *a == Axis::X { Dof::Y } else { Dof::X }));
+            held.push((b, Dof::Rotation));
+        }
+    }
+    held.sort_by_key(|&(b, dof)| (b, dof as usize));
+    held.dedup();
+    held
+}
+
+/// The rectangle `thickness` wide around the segment `a b`, counterclockwise.
+fn link_band<D: Scalar>(a: [D; 2], b: [D; 2], thickness: D) -> Vec<[D; 2]> {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let scale = thickness * 0.5 / (dx * dx + dy * dy).sqrt();
+    let (nx, ny) = (-dy * scale, dx * scale);
+    vec![
+        [a[0] - nx, a[1] - ny],
+        [b[0] - nx, b[1] - ny],
+        [b[0] + nx, b[1] + ny],
+        [a[0] + nx, a[1] + ny],
+    ]
 }
 
 /// What an expression of the description is, for [`NetworkModel::mirror`]: how its value
@@ -1243,12 +1360,23 @@ impl Model for NetworkModel {
                  (e.g. \"2810 kg/m3\") or a preset"
             ));
         }
-        if !d.mirror.is_empty() {
-            return Some(format!(
-                "output \"{name}\": the natural frequencies of a network with mirror axes are not \
-                 computed yet (its described part holds only the modes symmetric about them): \
-                 describe the whole mechanism, without `network.mirror`"
-            ));
+        if !d.mirror.is_empty() && !self.grounded() {
+            match self.mounting() {
+                None => {
+                    return Some(format!(
+                        "output \"{name}\": the part has no ground, and neither its input nor \
+                         its first output is across a mirror axis: nothing holds it"
+                    ))
+                }
+                Some((1, _)) if d.input.across.is_none() => {
+                    return Some(format!(
+                        "output \"{name}\": the part stands on the first output's image, and \
+                         the input is across no mirror axis, so the stack's far end has no \
+                         place: give `network.input.across` or join a hinge to the ground"
+                    ))
+                }
+                _ => {}
+            }
         }
         if self.actuator.stiffness.is_none() {
             return Some(format!(
@@ -1267,7 +1395,7 @@ impl Model for NetworkModel {
                 body.name, body.key
             ));
         }
-        let dofs = 3 * d.bodies.len() - self.held.len();
+        let dofs = self.mode_dofs();
         if i >= dofs {
             return Some(format!(
                 "output \"{name}\": the network has {dofs} degrees of freedom, so {dofs} modes"

@@ -13,7 +13,7 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
-use super::structure::{Network, NetworkError};
+use super::structure::{Body, Dof, Flexure, Network, NetworkError, Spring};
 use crate::model::scalar::Scalar;
 
 /// A body's mass (kg), its centroid (m) and its moment of inertia about the centroid
@@ -76,6 +76,29 @@ impl<D: Scalar> Inertia<D> {
         }
     }
 
+    /// Its image in the line `y = 0` (`flip_y`) or `x = 0`.
+    pub fn reflected(self, flip_y: bool) -> Self {
+        let [x, y] = self.centroid;
+        Inertia {
+            centroid: if flip_y { [x, -y] } else { [-x, y] },
+            ..self
+        }
+    }
+
+    /// This body joined to its image in the line `y = 0` (`flip_y`) or `x = 0`: twice the
+    /// mass, the centroid on the line, the moment by Steiner's rule from each half's.
+    pub fn doubled(self, flip_y: bool) -> Self {
+        let k = usize::from(flip_y);
+        let d = self.centroid[k];
+        let mut centroid = self.centroid;
+        centroid[k] = D::from(0.0);
+        Inertia {
+            mass: self.mass * 2.0,
+            centroid,
+            moment: (self.moment + self.mass * d * d) * 2.0,
+        }
+    }
+
     /// This body with a point mass `m` added at `at`: a constant (a payload) or one of the
     /// design (a beam's end's share).
     pub fn with_point_mass(self, m: impl Into<D>, at: [D; 2]) -> Self {
@@ -98,6 +121,54 @@ impl<D: Scalar> Inertia<D> {
             moment: self.moment + self.mass * d2(self.centroid) + d2(at) * m,
         }
     }
+}
+
+/// The piece of a body's outline that the described part holds of it, for a body that lies
+/// across mirror axes: about each axis (`true` the line `y = 0`, `false` the line `x = 0`),
+/// the larger of the outline's two sides. The whole body is the outline joined to its
+/// images about those axes, of which the described part carries one share per axis: half of
+/// an outline drawn across the axis (symmetric about it), all of one drawn to the axis.
+/// Each side is cut by the Sutherland-Hodgman rule (Sutherland and Hodgman, "Reentrant
+/// polygon clipping", Comm. ACM 17 (1974) 32-42), generic over the scalar so that the mass
+/// keeps its derivatives.
+pub fn described_piece<D: Scalar>(points: &[[D; 2]], across_y0: &[bool]) -> Vec<[D; 2]> {
+    let mut piece = points.to_vec();
+    for &y0 in across_y0 {
+        let k = usize::from(y0);
+        let sides = [1.0, -1.0].map(|sign| clip(&piece, k, sign));
+        let area = |p: &[[D; 2]]| {
+            let mut a = 0.0;
+            for (i, u) in p.iter().enumerate() {
+                let v = p[(i + 1) % p.len()];
+                a += u[0].re() * v[1].re() - v[0].re() * u[1].re();
+            }
+            a.abs()
+        };
+        let [a, b] = sides;
+        piece = if area(&b) > area(&a) { b } else { a };
+    }
+    piece
+}
+
+/// The part of the polygon where `sign * p[k] >= 0`.
+fn clip<D: Scalar>(points: &[[D; 2]], k: usize, sign: f64) -> Vec<[D; 2]> {
+    let mut out = Vec::with_capacity(points.len() + 2);
+    for (i, &p) in points.iter().enumerate() {
+        let q = points[(i + 1) % points.len()];
+        let (cp, cq) = (p[k] * sign, q[k] * sign);
+        if cp.re() >= 0.0 {
+            out.push(p);
+        }
+        // only an edge that crosses the line strictly adds a point: a vertex on it is kept
+        // as a vertex, not doubled
+        if (cp.re() > 0.0 && cq.re() < 0.0) || (cp.re() < 0.0 && cq.re() > 0.0) {
+            let t = cp / (cp - cq);
+            let mut x = [p[0] + (q[0] - p[0]) * t, p[1] + (q[1] - p[1]) * t];
+            x[k] = D::from(0.0);
+            out.push(x);
+        }
+    }
+    out
 }
 
 /// One mode: its frequency (Hz) and its shape, each body's `(u, v, theta)` at its
@@ -160,11 +231,95 @@ impl<D: Scalar> Network<D> {
         m
     }
 
+    /// The described part joined to its image in the line `y = 0` (`flip_y`) or `x = 0`: the
+    /// whole part about that line, standing on the image of body `mount`, which is the
+    /// ground. The bodies `across` the line are their own images, whose holds become
+    /// `held` (the holds of the other mirror axis, which every body and its image keep);
+    /// every other body gets an image, every flexure and spring its image between the
+    /// bodies' images (a spring on a body across the line its own, at twice the stiffness;
+    /// on the mount, none). A flexure's image has the same compliance: the reflection
+    /// flips its frame's lateral axis and its rotation together, which leaves `c23`.
+    /// Returns the network and each body's image.
+    pub fn unfolded(
+        &self,
+        flip_y: bool,
+        across: &[bool],
+        held: &[(usize, Dof)],
+        mount: usize,
+    ) -> (Network<D>, Vec<Body>) {
+        let reflect = |p: [D; 2]| if flip_y { [p[0], -p[1]] } else { [-p[0], p[1]] };
+        let mut references = self.references.clone();
+        let image: Vec<Body> = (0..self.references.len())
+            .map(|b| {
+                if across[b] {
+                    Body::Rigid(b)
+                } else if b == mount {
+                    Body::Ground
+                } else {
+                    references.push(reflect(self.references[b]));
+                    Body::Rigid(references.len() - 1)
+                }
+            })
+            .collect();
+        let map = |body: Body| match body {
+            Body::Ground => Body::Ground,
+            Body::Rigid(b) => image[b],
+        };
+        let mut flexures = self.flexures.clone();
+        flexures.extend(self.flexures.iter().map(|f| Flexure {
+            from: map(f.from),
+            to: map(f.to),
+            start: reflect(f.start),
+            axis: reflect(f.axis),
+            ..*f
+        }));
+        let mut springs = Vec::new();
+        for s in &self.springs {
+            match image[s.body] {
+                Body::Rigid(b) if b == s.body => springs.push(Spring {
+                    stiffness: s.stiffness * 2.0,
+                    ..*s
+                }),
+                Body::Rigid(b) => {
+                    springs.push(*s);
+                    springs.push(Spring {
+                        body: b,
+                        point: reflect(s.point),
+                        direction: reflect(s.direction),
+                        stiffness: s.stiffness,
+                    });
+                }
+                Body::Ground => springs.push(*s),
+            }
+        }
+        let mut all_held = held.to_vec();
+        for &(b, dof) in held {
+            if let Body::Rigid(i) = image[b] {
+                if i != b {
+                    all_held.push((i, dof));
+                }
+            }
+        }
+        all_held.sort_by_key(|&(b, dof)| (b, dof as usize));
+        let network = Network {
+            references,
+            flexures,
+            springs,
+            held: all_held,
+        };
+        (network, image)
+    }
+
     /// The `count` lowest modes (fewer where the network has fewer degrees of freedom).
     pub fn modes(&self, inertia: &[Inertia<D>], count: usize) -> Result<Vec<Mode<D>>, ModeError> {
+        self.modes_with_mass(self.mass_matrix(inertia), count)
+    }
+
+    /// The `count` lowest modes against the mass matrix `m` (row-major `3n x 3n`, as
+    /// [`Self::mass_matrix`] gives it, with whatever else moves with the bodies added).
+    pub fn modes_with_mass(&self, m: Vec<D>, count: usize) -> Result<Vec<Mode<D>>, ModeError> {
         let n = 3 * self.references.len();
         let k = self.stiffness().map_err(ModeError::Network)?;
-        let m = self.mass_matrix(inertia);
         // the degrees of freedom not held
         let free: Vec<usize> = (0..n)
             .filter(|&j| !self.held.iter().any(|&(b, d)| 3 * b + d as usize == j))
@@ -222,7 +377,6 @@ impl<D: Scalar> Network<D> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::structure::{Body, Dof, Flexure, Spring};
     use super::*;
     use crate::model::hinge::HingeKind;
     use crate::model::material::Material;

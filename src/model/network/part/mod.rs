@@ -173,21 +173,43 @@ impl PartMaker for NetworkPart {
 }
 
 /// The natural modes beside the static check, as the model's `f1` has them
-/// ([`super::model`]): the first output's face carries the payload, the actuator is a spring
-/// from the input's face to the ground (the part's clamped faces, where the stack's far end
-/// sits on the base). Only for a network without mirror axes, whose model has modes, and
-/// with the actuator's stiffness.
-fn modes_check(check: &mut Analysis) {
+/// ([`super::model`]): the first output's face carries the payload. Without mirror axes the
+/// actuator is a spring from the input's face to the ground (the part's clamped faces,
+/// where the stack's far end sits on the base), and the modes are the whole part's. With
+/// them the actuator is a spring between the input's face and its image across the y
+/// axis, and the modes are those symmetric about that axis, which the check solves on the
+/// right half: for a grounded part mirrored about y alone (the model's symmetric modes), or
+/// a part standing on its first output's image across the x axis (the model's symmetric
+/// modes with the part's translation, an upper bound of these). Only with the actuator's
+/// stiffness; `None` where the check cannot hold the model's modes, which are then left
+/// without an FE counterpart.
+fn modes_check(check: &mut Analysis, d: &Description, grounded: bool) -> Option<()> {
     let input = &check.cases[0].loads[0];
     let (face, direction) = (input.face.clone(), input.direction);
     let payload = check.cases[1].loads[0].face.clone();
+    let (far, start) = if d.mirror.is_empty() {
+        ("clamp".to_string(), 0)
+    } else {
+        let holds = if grounded {
+            !d.mirror.contains(&Axis::X)
+        } else {
+            d.outputs[0].across == Some(Axis::X)
+        };
+        if d.input.across != Some(Axis::Y) || !holds {
+            return None;
+        }
+        let image = format!("{face}{}", Image::across(Axis::Y).suffix());
+        check.cases[0].loads.iter().find(|l| l.face == image)?;
+        // the output's load bends the part much as its symmetric mode does
+        (image, 1)
+    };
     check.modal = Some(Modal {
         payload,
         actuator: Some(FeSpring {
-            faces: [face, "clamp".into()],
+            faces: [face, far],
             direction,
         }),
-        start: 0,
+        start,
     });
     debug_assert_eq!(check.outputs.len(), FE_F1.0);
     check.outputs.push(FeOutput {
@@ -200,6 +222,7 @@ fn modes_check(check: &mut Analysis) {
         display: None,
         analytic: None,
     });
+    Some(())
 }
 
 /// The description's expressions evaluated at `x` (SI) in f64.
@@ -549,8 +572,8 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
     }
     let grounded = faces.iter().any(|f| f.name == "clamp");
     let mut check = ports_check(&placed, &images, grounded, &mut faces).map_err(|e| vec![e])?;
-    if d.mirror.is_empty() && part.actuation.stiffness.is_some() {
-        modes_check(&mut check);
+    if part.actuation.stiffness.is_some() {
+        modes_check(&mut check, d, grounded);
     }
     Ok(PartSpec {
         width: d.width,
