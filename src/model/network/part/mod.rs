@@ -215,8 +215,13 @@ fn modes_check(check: &mut Analysis, d: &Description, grounded: bool) -> Option<
     check.outputs.push(FeOutput {
         name: "fe_f1",
         dimension: Dimension::Frequency,
-        meaning: "the part's lowest natural frequency, the actuator a spring from the input face \
-                  to the ground, the payload on the first output's face",
+        meaning: if d.mirror.is_empty() {
+            "the part's lowest natural frequency, the actuator a spring from the input face to \
+             the ground, the payload on the first output's face"
+        } else {
+            "the part's lowest natural frequency of the modes symmetric about the y axis, the \
+             actuator a spring between the input faces, the payload on the first output's face"
+        },
         quantity: Quantity::SymmetricFrequency,
         converges: true,
         display: None,
