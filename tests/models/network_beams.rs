@@ -310,21 +310,3 @@ fn a_beams_faults_are_named_by_key() {
         assert!(shown.contains("middle of the bounds"), "{shown}");
     }
 }
-
-/// The part does not draw beams yet: a beam network's part is refused, the beam named.
-#[test]
-fn a_beam_networks_part_is_refused_naming_the_beam() {
-    let text = network(&beam("leaf", "0"), ["L", "0"]) + "\n[part]\n";
-    let p = parse(&text);
-    let refused = p
-        .mechanism()
-        .part_spec(&[20e-3, 1e-3])
-        .unwrap()
-        .unwrap_err();
-    assert!(
-        refused
-            .iter()
-            .any(|e| e.contains("beam \"leaf\" (network.beams[0])") && e.contains("beams yet")),
-        "{refused:?}"
-    );
-}

@@ -17,6 +17,7 @@ mod fe_verify;
 mod first_mode;
 mod link_width;
 mod meshing;
+mod network_beams;
 mod network_modes;
 mod network_part;
 mod part;

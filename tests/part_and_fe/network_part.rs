@@ -193,7 +193,7 @@ fn within_bands(file: &str, p: &Problem, x: &[f64], v: &Verification, bands: [(f
 /// CalculiX on the whole deck of `model` (its elements straightened, as both integrate them
 /// exactly), plane stress: each measure as flexopt's to 1e-6 of the larger of it and the
 /// first (a guide's lateral motion is a difference of large numbers).
-fn ccx_agrees(v: &Verification, model: &mut flexopt::fe::verify::FullModel, name: &str) {
+pub(crate) fn ccx_agrees(v: &Verification, model: &mut flexopt::fe::verify::FullModel, name: &str) {
     if !crate::common::peer_present(
         std::process::Command::new("ccx").arg("-v").output().is_ok(),
         "ccx (Debian package calculix-ccx)",
@@ -279,14 +279,14 @@ fn checked() -> Verification {
 }
 
 /// The model's output `name` at `x`.
-fn analytic(p: &Problem, x: &[f64], name: &str) -> f64 {
+pub(crate) fn analytic(p: &Problem, x: &[f64], name: &str) -> f64 {
     let m = p.model();
     let mut out = [0.0];
     m.evaluate(x, &[m.output_index(name).unwrap()], &mut out);
     out[0]
 }
 
-fn fe(v: &Verification, f: Fidelity, name: &str) -> f64 {
+pub(crate) fn fe(v: &Verification, f: Fidelity, name: &str) -> f64 {
     let o = v.outputs(f).unwrap();
     o.iter().find(|o| o.name == name).unwrap().estimate.value
 }

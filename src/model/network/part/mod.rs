@@ -5,7 +5,7 @@
 //!
 //! - each body as the file draws it: its outline (split into triangles where it is not
 //!   convex, as the part's solids are convex), or its link, a band of its width around the
-//!   segment; a body drawn by neither is the convex hull of its hinges' pads;
+//!   segment; a body drawn by neither is the convex hull of its hinges' and beams' pads;
 //! - each hinge's thin section from `start` along `angle` for the kind's length, the model's
 //!   hinge, with the true profile of its kind ([`crate::model::hinge::HingeKind::outline`]);
 //!   its solid runs the fillet radius beyond both ends (a strip's; a notch meets its bodies
@@ -13,7 +13,11 @@
 //!   `root/2 + fillet + pad_margin` to each side: the pad is joined to the hinge and to the
 //!   body, so that a body drawn up to the hinge's end meets it through a face the fillets
 //!   land on;
-//! - the ground is its hinges' pads, each held on its far side (the faces `clamp`).
+//! - each flexible beam from `start` to `end`, cut as the strip hinge of its length and
+//!   thickness is: a flexure to the checks and the finite elements as a hinge is
+//!   ([`flexures`] says why);
+//! - the ground is its hinges' and beams' pads, each held on its far side (the faces
+//!   `clamp`), and its outline where the file draws one.
 //!
 //! A port's face lies where the line through the port along its direction leaves the body
 //! on the side the port's force comes from (the actuator's side): every point of that line
@@ -24,8 +28,8 @@
 //! The check ([`crate::part::analysis`]): the clamped faces held; the test force on the input
 //! face along the input's direction (the actuation case), the input's and the first output's
 //! motions read under it; then on the first output's face, the input free. So `fe_k_in`,
-//! `fe_amplification`, `fe_k_out` and the hinges' beam and peak stresses under the
-//! actuation, each beside the model's output of the same meaning.
+//! `fe_amplification`, `fe_k_out` and the hinges' and beams' section and peak stresses
+//! under the actuation, each beside the model's output of the same meaning.
 //!
 //! Mirror axes: the whole part is the described one and its images about each axis (and
 //! both). A body across an axis is drawn with its image about it as one solid (the convex
@@ -43,6 +47,7 @@
 use serde::Deserialize;
 
 use super::file::{Axis, Description, Keyed, Point};
+use crate::model::hinge::HingeKind;
 use crate::model::{Dimension, PartMaker};
 use crate::part::analysis::{
     Analysis, FeCounterpart, FeOutput, FeOutputId, Modal, Quantity, Spring as FeSpring,
@@ -53,12 +58,14 @@ use crate::vocab::schema::{Measured, NonNegativeLength, PositiveLength};
 use crate::vocab::sections::Sections;
 
 mod faces;
+mod flexures;
 mod images;
 mod plane;
 
 use faces::{port_face, ports_check, FaceProblem, PlacedPort};
+use flexures::{CutHinge, Named};
 use images::Image;
-use plane::{add, band, convex_pieces, exposed, scale, P};
+use plane::{band, convex_pieces, exposed, scale, sub, P};
 
 /// `[part]` of a network: a file with this section has a part.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -161,8 +168,9 @@ impl PartMaker for NetworkPart {
         } else if is(c.k_out) {
             Some(FeCounterpart::Output(FE_K_OUT))
         } else if is(c.stress_max) {
-            // the hinges' beam stress with each notch's concentration: the section stress
-            // is its FE counterpart for strips, whose concentration is 1
+            // the hinges' beam stress with each notch's concentration, and the beams' with
+            // none: the section stress is its FE counterpart for strips and beams, whose
+            // concentration is 1
             Some(FeCounterpart::Output(FE_STRESS_SECTION))
         } else if is(c.f1) {
             Some(FeCounterpart::Output(FE_F1))
@@ -275,27 +283,11 @@ impl<'a> Values<'a> {
 /// A physical body of the whole part: its slot (0 the ground) and which of its images.
 type BodyKey = (usize, Image);
 
-/// A described hinge as cut: its solid, its site and its two pads with their bodies.
-struct CutHinge {
-    solid: Solid,
-    site: HingeSite,
-    from: usize,
-    to: usize,
-    /// Each pad and, for a pad on the ground, its clamped side.
-    pads: [(Solid, Option<(P, P)>); 2],
-}
-
 /// The part of design `x`: the described part, then its images about the mirror axes.
 fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
     let d = &part.description;
     let s = &part.settings;
     let v = Values::new(d, x);
-    if let Some(b) = d.beams.first() {
-        return Err(vec![format!(
-            "beam \"{}\" ({}): the part does not draw flexible beams yet",
-            b.name, b.key
-        )]);
-    }
     let one = |r: Result<P, String>| r.map_err(|e| vec![e]);
     let slot = |b: Option<usize>| b.map_or(0, |b| b + 1);
     // the axes each body (by slot) lies across: a body's images about them are itself
@@ -303,7 +295,7 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
         .chain(d.bodies.iter().map(|b| b.on_axis.as_slice()))
         .collect();
 
-    // each hinge: its solid and its two pads
+    // each hinge and each beam: its solid and its two pads
     let mut cut: Vec<CutHinge> = Vec::new();
     for h in &d.hinges {
         let mut dims = Vec::with_capacity(h.dimensions.len());
@@ -317,66 +309,45 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
         }
         let start = one(v.point(&h.start))?;
         let angle = v.eval(&h.angle).map_err(|e| vec![e])?;
+        let named = Named {
+            what: "hinge",
+            name: &h.name,
+        };
         let u = [angle.cos(), angle.sin()];
-        let n = [-u[1], u[0]];
-        let length = h.kind.length(&dims);
-        let end = add(start, scale(u, length));
-        let root = h.kind.root_thickness(&dims);
-        let fillet = if h.kind.has_sharp_roots() {
-            s.fillet_radius
-        } else {
-            0.0
+        let bodies = (slot(h.from), slot(h.to));
+        cut.push(flexures::cut(named, h.kind, &dims, start, u, bodies, s));
+    }
+    for b in &d.beams {
+        let (start, end) = (one(v.point(&b.start))?, one(v.point(&b.end))?);
+        let thickness = v.length(&b.thickness).map_err(|e| vec![e])?;
+        let along = sub(end, start);
+        let length = along[0].hypot(along[1]);
+        // the model refuses these at the design's middle; elsewhere they leave its domain
+        if !(length > 0.0 && thickness > 0.0) {
+            return Err(vec![format!(
+                "beam \"{}\" ({}): its length {length:e} m and thickness {thickness:e} m \
+                 must be positive",
+                b.name, b.key
+            )]);
+        }
+        let named = Named {
+            what: "beam",
+            name: &b.name,
         };
-        let (f0, f1) = (add(start, scale(u, -fillet)), add(end, scale(u, fillet)));
-        let half = 0.5 * root + fillet + s.pad_margin;
-        let body = band(f0, f1, 0.5 * root);
-        // the pads: behind each face, their face edge holding the hinge's corners
-        let pad_from = vec![
-            add(add(f0, scale(u, -s.pad)), scale(n, -half)),
-            add(f0, scale(n, -half)),
-            body[0],
-            body[3],
-            add(f0, scale(n, half)),
-            add(add(f0, scale(u, -s.pad)), scale(n, half)),
-        ];
-        let pad_to = vec![
-            add(f1, scale(n, -half)),
-            add(add(f1, scale(u, s.pad)), scale(n, -half)),
-            add(add(f1, scale(u, s.pad)), scale(n, half)),
-            add(f1, scale(n, half)),
-            body[2],
-            body[1],
-        ];
-        // the ground is held on a pad's far side, along the pad's outline
-        let clamp_from = h.from.is_none().then(|| (pad_from[5], pad_from[0]));
-        let clamp_to = h.to.is_none().then(|| (pad_to[1], pad_to[2]));
-        let pad = |side: &str, points| Solid {
-            name: format!("the pad at hinge {}'s {side}", h.name),
-            points,
-        };
-        cut.push(CutHinge {
-            solid: Solid {
-                name: format!("hinge {}", h.name),
-                points: body,
-            },
-            site: HingeSite {
-                name: h.name.clone(),
-                start,
-                end,
-                thickness: h.kind.least_thickness(&dims),
-                root,
-                fillet,
-                kind: h.kind.name(),
-                profile: h.kind.outline(&dims),
-                solid: 0,
-            },
-            from: slot(h.from),
-            to: slot(h.to),
-            pads: [
-                (pad("start", pad_from), clamp_from),
-                (pad("end", pad_to), clamp_to),
-            ],
-        });
+        let u = scale(along, 1.0 / length);
+        let bodies = (slot(b.from), slot(b.to));
+        // the model's beam is the strip of its length and thickness with Cowper's shear
+        // coefficient: the part cuts the strip
+        let dims = [length, thickness];
+        cut.push(flexures::cut(
+            named,
+            HingeKind::Strip,
+            &dims,
+            start,
+            u,
+            bodies,
+            s,
+        ));
     }
 
     // the bodies as drawn, or the hull of their pads; a body across an axis with its image
@@ -590,9 +561,13 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
         faces,
         annotations: Vec::new(),
         caption: format!(
-            "flexure network: {} bodies, {} hinges{}",
+            "flexure network: {} bodies, {} hinges{}{}",
             d.bodies.len(),
             d.hinges.len(),
+            match d.beams.len() {
+                0 => String::new(),
+                n => format!(", {n} beams"),
+            },
             if images.len() > 1 {
                 format!(", {} images of the described part", images.len())
             } else {
