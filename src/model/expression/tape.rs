@@ -62,6 +62,20 @@ struct Op {
     c: f64,
 }
 
+impl Op {
+    /// Whether `b` is a register this operation reads (for [`Code::Powi`] it is the
+    /// exponent; a function of one argument reads register 0 there, which is an input).
+    fn reads_b(&self) -> bool {
+        matches!(
+            self.code,
+            Code::Add | Code::Sub | Code::Mul | Code::Div | Code::Call(_)
+        )
+    }
+}
+
+/// [`Tape::only`]'s output of an expression it dropped.
+const DROPPED: u32 = u32::MAX;
+
 /// A compiled sub-expression: a register, or a constant not yet placed in one.
 #[derive(Debug, Clone, Copy)]
 enum Value {
@@ -187,6 +201,96 @@ impl Tape {
         }
     }
 
+    /// The tape of the expressions `keep` selects alone: the operations none of them reads
+    /// dropped, the rest in their order (so each kept expression's value is the one the whole
+    /// tape gives, bit for bit). A dropped expression's [`Tape::output`] is no register: an
+    /// evaluation that needs only some of the expressions (a network's statics, not its
+    /// outline) runs this one.
+    pub fn only(&self, keep: impl Fn(usize) -> bool) -> Tape {
+        // the operation that fills each register (inputs: none)
+        let mut filled_by = vec![usize::MAX; self.registers];
+        let mut r = self.inputs;
+        for (i, op) in self.ops.iter().enumerate() {
+            let width = if op.code == Code::SinCos { 2 } else { 1 };
+            filled_by[r..r + width].fill(i);
+            r += width;
+        }
+        let mut live = vec![false; self.ops.len()];
+        let mark = |register: u32, live: &mut Vec<bool>| {
+            if let Some(&i) = filled_by
+                .get(register as usize)
+                .filter(|&&i| i != usize::MAX)
+            {
+                live[i] = true;
+            }
+        };
+        for (k, &o) in self.outputs.iter().enumerate() {
+            if keep(k) {
+                mark(o, &mut live);
+            }
+        }
+        // the operands precede their operations: one sweep from the end marks them all
+        for i in (0..self.ops.len()).rev() {
+            if live[i] {
+                let op = self.ops[i];
+                mark(op.a, &mut live);
+                if op.reads_b() {
+                    mark(op.b, &mut live);
+                }
+            }
+        }
+        let mut renamed: Vec<u32> = (0..self.registers as u32).collect();
+        let (mut ops, mut registers) = (Vec::new(), self.inputs as u32);
+        let mut r = self.inputs;
+        for (op, &live) in self.ops.iter().zip(&live) {
+            let width = if op.code == Code::SinCos { 2 } else { 1 };
+            if live {
+                let mut kept = *op;
+                kept.a = renamed[op.a as usize];
+                if op.reads_b() {
+                    kept.b = renamed[op.b as usize];
+                }
+                for w in 0..width {
+                    renamed[r + w] = registers + w as u32;
+                }
+                registers += width as u32;
+                ops.push(kept);
+            }
+            r += width;
+        }
+        let outputs = self
+            .outputs
+            .iter()
+            .enumerate()
+            .map(|(k, &o)| {
+                if keep(k) {
+                    renamed[o as usize]
+                } else {
+                    DROPPED
+                }
+            })
+            .collect();
+        Tape {
+            inputs: self.inputs,
+            ops,
+            registers: registers as usize,
+            outputs,
+        }
+    }
+
+    /// The value of the `k`-th expression compiled where it is a constant.
+    pub fn constant(&self, k: usize) -> Option<f64> {
+        let mut r = self.inputs;
+        let target = self.outputs[k] as usize;
+        for op in &self.ops {
+            if r == target {
+                return (op.code == Code::Const).then_some(op.c);
+            }
+            r += if op.code == Code::SinCos { 2 } else { 1 };
+        }
+        None
+    }
+
     /// How many registers [`Tape::run`] fills.
     pub fn registers(&self) -> usize {
         self.registers
@@ -283,6 +387,7 @@ impl Tape {
         fine && self
             .outputs
             .iter()
+            .filter(|&&o| o != DROPPED)
             .all(|&o| registers[o as usize].re().is_finite())
     }
 }
@@ -335,6 +440,26 @@ mod tests {
         // `l2*cos(delta2)` once, with one sin_cos of delta2 for every expression
         let one = Tape::compile(&parsed[8..10], 3);
         assert_eq!(one.ops.len(), 4, "{:?}", one.ops);
+        // the odd expressions alone: their values bit for bit, the others' operations gone
+        let odd = tape.only(|k| k % 2 == 1);
+        assert!(odd.ops.len() < tape.ops.len());
+        let mut kept = Vec::new();
+        assert!(odd.run(&jets, &mut kept));
+        for k in (1..parsed.len()).step_by(2) {
+            let (a, b) = (kept[odd.output(k)], dual[tape.output(k)]);
+            assert_eq!(a.re.to_bits(), b.re.to_bits(), "{}", texts[k]);
+            assert!(a.grad == b.grad, "{}", texts[k]);
+        }
+        assert_eq!(odd.outputs[0], DROPPED);
+        assert_eq!(kept.len(), odd.registers());
+        // a constant is known as one
+        let constants: Vec<Expression> = ["-1", "l2", "2*3", "l2 - 1"]
+            .iter()
+            .map(|t| Expression::parse(t, &NAMES).unwrap())
+            .collect();
+        let c = Tape::compile(&constants, 3);
+        let known: Vec<Option<f64>> = (0..4).map(|k| c.constant(k)).collect();
+        assert_eq!(known, [Some(-1.0), None, Some(6.0), None]);
         // a division by zero, a root of a negative number: refused, as the tree refuses
         for text in ["1 / (l2 - t)", "sqrt(delta2 - l2)", "hypot(l2 - t, 0)"] {
             let e = Expression::parse(text, &NAMES).unwrap();

@@ -26,7 +26,7 @@ use super::file::{Axis, Description, HingeDescription, Keyed, Point};
 use super::modes::{described_piece, Inertia, ModeError};
 use super::structure::beam_compliance;
 use super::structure::{
-    Body, Displacements, Dof, Flexure, Load, Network, NetworkError, SolveBuffers, Spring,
+    Body, Case, Displacements, Dof, Flexure, Load, Network, NetworkError, SolveBuffers, Spring,
 };
 use crate::model::expression::Tape;
 use crate::model::fit::FitLimit;
@@ -84,6 +84,13 @@ pub struct NetworkModel {
     fit: Vec<FitLimit>,
     /// Every expression of the description, compiled together (each [`Keyed::slot`]).
     tape: Tape,
+    /// The same without what only the extent and the masses read (each body's outline past
+    /// its first point, the links' widths, the ground's points) and the ports' constant
+    /// directions: the statics' evaluations run this one.
+    statics: Tape,
+    /// Each port's unit direction (input first) where its expressions are constants: the
+    /// same numbers the scalars' normalization gives, found once.
+    directions: Vec<Option<[f64; 2]>>,
     /// The degrees of freedom the mirror axes hold, sorted, the same at every design.
     held: Vec<(usize, Dof)>,
     /// Each expression's [`Role`], by its slot.
@@ -192,6 +199,31 @@ impl NetworkModel {
                 roles.push(*role);
             }
             Tape::compile(all.iter().map(|(e, _)| &e.expression), names)
+        };
+        let directions: Vec<Option<[f64; 2]>> = std::iter::once(&description.input)
+            .chain(&description.outputs)
+            .map(|p| {
+                let [x, y] = &p.direction;
+                let unit = description.unit;
+                constant_direction(tape.constant(x.slot)? * unit, tape.constant(y.slot)? * unit)
+            })
+            .collect();
+        let statics = {
+            let d = &description;
+            let mut unread = vec![false; roles.len()];
+            let mut skip = |e: &Keyed| unread[e.slot] = true;
+            for body in &d.bodies {
+                body.points.iter().skip(1).flatten().for_each(&mut skip);
+                body.link_width.iter().for_each(&mut skip);
+            }
+            d.ground.iter().flatten().for_each(&mut skip);
+            let ports = std::iter::once(&d.input).chain(&d.outputs);
+            for (p, known) in ports.zip(&directions) {
+                if known.is_some() {
+                    p.direction.iter().for_each(&mut skip);
+                }
+            }
+            tape.only(|slot| !unread[slot])
         };
         let mut outputs = Vec::new();
         let mut quantities = Vec::new();
@@ -366,6 +398,8 @@ impl NetworkModel {
             max_of,
             fit,
             tape,
+            statics,
+            directions,
             held,
             roles,
         }
@@ -423,12 +457,13 @@ impl NetworkModel {
             }
         }));
         values.push(D::from(std::f64::consts::PI / 180.0));
-        if self.tape.run(values, registers) {
+        let tape = if extent { &self.tape } else { &self.statics };
+        if tape.run(values, registers) {
             let registers = &*registers;
             self.build(
                 modulus,
                 extent,
-                |e: &Keyed| Ok::<_, Infallible>(registers[self.tape.output(e.slot)]),
+                |e: &Keyed| Ok::<_, Infallible>(registers[tape.output(e.slot)]),
                 evaluated,
                 first,
             )
@@ -492,7 +527,8 @@ impl NetworkModel {
                         .transpose()?,
                 );
             }
-            for p in &body.points {
+            // the statics read a body's first point alone, its reference
+            for p in body.points.iter().take(if extent { usize::MAX } else { 1 }) {
                 let q = point(p).map_err(Message::message)?;
                 if first[b].is_none() {
                     first[b] = Some(q);
@@ -505,10 +541,9 @@ impl NetworkModel {
         if extent {
             offsets.push(points.len());
         }
-        for p in &d.ground {
-            let q = point(p).map_err(Message::message)?;
-            if extent {
-                points.push(q);
+        if extent {
+            for p in &d.ground {
+                points.push(point(p).map_err(Message::message)?);
             }
         }
         network.flexures.clear();
@@ -595,17 +630,22 @@ impl NetworkModel {
         ports.clear();
         read.clear();
         share.clear();
-        for p in std::iter::once(&d.input).chain(&d.outputs) {
-            let [dx, dy] = point(&p.direction).map_err(Message::message)?;
-            let norm = (dx * dx + dy * dy).sqrt();
-            if norm.re() == 0.0 {
-                return Err(format!("port \"{}\": its direction is zero", p.name));
-            }
-            ports.push((
-                p.body,
-                point(&p.at).map_err(Message::message)?,
-                [dx / norm, dy / norm],
-            ));
+        for (p, known) in std::iter::once(&d.input)
+            .chain(&d.outputs)
+            .zip(&self.directions)
+        {
+            let direction = match known {
+                Some(unit) => unit.map(D::from),
+                None => {
+                    let [dx, dy] = point(&p.direction).map_err(Message::message)?;
+                    let norm = (dx * dx + dy * dy).sqrt();
+                    if norm.re() == 0.0 {
+                        return Err(format!("port \"{}\": its direction is zero", p.name));
+                    }
+                    [dx / norm, dy / norm]
+                }
+            };
+            ports.push((p.body, point(&p.at).map_err(Message::message)?, direction));
             read.push(if p.across.is_some() { 2.0 } else { 1.0 });
             share.push(0.5f64.powi(d.bodies[p.body].on_axis.len() as i32));
         }
@@ -687,11 +727,22 @@ impl NetworkModel {
         };
         // the load cases wanted, from one factorization: the input's, the first output's
         let (load_in, load_out) = ([unit_load(0)], [unit_load(1)]);
-        let mut cases: [&[Load<D>]; 2] = [&[], &[]];
+        // the output's case is read at the output alone, or at the input too where the
+        // input's compliance is condensed out
+        let condenses = needs(&|q| matches!(q, KOutActuated | KOutBlocked | BlockedForce));
+        let port_bodies = [e.ports[1].0, e.ports[0].0];
+        let read_out = &port_bodies[..if condenses { 2 } else { 1 }];
+        let mut cases = [Case {
+            loads: &[],
+            read: None,
+        }; 2];
         let mut count = 0;
-        for (needed, loads) in [(needs_input, &load_in), (needs_output, &load_out)] {
+        for (needed, loads, read) in [
+            (needs_input, &load_in, None),
+            (needs_output, &load_out, Some(read_out)),
+        ] {
             if needed {
-                cases[count] = loads;
+                cases[count] = Case { loads, read };
                 count += 1;
             }
         }
@@ -732,8 +783,10 @@ impl NetworkModel {
             let c_ii = w(u_in, 0, 0) + actuator.map_or(0.0, f64::recip);
             (c_oo - c_oi * c_io / c_ii).recip()
         };
-        // the hinges' loads and stresses under the largest actuator force
-        let force = || k_in() * self.actuator.nominal_stroke + self.actuator.preload;
+        // the hinges' loads and stresses under the largest actuator force, found once
+        let largest =
+            w_ii.map(|w| w.recip() * self.actuator.nominal_stroke + self.actuator.preload);
+        let force = || largest.expect("listed");
         let loads = |h: usize| {
             let u = input.as_ref().expect("listed");
             let l = e.network.flexure_loads(h, u);
@@ -1062,6 +1115,19 @@ fn join<D: Scalar>(
     flexures.push(f);
 }
 
+/// The unit direction `(dx, dy)` (m) where a scalar's normalization, by a reciprocal or by
+/// a division, gives the same numbers (both give them for an axis): `None` where they
+/// differ or the direction is zero, and the scalars normalize it at each evaluation.
+fn constant_direction(dx: f64, dy: f64) -> Option<[f64; 2]> {
+    let norm = (dx * dx + dy * dy).sqrt();
+    if norm == 0.0 || !norm.is_finite() {
+        return None;
+    }
+    let inv = 1.0 / norm;
+    let (by_reciprocal, by_division) = ([dx * inv, dy * inv], [dx / norm, dy / norm]);
+    (by_reciprocal == by_division).then_some(by_division)
+}
+
 /// The message of an expression's failure: the trees' own, or none from the tape.
 trait Message {
     fn message(self) -> String;
@@ -1312,7 +1378,12 @@ impl Model for NetworkModel {
             .filter(|&i| !matches!(self.quantities[i], Quantity::Frequency(_)))
             .collect();
         let mut out = vec![0.0; all.len()];
-        self.evaluate_generic(x, None, &all, &mut out).err()
+        self.evaluate_generic(x, None, &all, &mut out)
+            .and_then(|()| {
+                // every expression, the outline's too, which the statics do not read
+                self.at(x, None, true, &mut Work::default())
+            })
+            .err()
     }
 
     /// The description checked at the middle of the bounds: a hinge joined so that a body

@@ -171,6 +171,17 @@ const FREE_PIVOT: f64 = 1e-13;
 pub struct Displacements<'a, D: Clone> {
     pub bodies: Cow<'a, [[D; 3]]>,
     references: &'a [[D; 2]],
+    /// The network's degrees of freedom held, whose motion is zero: the terms they would
+    /// give are left out (the same numbers, but for the sign of a zero).
+    held: &'a [(usize, Dof)],
+}
+
+/// A load case of [`Network::solve_cases_in`]: its loads, and the bodies whose
+/// displacements are read (`None`: every body's).
+#[derive(Debug, Clone, Copy)]
+pub struct Case<'a, D> {
+    pub loads: &'a [Load<D>],
+    pub read: Option<&'a [usize]>,
 }
 
 /// The buffers of [`Network::solve_cases_in`]: the free numbering, the factor, a load
@@ -198,6 +209,7 @@ impl<D> Default for SolveBuffers<D> {
 pub struct Solved<'a, D> {
     moved: &'a [[D; 3]],
     references: &'a [[D; 2]],
+    held: &'a [(usize, Dof)],
 }
 
 impl<'a, D: Clone> Solved<'a, D> {
@@ -207,23 +219,50 @@ impl<'a, D: Clone> Solved<'a, D> {
         Displacements {
             bodies: Cow::Borrowed(&self.moved[c * n..(c + 1) * n]),
             references: self.references,
+            held: self.held,
         }
     }
 }
 
 impl<D: Scalar> Displacements<'_, D> {
-    /// The motion of `point` of `body`: `(u, v, theta)` there.
+    /// Whether `body` moves in `dof` (the ground does not).
+    pub fn moves(&self, body: Body, dof: Dof) -> bool {
+        match body {
+            Body::Ground => false,
+            Body::Rigid(b) => !self.held.contains(&(b, dof)),
+        }
+    }
+
+    /// Whether a point of `body` can move along `axis` ([`Dof::X`] or [`Dof::Y`]): the body
+    /// moves so, or turns.
+    pub fn point_moves(&self, body: Body, axis: Dof) -> bool {
+        self.moves(body, axis) || self.moves(body, Dof::Rotation)
+    }
+
+    /// The motion of `point` of `body`: `(u, v, theta)` there (a body that does not turn
+    /// moves the same everywhere).
+    #[inline]
     pub fn at(&self, body: Body, point: [D; 2]) -> [D; 3] {
         match body {
             Body::Ground => [D::from(0.0); 3],
+            Body::Rigid(b) if !self.moves(body, Dof::Rotation) => self.bodies[b],
             Body::Rigid(b) => transfer(sub(point, self.references[b]), self.bodies[b]),
         }
     }
 
     /// The motion of `point` of `body` along the unit `direction`.
+    #[inline]
     pub fn along(&self, body: Body, point: [D; 2], direction: [D; 2]) -> D {
         let [u, v, _] = self.at(body, point);
-        u * direction[0] + v * direction[1]
+        match (
+            self.point_moves(body, Dof::X),
+            self.point_moves(body, Dof::Y),
+        ) {
+            (true, true) => u * direction[0] + v * direction[1],
+            (true, false) => u * direction[0],
+            (false, true) => v * direction[1],
+            (false, false) => D::from(0.0),
+        }
     }
 }
 
@@ -328,20 +367,26 @@ impl<D: Scalar> Network<D> {
         cases: &[&[Load<D>]],
     ) -> Result<Vec<Displacements<'_, D>>, NetworkError> {
         let mut buffers = SolveBuffers::default();
-        let solved = self.solve_cases_in(cases, &mut buffers)?;
+        let cases: Vec<Case<D>> = cases
+            .iter()
+            .map(|&loads| Case { loads, read: None })
+            .collect();
+        let solved = self.solve_cases_in(&cases, &mut buffers)?;
         Ok((0..cases.len())
             .map(|c| Displacements {
                 bodies: Cow::Owned(solved.case(c).bodies.into_owned()),
                 references: &self.references,
+                held: &self.held,
             })
             .collect())
     }
 
     /// [`Network::solve_cases`] in `buffers`, which a caller keeps from one design to the
-    /// next: the evaluation of a small network is otherwise mostly its allocations.
+    /// next: the evaluation of a small network is otherwise mostly its allocations. A
+    /// case's bodies not read are left NaN: the substitutions stop short of them.
     pub fn solve_cases_in<'a>(
         &'a self,
-        cases: &[&[Load<D>]],
+        cases: &[Case<D>],
         buffers: &'a mut SolveBuffers<D>,
     ) -> Result<Solved<'a, D>, NetworkError> {
         let bodies = self.references.len();
@@ -379,21 +424,38 @@ impl<D: Scalar> Network<D> {
         // written in place: a pushed [Jet<8>; 3] is a call to memcpy
         moved.clear();
         moved.resize(cases.len() * bodies, [D::from(0.0); 3]);
-        for (loads, moved) in cases.iter().zip(moved.chunks_exact_mut(bodies.max(1))) {
+        for (case, moved) in cases.iter().zip(moved.chunks_exact_mut(bodies.max(1))) {
             f.clear();
             f.resize(m, D::from(0.0));
-            for l in loads.iter() {
+            // the first entry of `f` loaded, and the first read: the forward substitution
+            // starts at the one (the entries before stay zero), the back substitution ends
+            // at the other (those before feed only entries not read)
+            let mut loaded = m;
+            let first_read = match case.read {
+                None => 0,
+                Some(read) => read
+                    .iter()
+                    .flat_map(|&b| &index[3 * b..3 * b + 3])
+                    .filter(|&&i| i != HELD)
+                    .fold(m, |a, &i| a.min(i)),
+            };
+            for l in case.loads.iter() {
                 let r = sub(l.point, self.references[l.body]);
                 let o = 3 * l.body;
                 let moment = l.moment + (r[0] * l.force[1] - r[1] * l.force[0]);
                 for (dof, v) in [(o, l.force[0]), (o + 1, l.force[1]), (o + 2, moment)] {
                     if index[dof] != HELD {
                         f[index[dof]] = f[index[dof]] + v;
+                        loaded = loaded.min(index[dof]);
                     }
                 }
             }
-            substitute(k, m, f);
-            for (u, index) in moved.iter_mut().zip(index.chunks_exact(3)) {
+            substitute(k, m, f, loaded, first_read);
+            for (b, (u, index)) in moved.iter_mut().zip(index.chunks_exact(3)).enumerate() {
+                if case.read.is_some_and(|read| !read.contains(&b)) {
+                    *u = [D::from(f64::NAN); 3];
+                    continue;
+                }
                 for (v, &i) in u.iter_mut().zip(index) {
                     if i != HELD {
                         *v = f[i];
@@ -404,6 +466,7 @@ impl<D: Scalar> Network<D> {
         Ok(Solved {
             moved,
             references: &self.references,
+            held: &self.held,
         })
     }
 
@@ -437,20 +500,40 @@ impl<D: Scalar> Network<D> {
         // clamped start's carries G (its v gains l theta) and enters with a minus sign.
         // each end's map and K times it built where they stay: returned in an `Option` or
         // through `array::from_fn`, or zeroed first, the Jet<8>s were mostly copies
+        // only the columns of the degrees of freedom not held are read, and formed
         let end = |body: Body, point: [D; 2], lever: Option<D>| -> Option<End<D>> {
             let Body::Rigid(b) = body else { return None };
-            let r = sub(point, self.references[b]);
-            let mut turn = [ey * r[0] - ex * r[1], ey * r[1] + ex * r[0]];
-            if let Some(l) = lever {
-                turn[1] = turn[1] + l;
-            }
+            let free = |q: usize| index[3 * b + q] != HELD;
+            let zero = D::from(0.0);
+            let turn = if free(2) {
+                let r = sub(point, self.references[b]);
+                let turn = [ey * r[0] - ex * r[1], ey * r[1] + ex * r[0]];
+                match lever {
+                    Some(l) => [turn[0], turn[1] + l],
+                    None => turn,
+                }
+            } else {
+                [zero; 2]
+            };
             // K A by columns, the third row of A supplying the bending block's column
             Some(End {
                 body: b,
                 ka: [
-                    [k11 * ex, k22 * -ey, k23 * -ey],
-                    [k11 * ey, k22 * ex, k23 * ex],
-                    [k11 * turn[0], k22 * turn[1] + k23, k23 * turn[1] + k33],
+                    if free(0) {
+                        [k11 * ex, k22 * -ey, k23 * -ey]
+                    } else {
+                        [zero; 3]
+                    },
+                    if free(1) {
+                        [k11 * ey, k22 * ex, k23 * ex]
+                    } else {
+                        [zero; 3]
+                    },
+                    if free(2) {
+                        [k11 * turn[0], k22 * turn[1] + k23, k23 * turn[1] + k33]
+                    } else {
+                        [zero; 3]
+                    },
                 ],
                 columns: [[ex, -ey], [ey, ex], turn],
             })
@@ -520,9 +603,18 @@ impl<D: Scalar> Network<D> {
     pub fn flexure_loads(&self, i: usize, u: &Displacements<D>) -> HingeLoads<D> {
         let f = &self.flexures[i];
         let [ex, ey] = f.axis;
-        let local = |m: [D; 3]| [ex * m[0] + ey * m[1], -ey * m[0] + ex * m[1], m[2]];
-        let p = local(u.at(f.from, f.start));
-        let q = local(u.at(f.to, f.start_plus_length()));
+        // an end's motion in the flexure's frame, without the terms of a motion held
+        let local = |body: Body, m: [D; 3]| match (
+            u.point_moves(body, Dof::X),
+            u.point_moves(body, Dof::Y),
+        ) {
+            (true, true) => [ex * m[0] + ey * m[1], -ey * m[0] + ex * m[1], m[2]],
+            (true, false) => [ex * m[0], -ey * m[0], m[2]],
+            (false, true) => [ey * m[1], ex * m[1], m[2]],
+            (false, false) => [D::from(0.0), D::from(0.0), m[2]],
+        };
+        let p = local(f.from, u.at(f.from, f.start));
+        let q = local(f.to, u.at(f.to, f.start_plus_length()));
         // Q's motion relative to the rigid motion of P carried along the flexure
         let d = [q[0] - p[0], q[1] - (p[1] + f.length * p[2]), q[2] - p[2]];
         let c = &f.compliance;
@@ -588,17 +680,20 @@ fn factor<D: Scalar>(k: &mut [D], n: usize) -> Result<(), usize> {
     Ok(())
 }
 
-/// `x` overwritten by `K^-1 x`, `l` the factor of [`factor`].
-fn substitute<D: Scalar>(l: &[D], n: usize, x: &mut [D]) {
-    for i in 0..n {
-        for p in 0..i {
+/// `x` overwritten by `K^-1 x` from entry `from` on, `l` the factor of [`factor`], where
+/// the entries of `x` before `loaded` are zero: `L^-1` keeps them zero, and the terms they
+/// give are skipped (the same numbers: `a - l 0` is `a`); the entries before `from` are
+/// left unfinished (the back substitution's last rows, which no entry from `from` on reads).
+fn substitute<D: Scalar>(l: &[D], n: usize, x: &mut [D], loaded: usize, from: usize) {
+    for i in loaded..n {
+        for p in loaded..i {
             x[i] = x[i] - l[i * n + p] * x[p];
         }
     }
-    for (i, xi) in x.iter_mut().enumerate() {
-        *xi = *xi / l[i * n + i];
+    for i in loaded.max(from)..n {
+        x[i] = x[i] / l[i * n + i];
     }
-    for i in (0..n).rev() {
+    for i in (from..n).rev() {
         for p in i + 1..n {
             x[i] = x[i] - l[p * n + i] * x[p];
         }
