@@ -2,7 +2,9 @@
 //! wei2017_min_stress (two threads) with the part's rules enforced and with `[part] enforce
 //! = false`, each with the SQP's constraint screening and without, the four alternating,
 //! medians of the argument's count (7); with each the counts that tell whether a change moved
-//! the iterates (starts at the best, iterations, evaluations).
+//! the iterates (starts at the best, iterations, evaluations). A second argument sets the
+//! threads (2); a third, `enforced` or `free`, runs that study alone, not screened, once per
+//! round (for `valgrind --tool=callgrind`, whose counts the machine's load does not move).
 use std::path::Path;
 use std::time::Instant;
 
@@ -11,6 +13,8 @@ use flexopt::study::{self, StudyOptions};
 
 fn main() {
     let reps: usize = std::env::args().nth(1).map_or(7, |s| s.parse().unwrap());
+    let threads: usize = std::env::args().nth(2).map_or(2, |s| s.parse().unwrap());
+    let only = std::env::args().nth(3);
     for file in ["problems/wei2017.toml", "problems/wei2017_min_stress.toml"] {
         let text = std::fs::read_to_string(file).unwrap();
         let free = text.replace("[search]", "[part]\nenforce = false\n\n[search]");
@@ -19,9 +23,17 @@ fn main() {
         let configs = [(&text, true), (&free, true), (&text, false), (&free, false)];
         for _ in 0..reps {
             for (k, &(t, screening)) in configs.iter().enumerate() {
+                let wanted = match only.as_deref() {
+                    Some("enforced") => k == 2,
+                    Some("free") => k == 3,
+                    _ => true,
+                };
+                if !wanted {
+                    continue;
+                }
                 let problem = Problem::parse(Path::new(file), t).unwrap();
                 let options = StudyOptions {
-                    threads: 2,
+                    threads,
                     screening,
                     ..StudyOptions::from_problem(&problem)
                 };
@@ -44,7 +56,7 @@ fn main() {
         }
         let med = |v: &mut Vec<f64>| {
             v.sort_by(f64::total_cmp);
-            v[v.len() / 2]
+            v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
         };
         let m: Vec<f64> = times.iter_mut().map(med).collect();
         println!("{file}:");
