@@ -970,7 +970,6 @@ impl NetworkModel {
         let d = &self.description;
         let (density, width) = (self.material.density, d.width);
         let mounting = self.mounting();
-        let unfold = mounting.map(|(_, axis)| axis);
         let mut images = Vec::new();
         let mut inertia: Vec<Inertia<D>> = d
             .bodies
@@ -986,9 +985,6 @@ impl NetworkModel {
                     Some(t) => {
                         let band = link_band(points[0], points[1], t);
                         Inertia::polygon(&described_piece(&band, &axes), density, width)
-                    }
-                    None if points.len() >= 3 && axes.is_empty() => {
-                        Inertia::polygon(points, density, width)
                     }
                     None if points.len() >= 3 => {
                         Inertia::polygon(&described_piece(points, &axes), density, width)
@@ -1027,7 +1023,7 @@ impl NetworkModel {
         if let Some((port, line)) = mounting {
             let flip_y = line == Axis::X;
             let across: Vec<bool> = d.bodies.iter().map(|b| b.on_axis.contains(&line)).collect();
-            let held = axis_holds(d, unfold);
+            let held = axis_holds(d, Some(line));
             let (whole, image) = network.unfolded(flip_y, &across, &held, e.ports[port].0);
             for (b, im) in image.iter().enumerate() {
                 match *im {

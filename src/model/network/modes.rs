@@ -312,14 +312,9 @@ impl<D: Scalar> Network<D> {
 
     /// The `count` lowest modes (fewer where the network has fewer degrees of freedom).
     pub fn modes(&self, inertia: &[Inertia<D>], count: usize) -> Result<Vec<Mode<D>>, ModeError> {
-        self.modes_with_mass(self.mass_matrix(inertia), count)
-    }
-
-    /// The `count` lowest modes against the mass matrix `m` (row-major `3n x 3n`, as
-    /// [`Self::mass_matrix`] gives it, with whatever else moves with the bodies added).
-    pub fn modes_with_mass(&self, m: Vec<D>, count: usize) -> Result<Vec<Mode<D>>, ModeError> {
         let n = 3 * self.references.len();
         let k = self.stiffness().map_err(ModeError::Network)?;
+        let m = self.mass_matrix(inertia);
         // the degrees of freedom not held
         let free: Vec<usize> = (0..n)
             .filter(|&j| !self.held.iter().any(|&(b, d)| 3 * b + d as usize == j))
