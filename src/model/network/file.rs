@@ -158,6 +158,16 @@ pub enum Axis {
     Y,
 }
 
+impl Axis {
+    /// As the file names it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Axis::X => "x",
+            Axis::Y => "y",
+        }
+    }
+}
+
 /// An expression and the key it was read from (for errors at a design).
 #[derive(Debug, Clone)]
 pub struct Keyed {

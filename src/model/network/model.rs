@@ -371,7 +371,7 @@ impl NetworkModel {
                 }
             })
             .collect();
-        let held = axis_holds(d, None);
+        let held = axis_holds(d, None, &[]);
         let mut fit = Vec::new();
         for hinge in &d.hinges {
             // a range of fit binds a ratio of parameters: only where each dimension is one
@@ -884,25 +884,44 @@ impl NetworkModel {
     }
 
     /// How many modes [`Self::frequencies`] finds: the degrees of freedom of the described
-    /// part, or of the whole about the axis its mounting stands across.
+    /// part in each family of modes ([`families`]), or of the whole about the axis its
+    /// mounting stands across.
     fn mode_dofs(&self) -> usize {
         let d = &self.description;
-        let Some((port, line)) = self.mounting() else {
-            return 3 * d.bodies.len() - self.held.len();
-        };
-        let mount = if port == 0 {
-            d.input.body
-        } else {
-            d.outputs[0].body
-        };
-        let held = axis_holds(d, Some(line));
-        let mut dofs = 3 * d.bodies.len() - held.len();
-        for (b, body) in d.bodies.iter().enumerate() {
-            if b != mount && !body.on_axis.contains(&line) {
-                dofs += 3 - held.iter().filter(|h| h.0 == b).count();
+        let mounting = self.mounting();
+        let line = mounting.map(|(_, line)| line);
+        let mount = mounting.map(|(port, _)| {
+            if port == 0 {
+                d.input.body
+            } else {
+                d.outputs[0].body
+            }
+        });
+        let mut dofs = 0;
+        for anti in families(&self.family_axes()) {
+            let held = axis_holds(d, line, &anti);
+            dofs += 3 * d.bodies.len() - held.len();
+            if let (Some(line), Some(mount)) = (line, mount) {
+                for (b, body) in d.bodies.iter().enumerate() {
+                    if b != mount && !body.on_axis.contains(&line) {
+                        dofs += 3 - held.iter().filter(|h| h.0 == b).count();
+                    }
+                }
             }
         }
         dofs
+    }
+
+    /// The mirror axes the modes are symmetric or antisymmetric about: every one, but that
+    /// the part stands across ([`Self::mounting`]), about which it is unfolded whole.
+    fn family_axes(&self) -> Vec<Axis> {
+        let line = self.mounting().map(|(_, line)| line);
+        let d = &self.description;
+        d.mirror
+            .iter()
+            .copied()
+            .filter(|&a| Some(a) != line)
+            .collect()
     }
 
     /// Whether a hinge or a beam joins the ground.
@@ -957,20 +976,22 @@ impl NetworkModel {
     /// ([`super::modes`]). [`Model::unavailable`] has checked that every body has a shape
     /// and that the part has a mounting.
     ///
-    /// With mirror axes these are the modes symmetric about them, the described part
-    /// carrying its share of each body across an axis ([`described_piece`]). A grounded
-    /// part's payload rides on each image of the first output's face, as the symmetry has
-    /// it. A part without ground stands on the image of a port across an axis
-    /// ([`Self::mounting`]), which breaks the symmetry about that axis: the described part
-    /// is joined to its image across it, that port's image the ground
-    /// ([`Network::unfolded`]), and the payload rides on the port's face alone. The modes
-    /// are then those of the whole part symmetric about the other axis, as the FE check
-    /// solves them on its half.
+    /// With mirror axes the described part carries its share of each body across an axis
+    /// ([`described_piece`]), and the modes are found family by family ([`families`]): those
+    /// symmetric about every axis, then those antisymmetric about one or both, each family
+    /// its own holds on the bodies across the axes ([`axis_holds`]); the lowest `count` of
+    /// all are the whole part's. The stack, between the input's face and its image across
+    /// `network.input.across`, is not stretched in a mode antisymmetric about that axis (the
+    /// two faces move alike), and is left out of those families. A grounded part's payload
+    /// rides on each image of the first output's face. A part without ground stands on the
+    /// image of a port across an axis ([`Self::mounting`]), which breaks the symmetry about
+    /// that axis: the described part is joined to its image across it, that port's image the
+    /// ground ([`Network::unfolded`]), the payload on the port's face alone, and the
+    /// families are those about the other axis.
     fn frequencies<D: Scalar>(&self, e: &Evaluated<D>, count: usize) -> Result<Vec<D>, String> {
         let d = &self.description;
         let (density, width) = (self.material.density, d.width);
         let mounting = self.mounting();
-        let mut images = Vec::new();
         let mut inertia: Vec<Inertia<D>> = d
             .bodies
             .iter()
@@ -1009,57 +1030,99 @@ impl NetworkModel {
                 }
             }
         }
-        let mut network = e.network.clone();
-        if let Some(k) = self.actuator.stiffness {
+        let stack = self.actuator.stiffness.map(|k| {
             let (body, point, direction) = e.ports[0];
-            network.springs.push(Spring {
+            Spring {
                 body,
                 point,
                 direction,
                 stiffness: D::from(k * e.read[0] * e.share[0]),
-            });
-        }
-        let mut payload_share = e.share[1];
-        if let Some((port, line)) = mounting {
-            let flip_y = line == Axis::X;
-            let across: Vec<bool> = d.bodies.iter().map(|b| b.on_axis.contains(&line)).collect();
-            let held = axis_holds(d, Some(line));
-            let (whole, image) = network.unfolded(flip_y, &across, &held, e.ports[port].0);
-            for (b, im) in image.iter().enumerate() {
-                match *im {
-                    Body::Rigid(i) if i == b => inertia[b] = inertia[b].doubled(flip_y),
-                    Body::Rigid(_) => inertia.push(inertia[b].reflected(flip_y)),
-                    Body::Ground => {}
+            }
+        });
+        let line = mounting.map(|(_, line)| line);
+        let mut found: Vec<D> = Vec::new();
+        // a body across an axis is held at its point on the axis: in a mode antisymmetric
+        // about it, it turns about that point, and a hold of its motion along the axis at a
+        // reference off it would turn it about the reference instead (in a symmetric mode it
+        // neither turns nor moves across, and the reference does not matter)
+        let mut on_axes = e.network.clone();
+        for (b, body) in d.bodies.iter().enumerate() {
+            for a in &body.on_axis {
+                match a {
+                    Axis::X => on_axes.references[b][1] = D::from(0.0),
+                    Axis::Y => on_axes.references[b][0] = D::from(0.0),
                 }
             }
-            if across[d.outputs[0].body] {
-                payload_share *= 2.0;
-            }
-            network = whole;
-            images = image;
         }
-        let (body, at, _) = e.ports[1];
-        inertia[body] = inertia[body].with_point_mass(d.outputs[0].payload * payload_share, at);
-        let modes = network.modes(&inertia, count).map_err(|err| match err {
-            ModeError::Network(err) => self.network_error(err),
-            ModeError::Massless { body } => {
-                // an image is named by the body it images
-                let b = (0..d.bodies.len())
-                    .find(|&b| body == b || images.get(b) == Some(&Body::Rigid(body)))
-                    .unwrap_or(0);
-                format!(
-                    "body \"{}\" ({}) has no mass where it can move",
-                    d.bodies[b].name, d.bodies[b].key
-                )
+        for anti in families(&self.family_axes()) {
+            let mut network = on_axes.clone();
+            let held = axis_holds(d, line, &anti);
+            let stretched = !d.input.across.is_some_and(|a| anti.contains(&a));
+            network.springs.extend(stack.filter(|_| stretched));
+            let mut inertia = inertia.clone();
+            let mut payload_share = e.share[1];
+            let mut images = Vec::new();
+            if let Some((port, line)) = mounting {
+                let flip_y = line == Axis::X;
+                let across: Vec<bool> =
+                    d.bodies.iter().map(|b| b.on_axis.contains(&line)).collect();
+                let (whole, image) = network.unfolded(flip_y, &across, &held, e.ports[port].0);
+                for (b, im) in image.iter().enumerate() {
+                    match *im {
+                        Body::Rigid(i) if i == b => inertia[b] = inertia[b].doubled(flip_y),
+                        Body::Rigid(_) => inertia.push(inertia[b].reflected(flip_y)),
+                        Body::Ground => {}
+                    }
+                }
+                if across[d.outputs[0].body] {
+                    payload_share *= 2.0;
+                }
+                network = whole;
+                images = image;
+            } else {
+                network.held = held;
             }
-        })?;
-        if modes.len() < count {
+            let (body, at, _) = e.ports[1];
+            inertia[body] = inertia[body].with_point_mass(d.outputs[0].payload * payload_share, at);
+            let family = || {
+                if anti.is_empty() {
+                    String::new()
+                } else {
+                    let names: Vec<&str> = anti.iter().map(|a| a.name()).collect();
+                    format!(
+                        " in the modes antisymmetric about the {} axis",
+                        names.join(" and ")
+                    )
+                }
+            };
+            let modes = network.modes(&inertia, count).map_err(|err| match err {
+                ModeError::Network(err) => format!("{}{}", self.network_error(err), family()),
+                ModeError::Massless { body } => {
+                    // an image is named by the body it images
+                    let b = (0..d.bodies.len())
+                        .find(|&b| body == b || images.get(b) == Some(&Body::Rigid(body)))
+                        .unwrap_or(0);
+                    format!(
+                        "body \"{}\" ({}) has no mass where it can move{}",
+                        d.bodies[b].name,
+                        d.bodies[b].key,
+                        family()
+                    )
+                }
+            })?;
+            found.extend(modes.into_iter().map(|m| m.frequency));
+        }
+        if found.len() < count {
             return Err(format!(
                 "the network has {} modes; f{count} asks for more",
-                modes.len()
+                found.len()
             ));
         }
-        Ok(modes.into_iter().map(|m| m.frequency).collect())
+        // by value, the families' order breaking ties, so that the same design gives the
+        // same order
+        found.sort_by(|a, b| a.re().total_cmp(&b.re()));
+        found.truncate(count);
+        Ok(found)
     }
 
     fn gradients<const N: usize>(
@@ -1141,19 +1204,50 @@ impl Message for Infallible {
     }
 }
 
-/// The degrees of freedom the mirror axes hold (all but `except`), sorted: a body across
-/// an axis keeps its motion across it and its rotation at zero.
-fn axis_holds(d: &Description, except: Option<Axis>) -> Vec<(usize, Dof)> {
+/// The degrees of freedom the mirror axes hold (all but `except`), sorted, in the modes
+/// symmetric about every axis but those `antisymmetric`. A body across an axis keeps, in
+/// a motion symmetric about it, its motion across the axis and its rotation at zero; in one
+/// antisymmetric about it, its motion along the axis (the field at a point's image is
+/// minus the point's reflected, which on the axis leaves the motion across it and the
+/// turn free). The statics' loads are symmetric: `antisymmetric` empty.
+fn axis_holds(d: &Description, except: Option<Axis>, antisymmetric: &[Axis]) -> Vec<(usize, Dof)> {
     let mut held = Vec::new();
     for (b, body) in d.bodies.iter().enumerate() {
         for a in body.on_axis.iter().filter(|&&a| Some(a) != except) {
-            held.push((b, if *a == Axis::X { Dof::Y } else { Dof::X }));
-            held.push((b, Dof::Rotation));
+            let (across, along) = match a {
+                Axis::X => (Dof::Y, Dof::X),
+                Axis::Y => (Dof::X, Dof::Y),
+            };
+            if antisymmetric.contains(a) {
+                held.push((b, along));
+            } else {
+                held.push((b, across));
+                held.push((b, Dof::Rotation));
+            }
         }
     }
     held.sort_by_key(|&(b, dof)| (b, dof as usize));
     held.dedup();
     held
+}
+
+/// The families of modes of a part mirrored about `axes`: each set of the axes its modes
+/// are antisymmetric about (the empty set first, the modes symmetric about every axis).
+/// The whole part's modes are the union of the families' (a mode of a symmetric structure
+/// is symmetric or antisymmetric about each of its mirror axes, and the two kinds do not
+/// couple: Kangwai, Guest and Pellegrino, "An introduction to the analysis of symmetric
+/// structures", Computers & Structures 71 (1999) 671-688; Bartilson, Jang and Smyth,
+/// Mech. Syst. Signal Process. 143 (2020) 106797, Sec. 2).
+fn families(axes: &[Axis]) -> Vec<Vec<Axis>> {
+    (0..1usize << axes.len())
+        .map(|mask| {
+            axes.iter()
+                .enumerate()
+                .filter(|(i, _)| mask >> i & 1 == 1)
+                .map(|(_, a)| *a)
+                .collect()
+        })
+        .collect()
 }
 
 /// The rectangle `thickness` wide around the segment `a b`, counterclockwise.

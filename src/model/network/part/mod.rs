@@ -40,9 +40,11 @@
 //! output's image across its axis, as the bridge's lower output block is. The part is
 //! symmetric about the y axis where the description is, so the check solves its right half.
 //!
-//! The natural modes, where the model has them (no mirror axes, the actuator's stiffness
-//! given): `fe_f1`, the part's lowest mode, solved whole, the stack a spring from the input's
-//! face to the clamped faces, the payload on the first output's face ([`modes_check`]).
+//! The natural modes, where the model has them (the actuator's stiffness given): `fe_f1`,
+//! the part's lowest mode, the payload on the first output's face ([`modes_check`]). Without
+//! mirror axes it is solved whole, the stack a spring from the input's face to the clamped
+//! faces; with them on the right half, the lowest of the modes symmetric about the y axis
+//! (the stack a spring between the input faces) and antisymmetric about it.
 
 use serde::Deserialize;
 
@@ -184,13 +186,13 @@ impl PartMaker for NetworkPart {
 /// ([`super::model`]): the first output's face carries the payload. Without mirror axes the
 /// actuator is a spring from the input's face to the ground (the part's clamped faces,
 /// where the stack's far end sits on the base), and the modes are the whole part's. With
-/// them the actuator is a spring between the input's face and its image across the y
-/// axis, and the modes are those symmetric about that axis, which the check solves on the
-/// right half: for a grounded part mirrored about y alone (the model's symmetric modes), or
-/// a part standing on its first output's image across the x axis (the model's symmetric
-/// modes with the part's translation, an upper bound of these). Only with the actuator's
-/// stiffness; `None` where the check cannot hold the model's modes, which are then left
-/// without an FE counterpart.
+/// them the check solves the right half, the modes symmetric about the y axis with the
+/// actuator a spring between the input's face and its image, and those antisymmetric about
+/// it without (the two faces move alike): the lowest of both is the whole part's, as the
+/// model's families give it. Stated for a grounded part and for a part standing on its
+/// first output's image across the x axis, the input across the y axis; only with the
+/// actuator's stiffness; `None` where the check cannot hold the model's modes, which are
+/// then left without an FE counterpart.
 fn modes_check(check: &mut Analysis, d: &Description, grounded: bool) -> Option<()> {
     let input = &check.cases[0].loads[0];
     let (face, direction) = (input.face.clone(), input.direction);
@@ -198,11 +200,7 @@ fn modes_check(check: &mut Analysis, d: &Description, grounded: bool) -> Option<
     let (far, start) = if d.mirror.is_empty() {
         ("clamp".to_string(), 0)
     } else {
-        let holds = if grounded {
-            !d.mirror.contains(&Axis::X)
-        } else {
-            d.outputs[0].across == Some(Axis::X)
-        };
+        let holds = grounded || d.outputs[0].across == Some(Axis::X);
         if d.input.across != Some(Axis::Y) || !holds {
             return None;
         }
@@ -227,10 +225,11 @@ fn modes_check(check: &mut Analysis, d: &Description, grounded: bool) -> Option<
             "the part's lowest natural frequency, the actuator a spring from the input face to \
              the ground, the payload on the first output's face"
         } else {
-            "the part's lowest natural frequency of the modes symmetric about the y axis, the \
-             actuator a spring between the input faces, the payload on the first output's face"
+            "the part's lowest natural frequency, of its modes symmetric about the y axis (the \
+             actuator a spring between the input faces) and antisymmetric (the actuator not \
+             stretched), the payload on the first output's face"
         },
-        quantity: Quantity::SymmetricFrequency,
+        quantity: Quantity::LowestFrequency,
         converges: true,
         display: None,
         analytic: None,
