@@ -480,7 +480,10 @@ fn an_interrupt_writes_what_finished_marked_partial_and_exits_130() {
         "--out",
         out_dir.to_str().unwrap(),
     ]);
-    std::thread::sleep(std::time::Duration::from_millis(1500));
+    // interrupted once it has worked a second on its one thread (its set-up done and
+    // starts finished), not after a second of the clock, which a loaded machine may give
+    // it little of
+    wait_for_cpu_seconds(child.id(), 1.0);
     let status = std::process::Command::new("kill")
         .args(["-INT", &child.id().to_string()])
         .status()
@@ -503,6 +506,27 @@ fn an_interrupt_writes_what_finished_marked_partial_and_exits_130() {
         assert!(!name.to_string_lossy().contains("partial"), "{name:?}");
     }
     std::fs::remove_dir_all(&out_dir).unwrap();
+}
+
+/// Waits until the process `pid` has used `seconds` of processor time (user and system, from
+/// `/proc/<pid>/stat`, in clock ticks of 1/100 s), or two minutes have passed.
+fn wait_for_cpu_seconds(pid: u32, seconds: f64) {
+    let start = std::time::Instant::now();
+    while start.elapsed() < std::time::Duration::from_secs(120) {
+        let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap_or_default();
+        // the fields after the command's name, which is in parentheses and may hold spaces
+        let fields: Vec<&str> = stat
+            .rsplit_once(')')
+            .map_or(Vec::new(), |(_, rest)| rest.split_whitespace().collect());
+        // utime and stime are the stat file's fields 14 and 15, here 11 and 12 from 0
+        let ticks: f64 = fields.get(11..13).map_or(0.0, |f| {
+            f.iter().filter_map(|v| v.parse::<f64>().ok()).sum()
+        });
+        if ticks / 100.0 >= seconds {
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
 }
 
 /// Asserts that `dir` holds one whole set: every file the manifest lists, with its size and
