@@ -171,9 +171,10 @@ const FREE_PIVOT: f64 = 1e-13;
 pub struct Displacements<'a, D: Clone> {
     pub bodies: Cow<'a, [[D; 3]]>,
     references: &'a [[D; 2]],
-    /// The network's degrees of freedom held, whose motion is zero: the terms they would
-    /// give are left out (the same numbers, but for the sign of a zero).
-    held: &'a [(usize, Dof)],
+    /// Each degree of freedom's place in the free numbering, [`HELD`] where it is held: the
+    /// terms a held one would give are left out (the same numbers, but for the sign of a
+    /// zero). A lookup, where a search of the held list cost about the terms it saved.
+    index: Cow<'a, [usize]>,
 }
 
 /// A load case of [`Network::solve_cases_in`]: its loads, and the bodies whose
@@ -209,7 +210,7 @@ impl<D> Default for SolveBuffers<D> {
 pub struct Solved<'a, D> {
     moved: &'a [[D; 3]],
     references: &'a [[D; 2]],
-    held: &'a [(usize, Dof)],
+    index: &'a [usize],
 }
 
 impl<'a, D: Clone> Solved<'a, D> {
@@ -219,7 +220,7 @@ impl<'a, D: Clone> Solved<'a, D> {
         Displacements {
             bodies: Cow::Borrowed(&self.moved[c * n..(c + 1) * n]),
             references: self.references,
-            held: self.held,
+            index: Cow::Borrowed(self.index),
         }
     }
 }
@@ -229,7 +230,7 @@ impl<D: Scalar> Displacements<'_, D> {
     pub fn moves(&self, body: Body, dof: Dof) -> bool {
         match body {
             Body::Ground => false,
-            Body::Rigid(b) => !self.held.contains(&(b, dof)),
+            Body::Rigid(b) => self.index[3 * b + dof as usize] != HELD,
         }
     }
 
@@ -376,7 +377,7 @@ impl<D: Scalar> Network<D> {
             .map(|c| Displacements {
                 bodies: Cow::Owned(solved.case(c).bodies.into_owned()),
                 references: &self.references,
-                held: &self.held,
+                index: Cow::Owned(solved.index.to_vec()),
             })
             .collect())
     }
@@ -466,7 +467,7 @@ impl<D: Scalar> Network<D> {
         Ok(Solved {
             moved,
             references: &self.references,
-            held: &self.held,
+            index,
         })
     }
 
