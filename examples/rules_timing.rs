@@ -4,7 +4,8 @@
 //! medians of the argument's count (7); with each the counts that tell whether a change moved
 //! the iterates (starts at the best, iterations, evaluations). A second argument sets the
 //! threads (2); a third, `enforced` or `free`, runs that study alone, not screened, once per
-//! round (for `valgrind --tool=callgrind`, whose counts the machine's load does not move).
+//! round (for `valgrind --tool=callgrind`, whose counts the machine's load does not move); a
+//! fourth, a part of a file's name (`wei2017.toml`), runs that file's studies alone.
 use std::path::Path;
 use std::time::Instant;
 
@@ -15,7 +16,11 @@ fn main() {
     let reps: usize = std::env::args().nth(1).map_or(7, |s| s.parse().unwrap());
     let threads: usize = std::env::args().nth(2).map_or(2, |s| s.parse().unwrap());
     let only = std::env::args().nth(3);
+    let file_filter = std::env::args().nth(4).unwrap_or_default();
     for file in ["problems/wei2017.toml", "problems/wei2017_min_stress.toml"] {
+        if !file.contains(&file_filter) {
+            continue;
+        }
         let text = std::fs::read_to_string(file).unwrap();
         let free = text.replace("[search]", "[part]\nenforce = false\n\n[search]");
         let mut times = [vec![], vec![], vec![], vec![]];

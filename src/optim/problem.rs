@@ -26,6 +26,23 @@ pub trait Problem: Sync {
         gradient: &mut [f64],
         jacobian: &mut [f64],
     ) -> f64;
+    /// [`Problem::evaluate_with_gradient`] where only the rows `i` with `needed[i]` are
+    /// read: the others' values and gradients may be left at any finite numbers (the
+    /// default works them out as well). The Hessian's refresh forms the Lagrangian's
+    /// gradient from the last QP's multipliers, most of them zero, at each of its shifted
+    /// points, and a problem whose rows cost more than its objective (the part's rules)
+    /// can leave out those with none.
+    fn evaluate_with_gradient_of(
+        &self,
+        x: &[f64],
+        needed: &[bool],
+        c: &mut [f64],
+        gradient: &mut [f64],
+        jacobian: &mut [f64],
+    ) -> f64 {
+        let _ = needed;
+        self.evaluate_with_gradient(x, c, gradient, jacobian)
+    }
 }
 
 /// How a local solve ended.

@@ -365,6 +365,18 @@ impl<'p> DesignNlp<'p> {
     /// As [`DesignNlp::outputs`], with the Jacobian over all the model's parameters,
     /// row-major (`jacobian[i * np + p]`, `np` the number of parameters).
     pub fn outputs_with_gradient(&self, free: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
+        self.outputs_with_gradient_of(free, true, out, jacobian);
+    }
+
+    /// [`DesignNlp::outputs_with_gradient`], the part's rules' margins and gradients left
+    /// as they come (zero on the evaluation's scratch) unless `rules`.
+    fn outputs_with_gradient_of(
+        &self,
+        free: &[f64],
+        rules: bool,
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
         let mut x = [0.0; MAX_PARAMETERS];
         let x = self.fill(free, &mut x);
         let w = self.wanted.len();
@@ -378,7 +390,7 @@ impl<'p> DesignNlp<'p> {
         if let Some(s) = &self.spreads {
             s.spreads_with_gradient(x, &self.wanted, spreads, spread_jac);
         }
-        if let Some(part) = self.part {
+        if let (Some(part), true) = (self.part, rules) {
             part.rule_margins_with_gradient(x, margins, margin_jac);
         }
         self.model
@@ -505,12 +517,44 @@ impl Problem for DesignNlp<'_> {
         gradient: &mut [f64],
         jacobian: &mut [f64],
     ) -> f64 {
+        self.evaluate_gradient(u, true, c, gradient, jacobian)
+    }
+
+    /// The part's rules are the last rows: where none of them is needed, their margins
+    /// are not worked out (the Hessian's refresh at a point where no rule has a multiplier:
+    /// wei2017's first stages, where they were a fifth of an evaluation with gradients), and
+    /// their rows are zero.
+    fn evaluate_with_gradient_of(
+        &self,
+        u: &[f64],
+        needed: &[bool],
+        c: &mut [f64],
+        gradient: &mut [f64],
+        jacobian: &mut [f64],
+    ) -> f64 {
+        let first_rule = self.rows.len() - self.rules;
+        let rules = needed[first_rule..].iter().any(|&k| k);
+        self.evaluate_gradient(u, rules, c, gradient, jacobian)
+    }
+}
+
+impl DesignNlp<'_> {
+    /// [`Problem::evaluate_with_gradient`], the part's rules worked out only where `rules`
+    /// ([`DesignNlp::outputs_with_gradient_of`]).
+    fn evaluate_gradient(
+        &self,
+        u: &[f64],
+        rules: bool,
+        c: &mut [f64],
+        gradient: &mut [f64],
+        jacobian: &mut [f64],
+    ) -> f64 {
         let n = u.len();
         let np = self.base.len();
         let mut buf = [0.0; MAX_PARAMETERS];
         let x = self.unscale_into(u, &mut buf);
         with_scratch(self.values(), self.values() * np, |out, model_jac| {
-            self.outputs_with_gradient(x, out, model_jac);
+            self.outputs_with_gradient_of(x, rules, out, model_jac);
             let f = out[0];
             let o = &self.problem.objective;
             // d merit / d value: -1 or +1, times sign(value) for an absolute value
@@ -582,8 +626,17 @@ impl DesignNlp<'_> {
             .zip(self.jacobian_factor.chunks_exact(n));
         for ((row, factor), r) in rows.zip(&self.rows) {
             let grad = &model_jac[r.value * np..(r.value + 1) * np];
-            for ((o, &p), f) in row.iter_mut().zip(&self.free).zip(factor) {
-                *o = grad[p] * f;
+            if self.all_free {
+                // the variables are the parameters, in order: the same products, read
+                // along the row (the gather through `free` cost as much as the rest of
+                // the rows' work, and the part's rules doubled the rows)
+                for ((o, &gp), f) in row[..n].iter_mut().zip(&grad[..n]).zip(factor) {
+                    *o = gp * f;
+                }
+            } else {
+                for ((o, &p), f) in row.iter_mut().zip(&self.free).zip(factor) {
+                    *o = grad[p] * f;
+                }
             }
             if let (Some(slot), Some(s)) = (r.spread, &self.spreads) {
                 // the row is sign * (value - limit) - k sigma over its scale; the factor

@@ -29,6 +29,8 @@ pub(super) struct Curvature {
     free: Vec<usize>,
     lagrangian: Vec<f64>,
     lagrangian_shifted: Vec<f64>,
+    /// The rows with a multiplier: the only ones the refresh reads.
+    needed: Vec<bool>,
 }
 
 impl Curvature {
@@ -45,6 +47,7 @@ impl Curvature {
             free: Vec::with_capacity(n),
             lagrangian: vec![0.0; n],
             lagrangian_shifted: vec![0.0; n],
+            needed: Vec::new(),
         }
     }
 
@@ -77,11 +80,17 @@ impl Curvature {
         let (s, y, bs) = (&mut self.s, &mut self.y, &mut self.bs);
         for j in 0..n {
             s[j] = to.x[j] - from.x[j];
-            let mut yj = to.g[j] - from.g[j];
-            for (i, l) in lambda.iter().enumerate() {
-                yj -= l * (to.jac[i * n + j] - from.jac[i * n + j]);
+            y[j] = to.g[j] - from.g[j];
+        }
+        // the rows with a multiplier only (an inactive row's term is a zero), each component
+        // subtracting them in the same order as before: the same numbers
+        let rows = to.jac.chunks_exact(n).zip(from.jac.chunks_exact(n));
+        for ((to_row, from_row), &l) in rows.zip(lambda) {
+            if l != 0.0 {
+                for ((yj, t), f) in y.iter_mut().zip(to_row).zip(from_row) {
+                    *yj -= l * (t - f);
+                }
             }
-            y[j] = yj;
         }
         for (bi, row) in bs.iter_mut().zip(self.b.chunks_exact(n)) {
             *bi = dot(row, s);
@@ -133,6 +142,8 @@ impl Curvature {
         }
         let mut evaluations = 0;
         lagrangian_gradient(&point.g, &point.jac, lambda, &mut self.lagrangian);
+        self.needed.clear();
+        self.needed.extend(lambda.iter().map(|&l| l != 0.0));
         let h = &mut self.h[..nf * nf];
         for (b, &j) in self.free.iter().enumerate() {
             let step = 1e-7 * (1.0 + x[j].abs());
@@ -144,7 +155,7 @@ impl Curvature {
             probe.x.copy_from_slice(x);
             probe.x[j] += step;
             evaluations += 1;
-            if !probe.evaluate(problem) {
+            if !probe.evaluate_rows(problem, &self.needed) {
                 return evaluations;
             }
             lagrangian_gradient(&probe.g, &probe.jac, lambda, &mut self.lagrangian_shifted);
@@ -200,9 +211,12 @@ impl Curvature {
 fn lagrangian_gradient(g: &[f64], jac: &[f64], lambda: &[f64], out: &mut [f64]) {
     let n = g.len();
     out.copy_from_slice(g);
+    // an inactive row's term is a zero: left out, the sums are the same
     for (i, &l) in lambda.iter().enumerate() {
-        for (o, &d) in out.iter_mut().zip(&jac[i * n..(i + 1) * n]) {
-            *o -= l * d;
+        if l != 0.0 {
+            for (o, &d) in out.iter_mut().zip(&jac[i * n..(i + 1) * n]) {
+                *o -= l * d;
+            }
         }
     }
 }

@@ -116,6 +116,11 @@ impl Iterate {
     /// Values and gradients at `x`; false where any is not finite.
     fn evaluate(&mut self, problem: &dyn Problem) -> bool {
         self.f = problem.evaluate_with_gradient(&self.x, &mut self.c, &mut self.g, &mut self.jac);
+        self.finite_with_gradient()
+    }
+
+    /// Whether the objective, the constraints and their gradients are all finite.
+    fn finite_with_gradient(&self) -> bool {
         self.f.is_finite()
             && self
                 .c
@@ -123,6 +128,19 @@ impl Iterate {
                 .chain(&self.g)
                 .chain(&self.jac)
                 .all(|v| v.is_finite())
+    }
+
+    /// [`Iterate::evaluate`] where only the rows with `needed` are read afterwards
+    /// ([`Problem::evaluate_with_gradient_of`]); false where any value is not finite.
+    fn evaluate_rows(&mut self, problem: &dyn Problem, needed: &[bool]) -> bool {
+        self.f = problem.evaluate_with_gradient_of(
+            &self.x,
+            needed,
+            &mut self.c,
+            &mut self.g,
+            &mut self.jac,
+        );
+        self.finite_with_gradient()
     }
 
     /// The objective and constraints at `x` without gradients; false where any is not

@@ -37,6 +37,16 @@ pub(super) fn objective_scale(g: &[f64]) -> f64 {
     }
 }
 
+impl ScaledObjective<'_> {
+    /// The objective `f` and its `gradient` (in place) scaled.
+    fn scaled(&self, f: f64, gradient: &mut [f64]) -> f64 {
+        for g in gradient.iter_mut() {
+            *g *= self.scale;
+        }
+        self.scale * f
+    }
+}
+
 impl Problem for ScaledObjective<'_> {
     fn dimension(&self) -> usize {
         self.problem.dimension()
@@ -68,9 +78,20 @@ impl Problem for ScaledObjective<'_> {
         let f = self
             .problem
             .evaluate_with_gradient(x, c, gradient, jacobian);
-        for g in gradient.iter_mut() {
-            *g *= self.scale;
-        }
-        self.scale * f
+        self.scaled(f, gradient)
+    }
+
+    fn evaluate_with_gradient_of(
+        &self,
+        x: &[f64],
+        needed: &[bool],
+        c: &mut [f64],
+        gradient: &mut [f64],
+        jacobian: &mut [f64],
+    ) -> f64 {
+        let f = self
+            .problem
+            .evaluate_with_gradient_of(x, needed, c, gradient, jacobian);
+        self.scaled(f, gradient)
     }
 }

@@ -58,6 +58,9 @@ pub(super) struct Subproblem {
     active_hint: Vec<usize>,
     /// `active_hint` as rows of the QP being solved.
     hint: Vec<usize>,
+    /// The plain QP's rows are the iterate's Jacobian as it is (every constraint, in order):
+    /// `c` is not filled, the QP reads the Jacobian.
+    rows_are_jacobian: bool,
 }
 
 impl Subproblem {
@@ -77,6 +80,7 @@ impl Subproblem {
             screen: Screen::new(screening),
             active_hint: Vec::new(),
             hint: Vec::new(),
+            rows_are_jacobian: false,
         }
     }
 
@@ -117,10 +121,15 @@ impl Subproblem {
                     .iter()
                     .filter_map(|&i| self.screen.qp_row(i, shape.m)),
             );
+            let c = if self.rows_are_jacobian {
+                &point.jac[..shape.m * shape.n]
+            } else {
+                &self.c
+            };
             let problem = QpProblem {
                 g: &self.g,
                 a: &self.a,
-                c: &self.c,
+                c,
                 b: &self.b,
                 meq: shape.meq,
                 lower: &self.lo,
@@ -255,6 +264,14 @@ impl Subproblem {
             self.a.push(price);
             self.lo.push(0.0);
             self.hi.push(f64::INFINITY);
+        }
+        // a copy of every row as it is would be the Jacobian itself (a tenth of the QP's
+        // cost with the part's rules): the plain QP then reads the Jacobian, and only the
+        // right sides are made
+        self.rows_are_jacobian = !elastic && self.screen.rows().iter().copied().eq(0..m);
+        if self.rows_are_jacobian {
+            self.b.extend(rhs[..m].iter().map(|v| -v));
+            return;
         }
         for k in 0..self.screen.rows().len() {
             let i = self.screen.rows()[k];
