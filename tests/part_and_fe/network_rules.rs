@@ -181,3 +181,95 @@ fn each_rules_gradient_agrees_with_central_differences() {
         );
     }
 }
+
+/// The lever with its arm free to 60 mm and a ground frame whose stop stands at 48 mm: left
+/// to itself, the study lengthens the arm into the stop. In a fresh `dir`, with `part` as
+/// its `[part]` section; the file's path.
+fn long_lever(dir: &Path, part: &str) -> std::path::PathBuf {
+    let text = std::fs::read_to_string("problems/lever_network.toml").unwrap();
+    let replace = |text: String, from: &str, to: &str| {
+        assert!(text.contains(from), "{from}");
+        text.replacen(from, to, 1)
+    };
+    // the frame: a post up to the pivot's pad, a base, and the stop beyond the lever's end
+    let ground = "[[network.bodies]]\nname = \"ground\"\noutline = [[\"-3\", \"-20\"], \
+                  [\"60\", \"-20\"], [\"60\", \"10\"], [\"48\", \"10\"], [\"48\", \"-16\"], \
+                  [\"3\", \"-16\"], [\"3\", \"-5 - 2*r\"], [\"-3\", \"-5 - 2*r\"]]\n\n\
+                  [[network.bodies]]\nname = \"lever\"";
+    let text = replace(text, "[[network.bodies]]\nname = \"lever\"", ground);
+    let text = replace(text, "value = 40", "lower = 30\nupper = 60");
+    // the tip's stiffness would hold the arm short of the stop
+    let text = replace(
+        text,
+        "[[constraints]]\noutput = \"k_out\"             # the tip's stiffness, the stack free\n\
+         unit = \"N/um\"\nlower = 0.05\n",
+        "",
+    );
+    let text = replace(text, "[part]\n", &format!("[part]\n{part}\n"));
+    let text = replace(text, "starts = 300", "starts = 40");
+    std::fs::create_dir_all(dir).unwrap();
+    let file = dir.join("long_lever.toml");
+    std::fs::write(&file, text).unwrap();
+    file
+}
+
+/// `flexopt run` of `file` into `out`, quiet.
+fn run(file: &Path, out: &Path) -> std::process::Output {
+    crate::common::flexopt(&[
+        "run",
+        file.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ])
+}
+
+#[test]
+fn a_network_study_keeps_to_its_parts_rules_and_names_the_binding_one_unless_told_not_to() {
+    let dir = std::env::temp_dir().join(format!("flexopt-network-rules-{}", std::process::id()));
+    // not enforced: the lever runs into the stop, and no part can be cut
+    let out = dir.join("checked");
+    let o = run(&long_lever(&dir, "enforce = false"), &out);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(5), "{err}");
+    assert!(!out.join("part.dxf").exists());
+
+    let out = dir.join("enforced");
+    let o = run(&long_lever(&dir, ""), &out);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for f in ["part.dxf", "part.svg", "part.json", "part.png"] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("optimum.json")).unwrap()).unwrap();
+    assert_eq!(json["feasible"], true);
+    let rules = json["part_rules"].as_array().unwrap();
+    assert!(rules.iter().all(|r| r["met"] == true), "{rules:?}");
+    let active: Vec<&str> = rules
+        .iter()
+        .filter(|r| r["active"] == true)
+        .map(|r| r["rule"].as_str().unwrap())
+        .collect();
+    assert_eq!(active, ["slot, the ground, body lever"], "{rules:?}");
+    assert!(
+        active
+            .iter()
+            .all(|a| text.contains(&format!("part rule {a}"))),
+        "{active:?}: {text}"
+    );
+    // the lever's end (arm + 2 mm) the narrowest slot short of the stop, and the part made
+    let x: Vec<f64> = ["r", "t", "a", "arm"]
+        .iter()
+        .map(|k| json["design_si"][k].as_f64().unwrap())
+        .collect();
+    assert!((x[3] - 45.6e-3).abs() < 1e-11, "{x:?}");
+    let p = load(dir.join("long_lever.toml").to_str().unwrap());
+    assert!(p.mechanism().part(&x).unwrap().is_ok());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
