@@ -20,6 +20,7 @@ mod meshing;
 mod network_beams;
 mod network_modes;
 mod network_part;
+mod network_rules;
 mod part;
 mod part_rules;
 mod refine;

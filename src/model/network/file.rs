@@ -311,12 +311,12 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
     };
     let mut mechanism = Mechanism::physics_only(std::sync::Arc::new(model));
     if let Some((settings, description)) = drawn {
-        mechanism.part_maker = Some(std::sync::Arc::new(NetworkPart {
+        mechanism.part_maker = Some(std::sync::Arc::new(NetworkPart::new(
             description,
             settings,
             actuation,
             counterparts,
-        }));
+        )));
     }
     Ok(mechanism)
 }

@@ -62,6 +62,14 @@ impl Image {
         }
     }
 
+    /// This image after `other`: their flips composed.
+    pub(super) fn then(self, other: Image) -> Image {
+        Image {
+            flip_x: self.flip_x != other.flip_x,
+            flip_y: self.flip_y != other.flip_y,
+        }
+    }
+
     pub(super) fn suffix(self) -> &'static str {
         match (self.flip_x, self.flip_y) {
             (false, false) => "",

@@ -50,6 +50,8 @@ use serde::Deserialize;
 
 use super::file::{Axis, Description, Keyed, Point};
 use crate::model::hinge::HingeKind;
+use crate::model::part_rules::{PartRule, Witness};
+use crate::model::scalar::Scalar;
 use crate::model::{Dimension, PartMaker};
 use crate::part::analysis::{
     Analysis, FeCounterpart, FeOutput, FeOutputId, Modal, Quantity, Spring as FeSpring,
@@ -63,6 +65,7 @@ mod faces;
 mod flexures;
 mod images;
 mod plane;
+mod rules;
 
 use faces::{port_face, ports_check, FaceProblem, PlacedPort};
 use flexures::{CutHinge, Named};
@@ -83,6 +86,9 @@ pub struct RawNetworkPart {
     pad_margin: Option<Measured<PositiveLength>>,
     /// The length of a port's face (default 2 mm).
     face: Option<Measured<PositiveLength>>,
+    /// Whether the study keeps to the part's rules (default true): its slots and keep-out
+    /// bands as constraints; `false` checks the part after the study only.
+    enforce: Option<bool>,
 }
 
 /// `[part]` of a network (SI).
@@ -93,6 +99,8 @@ pub struct PartSettings {
     pub pad: f64,
     pub pad_margin: f64,
     pub face: f64,
+    /// Whether the study keeps to the part's rules ([`rules`]): `[part] enforce`.
+    pub enforce: bool,
 }
 
 impl Default for PartSettings {
@@ -105,6 +113,7 @@ impl Default for PartSettings {
             pad: 2e-3,
             pad_margin: 1e-3,
             face: 2e-3,
+            enforce: true,
         }
     }
 }
@@ -124,6 +133,7 @@ impl PartSettings {
             pad: s.measured_or(&at("pad"), &p.pad, d.pad)?,
             pad_margin: s.measured_or(&at("pad_margin"), &p.pad_margin, d.pad_margin)?,
             face: s.measured_or(&at("face"), &p.face, d.face)?,
+            enforce: p.enforce.unwrap_or(d.enforce),
         })
     }
 }
@@ -139,13 +149,39 @@ pub struct Counterparts {
     pub f1: Option<usize>,
 }
 
-/// A network's part: the description, the settings, the actuator.
+/// A network's part: the description, the settings, the actuator, and its rules' layout.
 #[derive(Debug, Clone)]
 pub struct NetworkPart {
     pub description: Description,
     pub settings: PartSettings,
     pub actuation: Actuation,
     pub counterparts: Counterparts,
+    layout: rules::Layout,
+}
+
+impl NetworkPart {
+    pub fn new(
+        description: Description,
+        settings: PartSettings,
+        actuation: Actuation,
+        counterparts: Counterparts,
+    ) -> Self {
+        NetworkPart {
+            layout: rules::Layout::new(&description),
+            description,
+            settings,
+            actuation,
+            counterparts,
+        }
+    }
+
+    fn rules_at(&self) -> rules::Rules<'_> {
+        rules::Rules {
+            layout: &self.layout,
+            d: &self.description,
+            s: &self.settings,
+        }
+    }
 }
 
 const FE_K_IN: FeOutputId = FeOutputId(0);
@@ -179,6 +215,30 @@ impl PartMaker for NetworkPart {
         } else {
             None
         }
+    }
+
+    fn rules(&self) -> &[PartRule] {
+        self.layout.rules()
+    }
+
+    fn first_rules(&self) -> usize {
+        self.layout.first_rules()
+    }
+
+    fn enforces_rules(&self) -> bool {
+        self.settings.enforce
+    }
+
+    fn rule_margins(&self, x: &[f64], out: &mut [f64]) {
+        self.rules_at().margins(x, out);
+    }
+
+    fn rule_margins_with_gradient(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
+        self.rules_at().margins_with_gradient(x, out, jacobian);
+    }
+
+    fn rule_witnesses(&self, x: &[f64], out: &mut [Option<Witness>]) {
+        self.rules_at().witnesses(x, out);
     }
 }
 
@@ -237,15 +297,16 @@ fn modes_check(check: &mut Analysis, d: &Description, grounded: bool) -> Option<
     Some(())
 }
 
-/// The description's expressions evaluated at `x` (SI) in f64.
-struct Values<'a> {
+/// The description's expressions evaluated at `x` (SI), over `f64` for the spec and over
+/// dual numbers for the rules ([`rules`]).
+struct Values<'a, D = f64> {
     d: &'a Description,
-    values: Vec<f64>,
+    values: Vec<D>,
 }
 
-impl<'a> Values<'a> {
-    fn new(d: &'a Description, x: &[f64]) -> Self {
-        let mut values: Vec<f64> = x
+impl<'a, D: Scalar> Values<'a, D> {
+    fn new(d: &'a Description, x: &[D]) -> Self {
+        let mut values: Vec<D> = x
             .iter()
             .zip(&d.parameters)
             .map(|(&v, p)| {
@@ -256,25 +317,25 @@ impl<'a> Values<'a> {
                 }
             })
             .collect();
-        values.push(std::f64::consts::PI / 180.0);
+        values.push(D::from(std::f64::consts::PI / 180.0));
         Values { d, values }
     }
 
-    fn eval(&self, e: &Keyed) -> Result<f64, String> {
+    fn eval(&self, e: &Keyed) -> Result<D, String> {
         e.expression
             .eval(&self.values)
             .map_err(|err| format!("{} = \"{}\": {err}", e.key, e.expression.source()))
     }
 
-    fn length(&self, e: &Keyed) -> Result<f64, String> {
+    fn length(&self, e: &Keyed) -> Result<D, String> {
         Ok(self.eval(e)? * self.d.unit)
     }
 
-    fn point(&self, p: &Point) -> Result<P, String> {
+    fn point(&self, p: &Point) -> Result<[D; 2], String> {
         Ok([self.length(&p[0])?, self.length(&p[1])?])
     }
 
-    fn points(&self, ps: &[Point]) -> Result<Vec<P>, String> {
+    fn points(&self, ps: &[Point]) -> Result<Vec<[D; 2]>, String> {
         ps.iter().map(|p| self.point(p)).collect()
     }
 }

@@ -38,30 +38,50 @@ pub(super) fn is_convex(points: &[P]) -> bool {
 }
 
 /// An outline as the part's solids: itself where it is convex, else its triangles.
-pub(super) fn convex_pieces(mut points: Vec<P>) -> Vec<Vec<P>> {
-    if signed_area(&points) < 0.0 {
-        points.reverse();
+pub(super) fn convex_pieces(points: Vec<P>) -> Vec<Vec<P>> {
+    convex_piece_indices(&points)
+        .into_iter()
+        .map(|piece| piece.into_iter().map(|k| points[k]).collect())
+        .collect()
+}
+
+/// [`convex_pieces`] as indices into `points`, so that the part's rules can take the same
+/// pieces of the outline over dual numbers.
+pub(super) fn convex_piece_indices(points: &[P]) -> Vec<Vec<usize>> {
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    if signed_area(points) < 0.0 {
+        order.reverse();
     }
-    if is_convex(&points) {
-        vec![points]
+    let ordered: Vec<P> = order.iter().map(|&k| points[k]).collect();
+    if is_convex(&ordered) {
+        vec![order]
     } else {
-        triangles(&points)
+        triangles(&ordered)
+            .into_iter()
+            .map(|piece| piece.into_iter().map(|k| order[k]).collect())
+            .collect()
     }
 }
 
 /// A simple polygon (counterclockwise) cut into triangles by ear clipping (Meisters, "Polygons
-/// have ears", Amer. Math. Monthly 82, 1975): convex pieces for the union. A body's outline
-/// has a handful of corners; geo's `earcut` feature is left out of the build (issue 28,
-/// docs/performance.md) and spade's triangulation would need its outside triangles removed.
-pub(super) fn triangles(points: &[P]) -> Vec<Vec<P>> {
-    let mut left: Vec<P> = points.to_vec();
+/// have ears", Amer. Math. Monthly 82, 1975): convex pieces for the union, as indices into
+/// `points`. A body's outline has a handful of corners; geo's `earcut` feature is left out
+/// of the build (issue 28, docs/performance.md) and spade's triangulation would need its
+/// outside triangles removed.
+fn triangles(points: &[P]) -> Vec<Vec<usize>> {
+    let mut left: Vec<usize> = (0..points.len()).collect();
     let mut out = Vec::new();
     while left.len() > 3 {
         let n = left.len();
         let ear = (0..n).find(|&i| {
-            let (a, b, c) = (left[(i + n - 1) % n], left[i], left[(i + 1) % n]);
+            let (a, b, c) = (
+                points[left[(i + n - 1) % n]],
+                points[left[i]],
+                points[left[(i + 1) % n]],
+            );
             cross(sub(b, a), sub(c, b)) > 0.0
-                && left.iter().all(|&p| {
+                && left.iter().all(|&k| {
+                    let p = points[k];
                     p == a
                         || p == b
                         || p == c
