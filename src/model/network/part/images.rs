@@ -2,6 +2,7 @@
 
 use super::super::file::Axis;
 use super::plane::P;
+use crate::model::scalar::Scalar;
 
 /// One of the images the mirror axes make of the described part: `flip_x` maps x to -x
 /// (the axis `y`, the line x = 0), `flip_y` maps y to -y (the axis `x`).
@@ -37,7 +38,9 @@ impl Image {
         }
     }
 
-    pub(super) fn point(self, p: P) -> P {
+    /// A point's image, over any scalar (the part's rules place the images over dual
+    /// numbers).
+    pub(super) fn point<D: Scalar>(self, p: [D; 2]) -> [D; 2] {
         [
             if self.flip_x { -p[0] } else { p[0] },
             if self.flip_y { -p[1] } else { p[1] },

@@ -2,15 +2,18 @@
 //! ray leaves a convex polygon, what a polygon covers of a line, and what of a side is the
 //! part's outline.
 
+use crate::model::scalar::Scalar;
 use crate::part::Solid;
 
 pub(super) type P = [f64; 2];
 
-pub(super) fn add(a: P, b: P) -> P {
+// `add` and `scale` over any scalar: the part's rules place the same points over dual
+// numbers ([`super::rules`]), with the same operations
+pub(super) fn add<D: Scalar>(a: [D; 2], b: [D; 2]) -> [D; 2] {
     [a[0] + b[0], a[1] + b[1]]
 }
 
-pub(super) fn scale(a: P, k: f64) -> P {
+pub(super) fn scale<D: Scalar>(a: [D; 2], k: D) -> [D; 2] {
     [a[0] * k, a[1] * k]
 }
 

@@ -32,7 +32,7 @@
 
 use super::super::file::{Axis, Description};
 use super::images::Image;
-use super::plane::convex_piece_indices;
+use super::plane::{add, convex_piece_indices, scale};
 use super::{PartSettings, Values};
 use crate::model::clearance::{clearance, clearance_below, Feature, Pt, Solid};
 use crate::model::hinge::HingeKind;
@@ -233,21 +233,6 @@ impl Layout {
     }
 }
 
-fn add<D: Scalar>(a: Pt<D>, b: Pt<D>) -> Pt<D> {
-    [a[0] + b[0], a[1] + b[1]]
-}
-
-fn scale<D: Scalar>(a: Pt<D>, k: D) -> Pt<D> {
-    [a[0] * k, a[1] * k]
-}
-
-fn flip<D: Scalar>(t: Image, p: Pt<D>) -> Pt<D> {
-    [
-        if t.flip_x { -p[0] } else { p[0] },
-        if t.flip_y { -p[1] } else { p[1] },
-    ]
-}
-
 /// One solid of the part over `D`: its corners, whether they go around it in order (else
 /// only their hull counts), and its group.
 struct Piece<D> {
@@ -417,7 +402,7 @@ impl Layout {
                 for piece in &mut drawn[first..] {
                     piece.1 = selves
                         .iter()
-                        .flat_map(|&t| piece.1.iter().map(move |&p| flip(t, p)))
+                        .flat_map(|&t| piece.1.iter().map(move |&p| t.point(p)))
                         .collect();
                     piece.2 = false;
                 }
@@ -434,15 +419,15 @@ impl Layout {
         for t in Image::all(&d.mirror) {
             for (c, cut) in cuts.iter().enumerate() {
                 let f = group(Group::Flexure(c, t));
-                let image = |points: &[Pt<D>]| points.iter().map(|&p| flip(t, p)).collect();
+                let image = |points: &[Pt<D>]| points.iter().map(|&p| t.point(p)).collect();
                 pieces.push(Piece {
                     corners: image(&cut.solid),
                     ordered: true,
                     group: f,
                 });
                 sites[f] = Some(Site {
-                    start: flip(t, cut.site.start),
-                    end: flip(t, cut.site.end),
+                    start: t.point(cut.site.start),
+                    end: t.point(cut.site.end),
                     ..cut.site
                 });
                 let (from, to) = self.ends[c];
@@ -459,7 +444,7 @@ impl Layout {
                     continue;
                 }
                 pieces.push(Piece {
-                    corners: points.iter().map(|&p| flip(t, p)).collect(),
+                    corners: points.iter().map(|&p| t.point(p)).collect(),
                     ordered: *ordered,
                     group: group(key(&self.own, *b, t)),
                 });
