@@ -239,3 +239,102 @@ fn a_first_output_at_the_input_is_read_without_its_blocked_stiffness() {
     );
     assert!((v[3] - 1.0).abs() < 1e-12, "{}", v[3]);
 }
+
+/// A block held by one strip along the mirror axis `x`, pulled along it: the strip is its
+/// own mirror image.
+const ON_AXIS: &str = r#"
+name = "plunger"
+model = "network"
+
+[material]
+preset = "al7075-t6"
+
+[network]
+width = "10 mm"
+unit = "mm"
+parameters = [["l", "length"], ["t", "length"]]
+mirror = ["x"]
+
+[[network.bodies]]
+name = "block"
+on_axis = ["x"]
+outline = [["l", "-5"], ["l + 10", "-5"], ["l + 10", "5"], ["l", "5"]]
+
+[[network.bodies]]
+name = "plate"
+on_axis = ["x"]
+outline = [["l + 15", "-5"], ["l + 25", "-5"], ["l + 25", "5"], ["l + 15", "5"]]
+
+[[network.hinges]]
+name = "leaf"
+kind = "strip"
+from = "ground"
+to = "block"
+start = ["0", "0"]
+angle = "0"
+l = "l"
+t = "t"
+
+[[network.hinges]]
+name = "tie"
+kind = "strip"
+from = "block"
+to = "plate"
+start = ["l + 10", "3"]
+angle = "0"
+l = "5"
+t = "t"
+
+[network.input]
+body = "block"
+at = ["l + 5", "0"]
+direction = ["1", "0"]
+
+[[network.outputs]]
+name = "tip"
+body = "plate"
+at = ["l + 25", "0"]
+direction = ["1", "0"]
+
+[actuator]
+nominal_stroke = "15 um"
+preload = "20 N"
+stiffness = "60 N/um"
+
+[[variables]]
+name = "l"
+unit = "mm"
+value = 10
+
+[[variables]]
+name = "t"
+unit = "mm"
+lower = 0.5
+upper = 1.5
+
+[objective]
+maximize = "k_in"
+"#;
+
+/// A flexure on a mirror axis would be counted twice by the half (its stiffness doubled);
+/// it is refused with its key, while the same part without the mirror axis is read.
+#[test]
+fn a_flexure_lying_on_a_mirror_axis_is_refused() {
+    let Err(e) = Problem::parse(Path::new("net.toml"), ON_AXIS) else {
+        panic!("a flexure on the mirror axis must be refused");
+    };
+    let shown = e.to_string();
+    for w in [
+        "hinge \"leaf\" (network.hinges[0]) lies on the mirror axis \"x\"",
+        "middle of the bounds",
+        "move it off the axis",
+    ] {
+        assert!(shown.contains(w), "{w:?} missing from: {shown}");
+    }
+    // the tie stands 3 mm off the axis: only the leaf is named
+    assert!(!shown.contains("\"tie\""), "{shown}");
+    let whole = ON_AXIS
+        .replace("mirror = [\"x\"]\n", "")
+        .replace("on_axis = [\"x\"]\n", "");
+    assert!(Problem::parse(Path::new("net.toml"), &whole).is_ok());
+}

@@ -8,6 +8,7 @@
 pub mod file;
 pub mod model;
 pub mod modes;
+mod on_axis;
 pub mod part;
 pub mod ports;
 pub mod structure;

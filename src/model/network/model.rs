@@ -24,6 +24,7 @@ use std::convert::Infallible;
 
 use super::file::{Axis, Description, HingeDescription, Keyed, Point};
 use super::modes::{described_piece, Inertia, ModeError};
+use super::on_axis::flexure_on_mirror_axis;
 use super::structure::beam_compliance;
 use super::structure::{
     Body, Case, Displacements, Dof, Flexure, Load, Network, NetworkError, SolveBuffers, Spring,
@@ -1471,7 +1472,10 @@ impl Model for NetworkModel {
         self.evaluate_generic(x, None, &all, &mut out)
             .and_then(|()| {
                 // every expression, the outline's too, which the statics do not read
-                self.at(x, None, true, &mut Work::default())
+                let mut work = Work::default();
+                self.at(x, None, true, &mut work)?;
+                flexure_on_mirror_axis(&self.description, &work.evaluated.network.flexures)
+                    .map_or(Ok(()), Err)
             })
             .err()
     }
