@@ -23,6 +23,10 @@ pub const SCALE: f64 = 1e-4;
 /// feasibility tolerance lets a row fall short of 0, 1e-9 mm.
 pub const TOLERANCE: f64 = crate::part::checks::TOLERANCE;
 
+/// The most a clearance rule reads (m): a pair farther than this beyond its rule is not
+/// worked out, and the rule reads this there (the bridge's and the network's clearances).
+pub const CAP: f64 = 1e-3;
+
 /// One rule: its name (what reports call it) and what it asks, in words.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PartRule {

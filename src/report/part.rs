@@ -11,6 +11,7 @@ use serde::Serialize;
 use super::folder::OutputSet;
 use super::plot::{render_png, FAMILY};
 use super::{write_atomic, write_json, WriteError};
+use crate::model::part_rules::CAP;
 use crate::part::{dxf, step, svg, Annotation, Part, PartMm, MM};
 use crate::problem::part_rules::RuleCheck;
 
@@ -100,16 +101,20 @@ fn closest(rules: &[RuleCheck]) -> Option<&RuleCheck> {
 
 /// The label on the drawing's mark of the rule nearest its limit: its name and margin.
 fn witness_label(r: &RuleCheck) -> String {
-    format!("{}: margin {:.4} mm", r.rule, shown_margin(r.margin_mm))
+    format!("{}: margin {} mm", r.rule, margin_text(r.margin_mm))
 }
 
-/// A margin as the drawing shows it: on its limit it reads zero, not the rounding it is
-/// within.
-fn shown_margin(margin_mm: f64) -> f64 {
+/// A rule's margin (mm) as a designer reads it, to 0.1 um: on its limit it reads zero, not
+/// the rounding it is within; a clearance at its cap, `>= 1.0000`, as no pair was worked
+/// out beyond it (a size rule's margin is never capped, and reads what it is).
+pub fn margin_text(margin_mm: f64) -> String {
+    let cap_mm = CAP * MM;
     if margin_mm.abs() < 5e-5 {
-        0.0
+        format!("{:.4}", 0.0)
+    } else if margin_mm == cap_mm {
+        format!(">= {cap_mm:.4}")
     } else {
-        margin_mm
+        format!("{margin_mm:.4}")
     }
 }
 
@@ -122,10 +127,11 @@ fn rule_line(r: &RuleCheck) -> String {
     } else {
         "met"
     };
-    let margin = shown_margin(r.margin_mm);
     format!(
-        "nearest part rule: {} ({state}, margin {margin:.4} mm): {}",
-        r.rule, r.description
+        "nearest part rule: {} ({state}, margin {} mm): {}",
+        r.rule,
+        margin_text(r.margin_mm),
+        r.description
     )
 }
 
@@ -518,6 +524,11 @@ mod tests {
         let broken = rule("slot", -0.25, false, false);
         assert!(rule_line(&broken).contains("(broken, margin -0.2500 mm)"));
         assert!(closest(&[]).is_none());
+        // a clearance no pair comes near reads its cap: at least that, not that
+        let far = rule("slot", CAP * MM, true, false);
+        assert!(rule_line(&far).contains("(met, margin >= 1.0000 mm)"));
+        assert_eq!(margin_text(0.25), "0.2500");
+        assert_eq!(margin_text(2.5), "2.5000");
     }
 
     #[test]

@@ -5,6 +5,7 @@
 use std::fmt::{self, Display};
 
 use super::display::{human, output_unit, with_unit};
+use super::part::margin_text;
 use super::{ConstraintReport, DesignReport};
 use crate::model::fit::FitCheck;
 use crate::problem::part_rules::RuleCheck;
@@ -161,9 +162,11 @@ pub struct RuleLines<'a>(pub &'a [RuleCheck]);
 
 impl Display for RuleLines<'_> {
     fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        // the networks' rules name two solids each: the column is as wide as the longest
+        let width = self.0.iter().map(|r| r.rule.len()).fold(22, usize::max);
         writeln!(
             s,
-            "  {:<22} {:>14} {:<7} asks",
+            "  {:<width$} {:>14} {:<7} asks",
             "part rule", "margin mm", ""
         )?;
         for r in self.0 {
@@ -176,9 +179,9 @@ impl Display for RuleLines<'_> {
             };
             writeln!(
                 s,
-                "  {:<22} {:>14} {:<7} {}",
+                "  {:<width$} {:>14} {:<7} {}",
                 r.rule,
-                human(r.margin_mm),
+                margin_text(r.margin_mm),
                 state,
                 r.description
             )?;
