@@ -42,7 +42,7 @@ use crate::model::{Dimension, MAX_PARAMETERS};
 
 /// The margin (m) a clearance rule reads when every pair is farther than this beyond it:
 /// the search looks only at the pieces whose bounding boxes come within it.
-pub const CAP: f64 = 1e-3;
+pub use crate::model::part_rules::CAP;
 
 /// How far the keep-out bands stop short of the faces at the hinge's ends (m), as the
 /// part's check has them ([`crate::part::checks::keep_out`]).
