@@ -301,20 +301,41 @@ impl Tape {
         self.outputs[k] as usize
     }
 
-    /// Every register from the names' `values` into `registers` (cleared first); false if a
-    /// value left a function's domain or an expression's value is not finite, where
+    /// Every register from the names' `values` into `registers`; false if a value left a
+    /// function's domain or an expression's value is not finite, where
     /// [`Expression::eval`] tells which and why.
     pub fn run<D: Scalar>(&self, values: &[D], registers: &mut Vec<D>) -> bool {
         debug_assert_eq!(values.len(), self.inputs);
-        registers.clear();
-        registers.reserve(self.registers);
-        registers.extend_from_slice(values);
+        self.inputs_mut(registers).copy_from_slice(values);
+        self.run_in(registers)
+    }
+
+    /// The names' registers of `registers`, sized for this tape first (kept from one run to
+    /// the next, so that a caller writes the names' values there in place, and the
+    /// operations write theirs by index, without a push's capacity check or a copy).
+    pub fn inputs_mut<'a, D: Scalar>(&self, registers: &'a mut Vec<D>) -> &'a mut [D] {
+        if registers.len() != self.registers {
+            registers.clear();
+            registers.resize(self.registers, D::from(0.0));
+        }
+        &mut registers[..self.inputs]
+    }
+
+    /// [`Tape::run`] with the names' values already in [`Tape::inputs_mut`]. Each operation
+    /// writes its register in place: built as a value and pushed, each `Jet<8>` was moved
+    /// twice, and the moves and the push cost more than the operation's arithmetic.
+    pub fn run_in<D: Scalar>(&self, registers: &mut [D]) -> bool {
+        debug_assert_eq!(registers.len(), self.registers);
         let mut fine = true;
+        let mut r = self.inputs;
         for op in &self.ops {
-            let r = &*registers;
-            let a = || r[op.a as usize];
-            let b = || r[op.b as usize];
-            let v = match op.code {
+            let (done, rest) = registers.split_at_mut(r);
+            let a = || done[op.a as usize];
+            let b = || done[op.b as usize];
+            r += 1;
+            // the value is evaluated before the place it is written to (SinCos writes the
+            // next register as well)
+            rest[0] = match op.code {
                 Code::Const => D::from(op.c),
                 Code::Neg => -a(),
                 Code::Add => a() + b(),
@@ -341,9 +362,9 @@ impl Tape {
                 }
                 Code::SinCos => {
                     let (s, c) = a().sin_cos();
-                    registers.push(s);
-                    registers.push(c);
-                    continue;
+                    rest[1] = c;
+                    r += 1;
+                    s
                 }
                 Code::Call(f) => {
                     let x = a();
@@ -382,13 +403,17 @@ impl Tape {
                     }
                 }
             };
-            registers.push(v);
         }
         fine && self
             .outputs
             .iter()
             .filter(|&&o| o != DROPPED)
             .all(|&o| registers[o as usize].re().is_finite())
+    }
+
+    /// How many names' values [`Tape::run`] reads.
+    pub fn inputs(&self) -> usize {
+        self.inputs
     }
 }
 

@@ -448,18 +448,20 @@ impl NetworkModel {
             evaluated,
             ..
         } = work;
-        // the parameters in the expressions' units, then `deg`
-        values.clear();
-        values.extend(x.iter().zip(&d.parameters).map(|(&v, p)| {
-            if p.dimension == Dimension::Length {
+        // the parameters in the expressions' units, then `deg`, written into the tape's
+        // registers
+        let tape = if extent { &self.tape } else { &self.statics };
+        let inputs = tape.inputs_mut(registers);
+        let (deg, named) = inputs.split_last_mut().expect("`deg` is a name");
+        for ((slot, &v), p) in named.iter_mut().zip(x).zip(&d.parameters) {
+            *slot = if p.dimension == Dimension::Length {
                 v * unit.recip()
             } else {
                 v
-            }
-        }));
-        values.push(D::from(std::f64::consts::PI / 180.0));
-        let tape = if extent { &self.tape } else { &self.statics };
-        if tape.run(values, registers) {
+            };
+        }
+        *deg = D::from(std::f64::consts::PI / 180.0);
+        if tape.run_in(registers) {
             let registers = &*registers;
             self.build(
                 modulus,
@@ -469,6 +471,9 @@ impl NetworkModel {
                 first,
             )
         } else {
+            // the trees read the names' values, which the tape has kept
+            values.clear();
+            values.extend_from_slice(&registers[..tape.inputs()]);
             let values = &*values;
             self.build(
                 modulus,
