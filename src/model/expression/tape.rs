@@ -333,76 +333,42 @@ impl Tape {
             let a = || done[op.a as usize];
             let b = || done[op.b as usize];
             r += 1;
-            // the value is evaluated before the place it is written to (SinCos writes the
-            // next register as well)
-            rest[0] = match op.code {
-                Code::Const => D::from(op.c),
-                Code::Neg => -a(),
-                Code::Add => a() + b(),
-                Code::AddC => a() + op.c,
-                Code::Sub => a() - b(),
-                Code::SubC => a() - op.c,
-                Code::Mul => a() * b(),
-                Code::MulC => a() * op.c,
+            // each arm writes its register itself: a value the match returned went through a
+            // temporary, one more copy of a `Jet<8>` per operation
+            let out = &mut rest[0];
+            match op.code {
+                Code::Const => *out = D::from(op.c),
+                Code::Neg => *out = -a(),
+                Code::Add => *out = a() + b(),
+                Code::AddC => *out = a() + op.c,
+                Code::Sub => *out = a() - b(),
+                Code::SubC => *out = a() - op.c,
+                Code::Mul => *out = a() * b(),
+                Code::MulC => *out = a() * op.c,
                 Code::Div => {
                     let d = b();
                     fine &= d.re() != 0.0;
-                    a() / d
+                    *out = a() / d;
                 }
-                Code::DivC => a() / op.c,
+                Code::DivC => *out = a() / op.c,
                 Code::Powi => {
                     let (x, n) = (a(), op.b as i32);
                     fine &= !(n < 0 && x.re() == 0.0);
-                    x.powi(n)
+                    *out = x.powi(n);
                 }
                 Code::Powf => {
                     let x = a();
                     fine &= !(x.re() < 0.0 || (x.re() == 0.0 && op.c < 1.0));
-                    x.powf(op.c)
+                    *out = x.powf(op.c);
                 }
                 Code::SinCos => {
                     let (s, c) = a().sin_cos();
+                    *out = s;
                     rest[1] = c;
                     r += 1;
-                    s
                 }
-                Code::Call(f) => {
-                    let x = a();
-                    match f {
-                        // emitted as SinCos
-                        Function::Sin => x.sin(),
-                        Function::Cos => x.cos(),
-                        Function::Tan => {
-                            let (s, c) = x.sin_cos();
-                            fine &= c.re() != 0.0;
-                            s / c
-                        }
-                        Function::Asin | Function::Acos => {
-                            fine &= x.re().abs() < 1.0;
-                            asin_or_acos(x, f)
-                        }
-                        Function::Atan => x.atan(),
-                        Function::Atan2 => {
-                            let y = b();
-                            fine &= !(x.re() == 0.0 && y.re() == 0.0);
-                            // the first argument is the ordinate
-                            atan2(x, y)
-                        }
-                        Function::Sqrt => {
-                            fine &= x.re() >= 0.0;
-                            x.sqrt()
-                        }
-                        Function::Abs => x.abs(),
-                        Function::Hypot => {
-                            let y = b();
-                            fine &= !(x.re() == 0.0 && y.re() == 0.0);
-                            (x * x + y * y).sqrt()
-                        }
-                        Function::Min => scalar::min(x, b()),
-                        Function::Max => scalar::max(x, b()),
-                    }
-                }
-            };
+                Code::Call(f) => *out = call(f, a(), b, &mut fine),
+            }
         }
         fine && self
             .outputs
@@ -414,6 +380,44 @@ impl Tape {
     /// How many names' values [`Tape::run`] reads.
     pub fn inputs(&self) -> usize {
         self.inputs
+    }
+}
+
+/// Function `f` of `x` (and of `b()`, its second argument), `fine` cleared where a value
+/// leaves its domain: the tape's rarer operations, out of its loop.
+fn call<D: Scalar>(f: Function, x: D, b: impl Fn() -> D, fine: &mut bool) -> D {
+    match f {
+        // emitted as SinCos
+        Function::Sin => x.sin(),
+        Function::Cos => x.cos(),
+        Function::Tan => {
+            let (s, c) = x.sin_cos();
+            *fine &= c.re() != 0.0;
+            s / c
+        }
+        Function::Asin | Function::Acos => {
+            *fine &= x.re().abs() < 1.0;
+            asin_or_acos(x, f)
+        }
+        Function::Atan => x.atan(),
+        Function::Atan2 => {
+            let y = b();
+            *fine &= !(x.re() == 0.0 && y.re() == 0.0);
+            // the first argument is the ordinate
+            atan2(x, y)
+        }
+        Function::Sqrt => {
+            *fine &= x.re() >= 0.0;
+            x.sqrt()
+        }
+        Function::Abs => x.abs(),
+        Function::Hypot => {
+            let y = b();
+            *fine &= !(x.re() == 0.0 && y.re() == 0.0);
+            (x * x + y * y).sqrt()
+        }
+        Function::Min => scalar::min(x, b()),
+        Function::Max => scalar::max(x, b()),
     }
 }
 
