@@ -301,94 +301,123 @@ impl Tape {
         self.outputs[k] as usize
     }
 
-    /// Every register from the names' `values` into `registers` (cleared first); false if a
-    /// value left a function's domain or an expression's value is not finite, where
+    /// Every register from the names' `values` into `registers`; false if a value left a
+    /// function's domain or an expression's value is not finite, where
     /// [`Expression::eval`] tells which and why.
     pub fn run<D: Scalar>(&self, values: &[D], registers: &mut Vec<D>) -> bool {
         debug_assert_eq!(values.len(), self.inputs);
-        registers.clear();
-        registers.reserve(self.registers);
-        registers.extend_from_slice(values);
+        self.inputs_mut(registers).copy_from_slice(values);
+        self.run_in(registers)
+    }
+
+    /// The names' registers of `registers`, sized for this tape first (kept from one run to
+    /// the next, so that a caller writes the names' values there in place, and the
+    /// operations write theirs by index, without a push's capacity check or a copy).
+    pub fn inputs_mut<'a, D: Scalar>(&self, registers: &'a mut Vec<D>) -> &'a mut [D] {
+        if registers.len() != self.registers {
+            registers.clear();
+            registers.resize(self.registers, D::from(0.0));
+        }
+        &mut registers[..self.inputs]
+    }
+
+    /// [`Tape::run`] with the names' values already in [`Tape::inputs_mut`]. Each operation
+    /// writes its register in place: built as a value and pushed, each `Jet<8>` was moved
+    /// twice, and the moves and the push cost more than the operation's arithmetic.
+    pub fn run_in<D: Scalar>(&self, registers: &mut [D]) -> bool {
+        debug_assert_eq!(registers.len(), self.registers);
         let mut fine = true;
+        let mut r = self.inputs;
         for op in &self.ops {
-            let r = &*registers;
-            let a = || r[op.a as usize];
-            let b = || r[op.b as usize];
-            let v = match op.code {
-                Code::Const => D::from(op.c),
-                Code::Neg => -a(),
-                Code::Add => a() + b(),
-                Code::AddC => a() + op.c,
-                Code::Sub => a() - b(),
-                Code::SubC => a() - op.c,
-                Code::Mul => a() * b(),
-                Code::MulC => a() * op.c,
+            let (done, rest) = registers.split_at_mut(r);
+            let a = || done[op.a as usize];
+            let b = || done[op.b as usize];
+            r += 1;
+            // each arm writes its register itself: a value the match returned went through a
+            // temporary, one more copy of a `Jet<8>` per operation
+            let out = &mut rest[0];
+            match op.code {
+                Code::Const => *out = D::from(op.c),
+                Code::Neg => *out = -a(),
+                Code::Add => *out = a() + b(),
+                Code::AddC => *out = a() + op.c,
+                Code::Sub => *out = a() - b(),
+                Code::SubC => *out = a() - op.c,
+                Code::Mul => *out = a() * b(),
+                Code::MulC => *out = a() * op.c,
                 Code::Div => {
                     let d = b();
                     fine &= d.re() != 0.0;
-                    a() / d
+                    *out = a() / d;
                 }
-                Code::DivC => a() / op.c,
+                Code::DivC => *out = a() / op.c,
                 Code::Powi => {
                     let (x, n) = (a(), op.b as i32);
                     fine &= !(n < 0 && x.re() == 0.0);
-                    x.powi(n)
+                    *out = x.powi(n);
                 }
                 Code::Powf => {
                     let x = a();
                     fine &= !(x.re() < 0.0 || (x.re() == 0.0 && op.c < 1.0));
-                    x.powf(op.c)
+                    *out = x.powf(op.c);
                 }
                 Code::SinCos => {
                     let (s, c) = a().sin_cos();
-                    registers.push(s);
-                    registers.push(c);
-                    continue;
+                    *out = s;
+                    rest[1] = c;
+                    r += 1;
                 }
-                Code::Call(f) => {
-                    let x = a();
-                    match f {
-                        // emitted as SinCos
-                        Function::Sin => x.sin(),
-                        Function::Cos => x.cos(),
-                        Function::Tan => {
-                            let (s, c) = x.sin_cos();
-                            fine &= c.re() != 0.0;
-                            s / c
-                        }
-                        Function::Asin | Function::Acos => {
-                            fine &= x.re().abs() < 1.0;
-                            asin_or_acos(x, f)
-                        }
-                        Function::Atan => x.atan(),
-                        Function::Atan2 => {
-                            let y = b();
-                            fine &= !(x.re() == 0.0 && y.re() == 0.0);
-                            // the first argument is the ordinate
-                            atan2(x, y)
-                        }
-                        Function::Sqrt => {
-                            fine &= x.re() >= 0.0;
-                            x.sqrt()
-                        }
-                        Function::Abs => x.abs(),
-                        Function::Hypot => {
-                            let y = b();
-                            fine &= !(x.re() == 0.0 && y.re() == 0.0);
-                            (x * x + y * y).sqrt()
-                        }
-                        Function::Min => scalar::min(x, b()),
-                        Function::Max => scalar::max(x, b()),
-                    }
-                }
-            };
-            registers.push(v);
+                Code::Call(f) => *out = call(f, a(), b, &mut fine),
+            }
         }
         fine && self
             .outputs
             .iter()
             .filter(|&&o| o != DROPPED)
             .all(|&o| registers[o as usize].re().is_finite())
+    }
+
+    /// How many names' values [`Tape::run`] reads.
+    pub fn inputs(&self) -> usize {
+        self.inputs
+    }
+}
+
+/// Function `f` of `x` (and of `b()`, its second argument), `fine` cleared where a value
+/// leaves its domain: the tape's rarer operations, out of its loop.
+fn call<D: Scalar>(f: Function, x: D, b: impl Fn() -> D, fine: &mut bool) -> D {
+    match f {
+        // emitted as SinCos
+        Function::Sin => x.sin(),
+        Function::Cos => x.cos(),
+        Function::Tan => {
+            let (s, c) = x.sin_cos();
+            *fine &= c.re() != 0.0;
+            s / c
+        }
+        Function::Asin | Function::Acos => {
+            *fine &= x.re().abs() < 1.0;
+            asin_or_acos(x, f)
+        }
+        Function::Atan => x.atan(),
+        Function::Atan2 => {
+            let y = b();
+            *fine &= !(x.re() == 0.0 && y.re() == 0.0);
+            // the first argument is the ordinate
+            atan2(x, y)
+        }
+        Function::Sqrt => {
+            *fine &= x.re() >= 0.0;
+            x.sqrt()
+        }
+        Function::Abs => x.abs(),
+        Function::Hypot => {
+            let y = b();
+            *fine &= !(x.re() == 0.0 && y.re() == 0.0);
+            (x * x + y * y).sqrt()
+        }
+        Function::Min => scalar::min(x, b()),
+        Function::Max => scalar::max(x, b()),
     }
 }
 

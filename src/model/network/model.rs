@@ -31,7 +31,7 @@ use super::structure::{
 };
 use crate::model::expression::Tape;
 use crate::model::fit::FitLimit;
-use crate::model::hinge::{HingeKind, HingeLoads};
+use crate::model::hinge::{Compliance, HingeKind, HingeLoads};
 use crate::model::material::Material;
 use crate::model::scalar::{max, Jet, Scalar};
 use crate::model::{unseed, Dimension, Model, OutputInfo, ParameterInfo};
@@ -102,8 +102,9 @@ pub struct NetworkModel {
 #[derive(Debug)]
 struct Evaluated<D> {
     network: Network<D>,
-    /// Input first, then the outputs: (body, point, unit direction).
-    ports: Vec<(usize, [D; 2], [D; 2])>,
+    /// Input first, then the outputs: each a unit load at the port's point along its unit
+    /// direction (`force`), which the load cases take as they are, without a copy.
+    ports: Vec<Load<D>>,
     /// Each port's read factor and load share.
     read: Vec<f64>,
     share: Vec<f64>,
@@ -448,18 +449,20 @@ impl NetworkModel {
             evaluated,
             ..
         } = work;
-        // the parameters in the expressions' units, then `deg`
-        values.clear();
-        values.extend(x.iter().zip(&d.parameters).map(|(&v, p)| {
-            if p.dimension == Dimension::Length {
+        // the parameters in the expressions' units, then `deg`, written into the tape's
+        // registers
+        let tape = if extent { &self.tape } else { &self.statics };
+        let inputs = tape.inputs_mut(registers);
+        let (deg, named) = inputs.split_last_mut().expect("`deg` is a name");
+        for ((slot, &v), p) in named.iter_mut().zip(x).zip(&d.parameters) {
+            *slot = if p.dimension == Dimension::Length {
                 v * unit.recip()
             } else {
                 v
-            }
-        }));
-        values.push(D::from(std::f64::consts::PI / 180.0));
-        let tape = if extent { &self.tape } else { &self.statics };
-        if tape.run(values, registers) {
+            };
+        }
+        *deg = D::from(std::f64::consts::PI / 180.0);
+        if tape.run_in(registers) {
             let registers = &*registers;
             self.build(
                 modulus,
@@ -469,6 +472,9 @@ impl NetworkModel {
                 first,
             )
         } else {
+            // the trees read the names' values, which the tape has kept
+            values.clear();
+            values.extend_from_slice(&registers[..tape.inputs()]);
             let values = &*values;
             self.build(
                 modulus,
@@ -547,9 +553,20 @@ impl NetworkModel {
                 points.push(point(p).map_err(Message::message)?);
             }
         }
-        network.flexures.clear();
-        dims.resize_with(d.hinges.len() + d.beams.len(), Vec::new);
-        for (h, dd) in d.hinges.iter().zip(dims.iter_mut()) {
+        // each flexure written into its slot (a `Flexure` of `Jet<8>`s is 648 bytes, which
+        // built and then pushed was copied twice)
+        let count = d.hinges.len() + d.beams.len();
+        if network.flexures.len() != count {
+            network.flexures.clear();
+            network.flexures.resize(count, idle_flexure());
+        }
+        dims.resize_with(count, Vec::new);
+        for ((h, dd), f) in d
+            .hinges
+            .iter()
+            .zip(dims.iter_mut())
+            .zip(&mut network.flexures)
+        {
             dd.clear();
             for (e, info) in h.dimensions.iter().zip(h.kind.dimensions()) {
                 dd.push(if info.dimension == Dimension::Length {
@@ -561,26 +578,17 @@ impl NetworkModel {
             if let Some(why) = domain_error(h, dd) {
                 return Err(format!("hinge \"{}\": {why}", h.name));
             }
-            let start = point(&h.start).map_err(Message::message)?;
+            f.from = h.from.map_or(Body::Ground, Body::Rigid);
+            f.to = h.to.map_or(Body::Ground, Body::Rigid);
+            f.start = point(&h.start).map_err(Message::message)?;
             let (s, c) = eval(&h.angle)?.sin_cos();
-            let l = h.kind.length(dd);
-            let f = Flexure {
-                from: h.from.map_or(Body::Ground, Body::Rigid),
-                to: h.to.map_or(Body::Ground, Body::Rigid),
-                start,
-                axis: [c, s],
-                length: l,
-                compliance: h.kind.compliance(dd, d.width, &self.material),
-            };
-            join(
-                f,
-                modulus,
-                first,
-                extent.then_some(&mut *points),
-                &mut network.flexures,
-            );
+            f.axis = [c, s];
+            f.length = h.kind.length(dd);
+            f.compliance = h.kind.compliance(dd, d.width, &self.material);
+            join(f, modulus, first, extent.then_some(&mut *points));
         }
-        for (b, dd) in d.beams.iter().zip(dims[d.hinges.len()..].iter_mut()) {
+        let beams = d.beams.iter().zip(dims[d.hinges.len()..].iter_mut());
+        for ((b, dd), f) in beams.zip(&mut network.flexures[d.hinges.len()..]) {
             let start = point(&b.start).map_err(Message::message)?;
             let end = point(&b.end).map_err(Message::message)?;
             let thickness = length(&b.thickness).map_err(Message::message)?;
@@ -603,7 +611,7 @@ impl NetworkModel {
             dd.clear();
             dd.push(l);
             dd.push(thickness);
-            let f = Flexure {
+            *f = Flexure {
                 from: b.from.map_or(Body::Ground, Body::Rigid),
                 to: b.to.map_or(Body::Ground, Body::Rigid),
                 start,
@@ -611,13 +619,7 @@ impl NetworkModel {
                 length: l,
                 compliance: beam_compliance(l, thickness, d.width, &self.material),
             };
-            join(
-                f,
-                modulus,
-                first,
-                extent.then_some(&mut *points),
-                &mut network.flexures,
-            );
+            join(f, modulus, first, extent.then_some(&mut *points));
         }
         network.held.clear();
         network.held.extend_from_slice(&self.held);
@@ -628,14 +630,25 @@ impl NetworkModel {
                 .iter()
                 .map(|r| r.expect("every body has a hinge or a beam, whose end is a point of it")),
         );
-        ports.clear();
+        // written in place, as the flexures
+        if ports.len() != self.directions.len() {
+            let zero = D::from(0.0);
+            ports.clear();
+            ports.resize(
+                self.directions.len(),
+                Load {
+                    body: 0,
+                    point: [zero; 2],
+                    force: [zero; 2],
+                    moment: zero,
+                },
+            );
+        }
         read.clear();
         share.clear();
-        for (p, known) in std::iter::once(&d.input)
-            .chain(&d.outputs)
-            .zip(&self.directions)
-        {
-            let direction = match known {
+        let described = std::iter::once(&d.input).chain(&d.outputs);
+        for ((p, known), port) in described.zip(&self.directions).zip(ports.iter_mut()) {
+            port.force = match known {
                 Some(unit) => unit.map(D::from),
                 None => {
                     let [dx, dy] = point(&p.direction).map_err(Message::message)?;
@@ -646,7 +659,8 @@ impl NetworkModel {
                     [dx / norm, dy / norm]
                 }
             };
-            ports.push((p.body, point(&p.at).map_err(Message::message)?, direction));
+            port.body = p.body;
+            port.point = point(&p.at).map_err(Message::message)?;
             read.push(if p.across.is_some() { 2.0 } else { 1.0 });
             share.push(0.5f64.powi(d.bodies[p.body].on_axis.len() as i32));
         }
@@ -713,25 +727,20 @@ impl NetworkModel {
         });
         let needs_output =
             needs(&|q| matches!(q, KOut | KOutActuated | KOutBlocked | BlockedForce));
-        let unit_load = |i: usize| {
-            let (body, point, direction) = e.ports[i];
-            Load {
-                body,
-                point,
-                force: direction,
-                moment: D::from(0.0),
-            }
-        };
+        // read in place: a port copied out of the list, or into a load, was a `memcpy`
         let along = |u: &Displacements<D>, i: usize| {
-            let (body, point, direction) = e.ports[i];
-            u.along(Body::Rigid(body), point, direction)
+            let p = &e.ports[i];
+            u.along_ref(Body::Rigid(p.body), &p.point, &p.force)
         };
         // the load cases wanted, from one factorization: the input's, the first output's
-        let (load_in, load_out) = ([unit_load(0)], [unit_load(1)]);
+        let (load_in, load_out) = (
+            std::slice::from_ref(&e.ports[0]),
+            std::slice::from_ref(&e.ports[1]),
+        );
         // the output's case is read at the output alone, or at the input too where the
         // input's compliance is condensed out
         let condenses = needs(&|q| matches!(q, KOutActuated | KOutBlocked | BlockedForce));
-        let port_bodies = [e.ports[1].0, e.ports[0].0];
+        let port_bodies = [e.ports[1].body, e.ports[0].body];
         let read_out = &port_bodies[..if condenses { 2 } else { 1 }];
         let mut cases = [Case {
             loads: &[],
@@ -739,8 +748,8 @@ impl NetworkModel {
         }; 2];
         let mut count = 0;
         for (needed, loads, read) in [
-            (needs_input, &load_in, None),
-            (needs_output, &load_out, Some(read_out)),
+            (needs_input, load_in, None),
+            (needs_output, load_out, Some(read_out)),
         ] {
             if needed {
                 cases[count] = Case { loads, read };
@@ -1032,11 +1041,11 @@ impl NetworkModel {
             }
         }
         let stack = self.actuator.stiffness.map(|k| {
-            let (body, point, direction) = e.ports[0];
+            let port = &e.ports[0];
             Spring {
-                body,
-                point,
-                direction,
+                body: port.body,
+                point: port.point,
+                direction: port.force,
                 stiffness: D::from(k * e.read[0] * e.share[0]),
             }
         });
@@ -1067,7 +1076,7 @@ impl NetworkModel {
                 let flip_y = line == Axis::X;
                 let across: Vec<bool> =
                     d.bodies.iter().map(|b| b.on_axis.contains(&line)).collect();
-                let (whole, image) = network.unfolded(flip_y, &across, &held, e.ports[port].0);
+                let (whole, image) = network.unfolded(flip_y, &across, &held, e.ports[port].body);
                 for (b, im) in image.iter().enumerate() {
                     match *im {
                         Body::Rigid(i) if i == b => inertia[b] = inertia[b].doubled(flip_y),
@@ -1083,7 +1092,7 @@ impl NetworkModel {
             } else {
                 network.held = held;
             }
-            let (body, at, _) = e.ports[1];
+            let (body, at) = (e.ports[1].body, e.ports[1].point);
             inertia[body] = inertia[body].with_point_mass(d.outputs[0].payload * payload_share, at);
             let family = || {
                 if anti.is_empty() {
@@ -1147,24 +1156,23 @@ impl NetworkModel {
     }
 }
 
-/// `f` added to `flexures`, its compliance at the evaluation's modulus where one is given:
+/// `f` joined to the network, its compliance at the evaluation's modulus where one is given:
 /// its ends the reference points of the bodies that have none yet, and among the described
 /// `points` when they are kept.
 fn join<D: Scalar>(
-    mut f: Flexure<D>,
+    f: &mut Flexure<D>,
     modulus: Option<D>,
     first: &mut [Option<[D; 2]>],
     points: Option<&mut Vec<[D; 2]>>,
-    flexures: &mut Vec<Flexure<D>>,
 ) {
     if let Some(m) = modulus {
         f.compliance = f.compliance.with_modulus(m);
     }
     let end = f.start_plus_length();
-    for (body, p) in [(f.from, f.start), (f.to, end)] {
+    for (body, p) in [(f.from, &f.start), (f.to, &end)] {
         if let Body::Rigid(b) = body {
             if first[b].is_none() {
-                first[b] = Some(p);
+                first[b] = Some(*p);
             }
         }
     }
@@ -1172,7 +1180,24 @@ fn join<D: Scalar>(
         points.push(f.start);
         points.push(end);
     }
-    flexures.push(f);
+}
+
+/// A flexure of zeros, for a slot that each evaluation overwrites.
+fn idle_flexure<D: Scalar>() -> Flexure<D> {
+    let zero = D::from(0.0);
+    Flexure {
+        from: Body::Ground,
+        to: Body::Ground,
+        start: [zero; 2],
+        axis: [zero; 2],
+        length: zero,
+        compliance: Compliance {
+            c11: zero,
+            c22: zero,
+            c23: zero,
+            c33: zero,
+        },
+    }
 }
 
 /// The unit direction `(dx, dy)` (m) where a scalar's normalization, by a reciprocal or by

@@ -193,6 +193,8 @@ pub struct SolveBuffers<D> {
     k: Vec<D>,
     f: Vec<D>,
     moved: Vec<[D; 3]>,
+    /// A flexure's two ends, written in place for each flexure in turn.
+    ends: Vec<End<D>>,
 }
 
 impl<D> Default for SolveBuffers<D> {
@@ -202,6 +204,7 @@ impl<D> Default for SolveBuffers<D> {
             k: Vec::new(),
             f: Vec::new(),
             moved: Vec::new(),
+            ends: Vec::new(),
         }
     }
 }
@@ -251,19 +254,65 @@ impl<D: Scalar> Displacements<'_, D> {
         }
     }
 
-    /// The motion of `point` of `body` along the unit `direction`.
-    #[inline]
-    pub fn along(&self, body: Body, point: [D; 2], direction: [D; 2]) -> D {
-        let [u, v, _] = self.at(body, point);
+    /// The translation of `point` of body `b`, `T(r) u` without its `theta` (a body that
+    /// does not turn moves the same everywhere).
+    #[inline(always)]
+    fn translation(&self, b: usize, point: &[D; 2]) -> (D, D) {
+        let m = &self.bodies[b];
+        if self.moves(Body::Rigid(b), Dof::Rotation) {
+            let o = &self.references[b];
+            let (rx, ry) = (point[0] - o[0], point[1] - o[1]);
+            (m[0] - ry * m[2], m[1] + rx * m[2])
+        } else {
+            (m[0], m[1])
+        }
+    }
+
+    /// The motion of `point` of `body` in the frame whose `x` axis is the unit `(ex, ey)`,
+    /// without the terms of a motion held: [`Displacements::at`] turned, read in place (its
+    /// `[D; 3]`s passed by value were copies, `memcpy` for a `Jet<8>`).
+    #[inline(always)]
+    pub fn in_frame(&self, body: Body, point: &[D; 2], ex: D, ey: D) -> [D; 3] {
+        let zero = D::from(0.0);
+        let Body::Rigid(b) = body else {
+            return [zero; 3];
+        };
+        let m = &self.bodies[b];
+        let (mx, my) = self.translation(b, point);
         match (
             self.point_moves(body, Dof::X),
             self.point_moves(body, Dof::Y),
         ) {
-            (true, true) => u * direction[0] + v * direction[1],
-            (true, false) => u * direction[0],
-            (false, true) => v * direction[1],
-            (false, false) => D::from(0.0),
+            (true, true) => [ex * mx + ey * my, -ey * mx + ex * my, m[2]],
+            (true, false) => [ex * mx, -ey * mx, m[2]],
+            (false, true) => [ey * my, ex * my, m[2]],
+            (false, false) => [zero, zero, m[2]],
         }
+    }
+
+    /// The motion of `point` of `body` along the unit `direction`, read in place.
+    #[inline(always)]
+    pub fn along_ref(&self, body: Body, point: &[D; 2], direction: &[D; 2]) -> D {
+        let zero = D::from(0.0);
+        let Body::Rigid(b) = body else {
+            return zero;
+        };
+        let (mx, my) = self.translation(b, point);
+        match (
+            self.point_moves(body, Dof::X),
+            self.point_moves(body, Dof::Y),
+        ) {
+            (true, true) => mx * direction[0] + my * direction[1],
+            (true, false) => mx * direction[0],
+            (false, true) => my * direction[1],
+            (false, false) => zero,
+        }
+    }
+
+    /// The motion of `point` of `body` along the unit `direction`.
+    #[inline]
+    pub fn along(&self, body: Body, point: [D; 2], direction: [D; 2]) -> D {
+        self.along_ref(body, &point, &direction)
     }
 }
 
@@ -391,15 +440,25 @@ impl<D: Scalar> Network<D> {
         buffers: &'a mut SolveBuffers<D>,
     ) -> Result<Solved<'a, D>, NetworkError> {
         let bodies = self.references.len();
-        let SolveBuffers { index, k, f, moved } = buffers;
+        let SolveBuffers {
+            index,
+            k,
+            f,
+            moved,
+            ends,
+        } = buffers;
         let m = self.free_numbering(index);
         k.clear();
         k.resize(m * m, D::from(0.0));
+        if ends.len() != 2 {
+            ends.clear();
+            ends.resize_with(2, End::zero);
+        }
         for (i, fl) in self.flexures.iter().enumerate() {
             if fl.from == fl.to {
                 return Err(NetworkError::SelfJoined { flexure: i });
             }
-            self.add_flexure_free(fl, index, k, m);
+            self.add_flexure_free(fl, index, k, m, ends);
         }
         for s in &self.springs {
             let r = sub(s.point, self.references[s.body]);
@@ -441,12 +500,14 @@ impl<D: Scalar> Network<D> {
                     .fold(m, |a, &i| a.min(i)),
             };
             for l in case.loads.iter() {
-                let r = sub(l.point, self.references[l.body]);
+                let origin = &self.references[l.body];
+                let r = [l.point[0] - origin[0], l.point[1] - origin[1]];
                 let o = 3 * l.body;
                 let moment = l.moment + (r[0] * l.force[1] - r[1] * l.force[0]);
-                for (dof, v) in [(o, l.force[0]), (o + 1, l.force[1]), (o + 2, moment)] {
+                // read in place: a list of the three (dof, value) pairs was a copy
+                for (dof, v) in [(o, &l.force[0]), (o + 1, &l.force[1]), (o + 2, &moment)] {
                     if index[dof] != HELD {
-                        f[index[dof]] = f[index[dof]] + v;
+                        f[index[dof]] = f[index[dof]] + *v;
                         loaded = loaded.min(index[dof]);
                     }
                 }
@@ -490,90 +551,76 @@ impl<D: Scalar> Network<D> {
     /// Flexure `f`'s stiffness into the lower triangle of `k`, the free degrees of freedom
     /// numbered by `index`: each block `A_i^T K A_j` of the module's formula, with the maps'
     /// known zeros and ones skipped and each entry of the symmetric matrix formed once.
-    fn add_flexure_free(&self, f: &Flexure<D>, index: &[usize], k: &mut [D], m: usize) {
+    fn add_flexure_free(
+        &self,
+        f: &Flexure<D>,
+        index: &[usize],
+        k: &mut [D],
+        m: usize,
+        ends: &mut [End<D>],
+    ) {
         let c = &f.compliance;
         // K = C^-1: the axial entry, and the bending block's inverse
         let det = c.c22 * c.c33 - c.c23 * c.c23;
         let (k11, k22, k23, k33) = (c.c11.recip(), c.c33 / det, -(c.c23 / det), c.c22 / det);
-        let [ex, ey] = f.axis;
+        let (ex, ey) = (f.axis[0], f.axis[1]);
         // an end's map R T(r) from its body's reference motion to the end's motion in the
         // flexure's frame, by columns (u, v, theta); its third row is (0, 0, 1). The
         // clamped start's carries G (its v gains l theta) and enters with a minus sign.
-        // each end's map and K times it built where they stay: returned in an `Option` or
-        // through `array::from_fn`, or zeroed first, the Jet<8>s were mostly copies
-        // only the columns of the degrees of freedom not held are read, and formed
-        let end = |body: Body, point: [D; 2], lever: Option<D>| -> Option<End<D>> {
-            let Body::Rigid(b) = body else { return None };
+        // Each end's map and K times it are written into the buffer's slot: an `End` (15
+        // Jet<8>s) returned in an `Option` was copied twice. Only the columns of the degrees
+        // of freedom not held are read, and formed.
+        let end = |e: &mut End<D>, body: Body, point: &[D; 2], lever: Option<D>| {
+            let Body::Rigid(b) = body else {
+                e.body = None;
+                return;
+            };
+            e.body = Some(b);
             let free = |q: usize| index[3 * b + q] != HELD;
-            let zero = D::from(0.0);
-            let turn = if free(2) {
-                let r = sub(point, self.references[b]);
-                let turn = [ey * r[0] - ex * r[1], ey * r[1] + ex * r[0]];
-                match lever {
-                    Some(l) => [turn[0], turn[1] + l],
-                    None => turn,
-                }
-            } else {
-                [zero; 2]
-            };
-            // K A by columns, the third row of A supplying the bending block's column
-            Some(End {
-                body: b,
-                ka: [
-                    if free(0) {
-                        [k11 * ex, k22 * -ey, k23 * -ey]
-                    } else {
-                        [zero; 3]
-                    },
-                    if free(1) {
-                        [k11 * ey, k22 * ex, k23 * ex]
-                    } else {
-                        [zero; 3]
-                    },
-                    if free(2) {
-                        [k11 * turn[0], k22 * turn[1] + k23, k23 * turn[1] + k33]
-                    } else {
-                        [zero; 3]
-                    },
-                ],
-                columns: [[ex, -ey], [ey, ex], turn],
-            })
-        };
-        let ends = [
-            end(f.from, f.start, Some(f.length)),
-            end(f.to, f.start_plus_length(), None),
-        ];
-        for (ei, one) in ends.iter().enumerate() {
-            let Some(End {
-                body: bi,
-                columns: ai,
-                ..
-            }) = one
-            else {
-                continue;
-            };
-            for (ej, other) in ends.iter().enumerate() {
-                let Some(End {
-                    body: bj, ka: kaj, ..
-                }) = other
-                else {
-                    continue;
+            if free(0) {
+                e.ka[0] = [k11 * ex, k22 * -ey, k23 * -ey];
+            }
+            if free(1) {
+                e.ka[1] = [k11 * ey, k22 * ex, k23 * ex];
+            }
+            e.columns[0] = [ex, -ey];
+            e.columns[1] = [ey, ex];
+            if free(2) {
+                let o = &self.references[b];
+                let (rx, ry) = (point[0] - o[0], point[1] - o[1]);
+                let t0 = ey * rx - ex * ry;
+                let t1 = ey * ry + ex * rx;
+                let t1 = match lever {
+                    Some(l) => t1 + l,
+                    None => t1,
                 };
+                e.ka[2] = [k11 * t0, k22 * t1 + k23, k23 * t1 + k33];
+                e.columns[2] = [t0, t1];
+            }
+        };
+        let (first, second) = ends.split_at_mut(1);
+        end(&mut first[0], f.from, &f.start, Some(f.length));
+        end(&mut second[0], f.to, &f.start_plus_length(), None);
+        let ends = &*ends;
+        for (ei, one) in ends.iter().enumerate() {
+            let Some(bi) = one.body else { continue };
+            for (ej, other) in ends.iter().enumerate() {
+                let Some(bj) = other.body else { continue };
                 for p in 0..3 {
                     let gi = index[3 * bi + p];
                     if gi == HELD {
                         continue;
                     }
+                    let a = &one.columns[p];
                     for q in 0..3 {
                         let gj = index[3 * bj + q];
                         if gj == HELD || gj > gi {
                             continue;
                         }
-                        let [a0, a1] = ai[p];
-                        let [k0, k1, k2] = kaj[q];
-                        let mut v = a0 * k0 + a1 * k1;
+                        let kq = &other.ka[q];
+                        let mut v = a[0] * kq[0] + a[1] * kq[1];
                         if p == 2 {
-                            v = v + k2;
+                            v = v + kq[2];
                         }
                         let idx = gi * m + gj;
                         k[idx] = if ei == ej { k[idx] + v } else { k[idx] - v };
@@ -587,10 +634,23 @@ impl<D: Scalar> Network<D> {
 /// A flexure's end on a body: the body, the map `A` from its reference motion to the end's
 /// motion in the flexure's frame by columns (the third row `(0, 0, 1)` left out), and the
 /// flexure's stiffness times it, `K A`, by columns.
+/// `body` is `None` on the ground; the columns of a held degree of freedom are stale.
+#[derive(Debug, Clone)]
 struct End<D> {
-    body: usize,
+    body: Option<usize>,
     columns: [[D; 2]; 3],
     ka: [[D; 3]; 3],
+}
+
+impl<D: Scalar> End<D> {
+    fn zero() -> Self {
+        let zero = D::from(0.0);
+        End {
+            body: None,
+            columns: [[zero; 2]; 3],
+            ka: [[zero; 3]; 3],
+        }
+    }
 }
 
 /// [`Network::free_numbering`]'s mark of a held degree of freedom.
@@ -603,19 +663,9 @@ impl<D: Scalar> Network<D> {
     /// stresses the hinge library gives).
     pub fn flexure_loads(&self, i: usize, u: &Displacements<D>) -> HingeLoads<D> {
         let f = &self.flexures[i];
-        let [ex, ey] = f.axis;
-        // an end's motion in the flexure's frame, without the terms of a motion held
-        let local = |body: Body, m: [D; 3]| match (
-            u.point_moves(body, Dof::X),
-            u.point_moves(body, Dof::Y),
-        ) {
-            (true, true) => [ex * m[0] + ey * m[1], -ey * m[0] + ex * m[1], m[2]],
-            (true, false) => [ex * m[0], -ey * m[0], m[2]],
-            (false, true) => [ey * m[1], ex * m[1], m[2]],
-            (false, false) => [D::from(0.0), D::from(0.0), m[2]],
-        };
-        let p = local(f.from, u.at(f.from, f.start));
-        let q = local(f.to, u.at(f.to, f.start_plus_length()));
+        let (ex, ey) = (f.axis[0], f.axis[1]);
+        let p = u.in_frame(f.from, &f.start, ex, ey);
+        let q = u.in_frame(f.to, &f.start_plus_length(), ex, ey);
         // Q's motion relative to the rigid motion of P carried along the flexure
         let d = [q[0] - p[0], q[1] - (p[1] + f.length * p[2]), q[2] - p[2]];
         let c = &f.compliance;
@@ -630,6 +680,7 @@ impl<D: Scalar> Network<D> {
 
 impl<D: Scalar> Flexure<D> {
     /// Its end on `to`.
+    #[inline]
     pub fn start_plus_length(&self) -> [D; 2] {
         [
             self.start[0] + self.axis[0] * self.length,
@@ -658,24 +709,31 @@ fn transfer<D: Scalar>(r: [D; 2], u: [D; 3]) -> [D; 3] {
 }
 
 /// `L D L^T` of the symmetric `k` in place (`L` below the diagonal, `D` on it; the upper
-/// triangle is not read), or the first pivot that vanishes.
+/// triangle is not read), or the first pivot that vanishes. Row `j` and each row below it
+/// are read as slices, whose entries are read in place: indexed into the whole matrix,
+/// every `Jet<8>` term was a bounds check and a copy, about a third of the factor's count.
 fn factor<D: Scalar>(k: &mut [D], n: usize) -> Result<(), usize> {
     let scale = (0..n).map(|i| k[i * n + i].re().abs()).fold(0.0, f64::max);
     for j in 0..n {
-        let mut d = k[j * n + j];
-        for p in 0..j {
-            d = d - k[j * n + p] * k[j * n + p] * k[p * n + p];
+        let (above, rest) = k.split_at_mut(j * n);
+        let (row_j, below) = rest.split_at_mut(n);
+        // the pivots of the rows above, `D_p`
+        let pivot = |p: usize| &above[p * n + p];
+        let mut d = row_j[j];
+        for (p, l) in row_j[..j].iter().enumerate() {
+            d = d - *l * *l * *pivot(p);
         }
         if d.re().is_nan() || d.re() <= FREE_PIVOT * scale {
             return Err(j);
         }
-        k[j * n + j] = d;
-        for i in j + 1..n {
-            let mut s = k[i * n + j];
-            for p in 0..j {
-                s = s - k[i * n + p] * k[j * n + p] * k[p * n + p];
+        row_j[j] = d;
+        let row_j = &row_j[..j];
+        for row_i in below.chunks_exact_mut(n) {
+            let mut s = row_i[j];
+            for (p, (a, b)) in row_i[..j].iter().zip(row_j).enumerate() {
+                s = s - *a * *b * *pivot(p);
             }
-            k[i * n + j] = s / d;
+            row_i[j] = s / d;
         }
     }
     Ok(())
@@ -686,18 +744,27 @@ fn factor<D: Scalar>(k: &mut [D], n: usize) -> Result<(), usize> {
 /// give are skipped (the same numbers: `a - l 0` is `a`); the entries before `from` are
 /// left unfinished (the back substitution's last rows, which no entry from `from` on reads).
 fn substitute<D: Scalar>(l: &[D], n: usize, x: &mut [D], loaded: usize, from: usize) {
+    // each entry summed in a local from slices, in the same order as by index
     for i in loaded..n {
-        for p in loaded..i {
-            x[i] = x[i] - l[i * n + p] * x[p];
+        let (done, rest) = x.split_at_mut(i);
+        let mut xi = rest[0];
+        for (a, b) in l[i * n + loaded..i * n + i].iter().zip(&done[loaded..]) {
+            xi = xi - *a * *b;
         }
+        rest[0] = xi;
     }
     for i in loaded.max(from)..n {
         x[i] = x[i] / l[i * n + i];
     }
     for i in (from..n).rev() {
-        for p in i + 1..n {
-            x[i] = x[i] - l[p * n + i] * x[p];
+        let (head, tail) = x.split_at_mut(i + 1);
+        let mut xi = head[i];
+        // column i of L below row i (none below the last)
+        let column = l.get((i + 1) * n + i..).unwrap_or_default();
+        for (a, b) in column.iter().step_by(n).zip(tail.iter()) {
+            xi = xi - *a * *b;
         }
+        head[i] = xi;
     }
 }
 
