@@ -122,18 +122,57 @@ impl Problem for Epigraph<'_, '_> {
         gradient: &mut [f64],
         jacobian: &mut [f64],
     ) -> f64 {
+        self.evaluate_gradient(v, true, c, gradient, jacobian)
+    }
+
+    /// The design's rows first, the part's rules last among them ([`DesignNlp`]'s), then
+    /// the parts': the rules are worked out only where one of their rows is needed, as
+    /// [`DesignNlp`] does.
+    fn evaluate_with_gradient_of(
+        &self,
+        v: &[f64],
+        needed: &[bool],
+        c: &mut [f64],
+        gradient: &mut [f64],
+        jacobian: &mut [f64],
+    ) -> f64 {
+        let rules = self.nlp.rules_needed(&needed[..self.rows()]);
+        self.evaluate_gradient(v, rules, c, gradient, jacobian)
+    }
+}
+
+impl Epigraph<'_, '_> {
+    /// [`Problem::evaluate_with_gradient`], the part's rules and their rows worked out
+    /// only where `rules` (their rows zero otherwise).
+    fn evaluate_gradient(
+        &self,
+        v: &[f64],
+        rules: bool,
+        c: &mut [f64],
+        gradient: &mut [f64],
+        jacobian: &mut [f64],
+    ) -> f64 {
         let n = self.nlp.dimension();
         let stride = n + 1;
         let np = self.nlp.parameter_count();
         let values = self.nlp.values();
         with_scratch(values, values * np, |out, model_jac| {
             self.nlp
-                .outputs_with_gradient(&self.nlp.unscale(&v[..n]), out, model_jac);
+                .outputs_with_gradient_of(&self.nlp.unscale(&v[..n]), rules, out, model_jac);
             let m = self.rows();
             let (design_rows, part_rows) = jacobian.split_at_mut(m * stride);
+            // without the rules their rows are not read: zeros
+            let written = if rules {
+                m
+            } else {
+                self.nlp.rows_without_rules()
+            };
+            let (written_rows, unread_rows) = design_rows.split_at_mut(written * stride);
             self.nlp
-                .rows_from(out, model_jac, &mut c[..m], design_rows, stride);
-            for row in design_rows.chunks_exact_mut(stride) {
+                .rows_from(out, model_jac, &mut c[..written], written_rows, stride);
+            c[written..m].fill(0.0);
+            unread_rows.fill(0.0);
+            for row in written_rows.chunks_exact_mut(stride) {
                 row[n] = 0.0;
             }
             let (free, range) = self.nlp.free_and_range();

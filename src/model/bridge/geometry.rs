@@ -212,6 +212,12 @@ impl Layout {
         &self.fit
     }
 
+    /// The parameter index of each dimension of hinge b, of each of hinge d, and of
+    /// `delta2, l3, delta3, delta4`.
+    pub(crate) fn slots(&self) -> (&[usize], &[usize], [usize; 4]) {
+        (&self.b, &self.d, self.link)
+    }
+
     /// The model's parameters, in order.
     pub fn parameters(&self) -> &[ParameterInfo] {
         &self.parameters

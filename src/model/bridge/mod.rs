@@ -186,42 +186,15 @@ impl Bridge {
     }
 
     /// Values and gradients of the part's rules at `x`, with `N` = the number of
-    /// parameters.
+    /// parameters ([`part::rules::margins_with_gradient`]).
     fn rule_gradients<const N: usize>(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
-        // the first stage's size rules on a stack array of their own: zeroing the whole
-        // part's (53 numbers of 9 or more floats) for them was a tenth of wei2017's study
-        // with the rules (callgrind: `memset`, 4,120 instructions an evaluation)
-        const FIRST: usize = 12;
-        if out.len() <= FIRST {
-            let mut y = [Jet::<N>::from(0.0); FIRST];
-            self.rule_gradients_into(x, &mut y[..out.len()], out, jacobian);
-        } else {
-            let mut y = [Jet::<N>::from(0.0); part::rules::MAX_RULES];
-            self.rule_gradients_into(x, &mut y[..out.len()], out, jacobian);
-        }
-    }
-
-    /// [`Bridge::rule_gradients`] with `y` (one per rule) to work the dual numbers in.
-    fn rule_gradients_into<const N: usize>(
-        &self,
-        x: &[f64],
-        y: &mut [Jet<N>],
-        out: &mut [f64],
-        jacobian: &mut [f64],
-    ) {
-        let mut values = [0.0; part::rules::MAX_RULES];
-        // the values as `rule_margins` computes them, to the last digit (a dual number's
-        // quotient rounds otherwise), and the clearances' nearest pairs found once, on them
-        part::rules::margins_seeded(
+        part::rules::margins_with_gradient::<N>(
             &self.settings.part,
             &self.layout,
-            &self.layout.geometry(x),
-            &self.layout.seeded(x),
-            &mut values[..out.len()],
-            y,
+            x,
+            out,
+            jacobian,
         );
-        unseed(y, out, jacobian);
-        out.copy_from_slice(&values[..out.len()]);
     }
 }
 
