@@ -161,13 +161,13 @@ pub struct NetworkPart {
 
 impl NetworkPart {
     pub fn new(
-        description: Description,
+        mut description: Description,
         settings: PartSettings,
         actuation: Actuation,
         counterparts: Counterparts,
     ) -> Self {
         NetworkPart {
-            layout: rules::Layout::new(&description),
+            layout: rules::Layout::new(&mut description),
             description,
             settings,
             actuation,
@@ -306,17 +306,14 @@ struct Values<'a, D = f64> {
 
 impl<'a, D: Scalar> Values<'a, D> {
     fn new(d: &'a Description, x: &[D]) -> Self {
-        let mut values: Vec<D> = x
-            .iter()
-            .zip(&d.parameters)
-            .map(|(&v, p)| {
-                if p.dimension == Dimension::Length {
-                    v / d.unit
-                } else {
-                    v
-                }
-            })
-            .collect();
+        let mut values: Vec<D> = Vec::with_capacity(x.len() + 1);
+        values.extend(x.iter().zip(&d.parameters).map(|(&v, p)| {
+            if p.dimension == Dimension::Length {
+                v / d.unit
+            } else {
+                v
+            }
+        }));
         values.push(D::from(std::f64::consts::PI / 180.0));
         Values { d, values }
     }
