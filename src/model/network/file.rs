@@ -173,8 +173,9 @@ impl Axis {
 pub struct Keyed {
     pub key: String,
     pub expression: Expression,
-    /// Its place among the expressions the model compiles into one tape
-    /// ([`crate::model::expression::Tape`]), set by the model.
+    /// Its place among the expressions compiled into one tape
+    /// ([`crate::model::expression::Tape`]), set by whoever compiles it: the model in its
+    /// description, the part's rules in their own copy of it.
     pub slot: usize,
 }
 
