@@ -199,6 +199,8 @@ pub struct BodyDescription {
 #[derive(Debug, Clone)]
 pub struct HingeDescription {
     pub name: String,
+    /// Its key in the file (`network.hinges[0]`).
+    pub key: String,
     pub kind: HingeKind,
     pub from: Option<usize>,
     pub to: Option<usize>,
@@ -572,6 +574,7 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
         }
         hinges.push(HingeDescription {
             name: h.name.clone(),
+            key: written(&path),
             kind,
             from,
             to,

@@ -22,15 +22,8 @@ pub fn flexure_on_mirror_axis(d: &Description, flexures: &[Flexure<f64>]) -> Opt
     let names = d
         .hinges
         .iter()
-        .map(|h| {
-            let key = h.angle.key.strip_suffix(".angle").unwrap_or(&h.angle.key);
-            ("hinge", h.name.as_str(), key.to_string())
-        })
-        .chain(
-            d.beams
-                .iter()
-                .map(|b| ("beam", b.name.as_str(), b.key.clone())),
-        );
+        .map(|h| ("hinge", h.name.as_str(), &h.key))
+        .chain(d.beams.iter().map(|b| ("beam", b.name.as_str(), &b.key)));
     for (f, (what, name, key)) in flexures.iter().zip(names) {
         let end = f.start_plus_length();
         for &axis in &d.mirror {
