@@ -325,6 +325,32 @@ pub(crate) use constant_ops;
 
 constant_ops!(Jet, chain);
 
+/// `$call` with the const `$N` the count `$n` of a design's parameters, one of 1 to
+/// [`crate::model::MAX_PARAMETERS`]: a model's evaluation with gradients runs over
+/// `Jet<N>` with as many derivatives as the design has parameters (a `Jet<16>` carried 16
+/// through every operation whatever the count). Panics on another count.
+macro_rules! with_count {
+    ($n:expr, |$N:ident| $call:expr) => {
+        $crate::model::scalar::with_count!(@each $n, $N, $call, 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+    };
+    (@each $n:expr, $N:ident, $call:expr, $($k:literal)*) => {
+        match $n {
+            $($k => {
+                const $N: usize = $k;
+                $call
+            })*
+            n => panic!(
+                "a design has 1 to {} parameters, got {n}",
+                $crate::model::MAX_PARAMETERS
+            ),
+        }
+    };
+}
+pub(crate) use with_count;
+
+// `with_count!`'s arms are written out to the largest count
+const _: () = assert!(crate::model::MAX_PARAMETERS == 16);
+
 impl<const N: usize> Scalar for Jet<N> {
     fn re(&self) -> f64 {
         self.re

@@ -33,7 +33,7 @@ use crate::model::expression::Tape;
 use crate::model::fit::FitLimit;
 use crate::model::hinge::{Compliance, HingeKind, HingeLoads};
 use crate::model::material::Material;
-use crate::model::scalar::{max, Jet, Scalar};
+use crate::model::scalar::{max, with_count, Jet, Scalar};
 use crate::model::{unseed, Dimension, Model, OutputInfo, ParameterInfo};
 
 /// The actuator that drives the input (paper 004, Eq. 12-14), as the bridge's.
@@ -1426,31 +1426,6 @@ fn domain_error<D: Scalar>(h: &HingeDescription, dims: &[D]) -> Option<String> {
     h.kind.domain_error(&plain, &names)
 }
 
-/// `$self.gradients::<N>(...)` with `N` the design's parameter count.
-macro_rules! per_count {
-    ($n:expr, $self:ident, $($arg:expr),*) => {
-        match $n {
-            1 => $self.gradients::<1>($($arg),*),
-            2 => $self.gradients::<2>($($arg),*),
-            3 => $self.gradients::<3>($($arg),*),
-            4 => $self.gradients::<4>($($arg),*),
-            5 => $self.gradients::<5>($($arg),*),
-            6 => $self.gradients::<6>($($arg),*),
-            7 => $self.gradients::<7>($($arg),*),
-            8 => $self.gradients::<8>($($arg),*),
-            9 => $self.gradients::<9>($($arg),*),
-            10 => $self.gradients::<10>($($arg),*),
-            11 => $self.gradients::<11>($($arg),*),
-            12 => $self.gradients::<12>($($arg),*),
-            13 => $self.gradients::<13>($($arg),*),
-            14 => $self.gradients::<14>($($arg),*),
-            15 => $self.gradients::<15>($($arg),*),
-            16 => $self.gradients::<16>($($arg),*),
-            n => panic!("a network has 1 to {} parameters, got {n}", crate::model::MAX_PARAMETERS),
-        }
-    };
-}
-
 impl Model for NetworkModel {
     fn name(&self) -> &'static str {
         "network"
@@ -1477,7 +1452,7 @@ impl Model for NetworkModel {
         out: &mut [f64],
         jacobian: &mut [f64],
     ) {
-        per_count!(x.len(), self, x, wanted, out, jacobian)
+        with_count!(x.len(), |N| self.gradients::<N>(x, wanted, out, jacobian))
     }
 
     fn domain_error(&self, x: &[f64]) -> Option<String> {
