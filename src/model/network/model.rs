@@ -31,7 +31,7 @@ use super::structure::{
 };
 use crate::model::expression::Tape;
 use crate::model::fit::FitLimit;
-use crate::model::hinge::{Compliance, HingeKind, HingeLoads};
+use crate::model::hinge::{Compliance, HingeKind, HingeLoads, MAX_HINGE_DIMENSIONS};
 use crate::model::material::Material;
 use crate::model::scalar::{max, with_count, Jet, Scalar};
 use crate::model::{unseed, Dimension, Model, OutputInfo, ParameterInfo};
@@ -584,7 +584,7 @@ impl NetworkModel {
             let (s, c) = eval(&h.angle)?.sin_cos();
             f.axis = [c, s];
             f.length = h.kind.length(dd);
-            f.compliance = h.kind.compliance(dd, d.width, &self.material);
+            hinge_compliance(h.kind, dd, d.width, &self.material, &mut f.compliance);
             join(f, modulus, first, extent.then_some(&mut *points));
         }
         let beams = d.beams.iter().zip(dims[d.hinges.len()..].iter_mut());
@@ -1180,6 +1180,40 @@ fn join<D: Scalar>(
         points.push(f.start);
         points.push(end);
     }
+}
+
+/// Hinge `kind`'s compliance at `dims` (SI) into `out`: where the scalar is a number of first
+/// derivatives alone and the kind has its partial derivatives in closed form, its tangent
+/// is their chain rule, a few products a coefficient where the formula's every operation
+/// over the number was one; elsewhere the kind's formula over the scalar. The values are
+/// the formula's, bit for bit, either way.
+#[inline(always)]
+fn hinge_compliance<D: Scalar>(
+    kind: HingeKind,
+    dims: &[D],
+    width: f64,
+    material: &Material,
+    out: &mut Compliance<D>,
+) {
+    if D::FROM_PARTIALS && dims.len() <= MAX_HINGE_DIMENSIONS {
+        let mut plain = [0.0; MAX_HINGE_DIMENSIONS];
+        for (p, v) in plain.iter_mut().zip(dims) {
+            *p = v.re();
+        }
+        if let Some((c, by)) = kind.compliance_partials(&plain[..dims.len()], width, material) {
+            let n = dims.len();
+            let chain = |re: f64, pick: fn(&Compliance<f64>) -> f64| {
+                let partials: [f64; MAX_HINGE_DIMENSIONS] = std::array::from_fn(|k| pick(&by[k]));
+                D::from_partials(re, dims, &partials[..n])
+            };
+            out.c11 = chain(c.c11, |c| c.c11);
+            out.c22 = chain(c.c22, |c| c.c22);
+            out.c23 = chain(c.c23, |c| c.c23);
+            out.c33 = chain(c.c33, |c| c.c33);
+            return;
+        }
+    }
+    *out = kind.compliance(dims, width, material);
 }
 
 /// A flexure of zeros, for a slot that each evaluation overwrites.
