@@ -59,6 +59,25 @@ pub trait Scalar:
     /// `self^n` for a real exponent (`self > 0`).
     fn powf(self, n: f64) -> Self;
     fn atan(self) -> Self;
+
+    /// Whether [`Scalar::from_partials`] is how this number is best built from a function
+    /// whose partial derivatives are known in closed form: for a number of first
+    /// derivatives alone ([`Jet`]). Not for `f64` (no tangent: the function's own code is as
+    /// cheap), the second-order numbers (the partials miss their second derivatives) or
+    /// num-dual's first-order ones (the tests' independent path, kept the function's own).
+    const FROM_PARTIALS: bool = false;
+
+    /// The value `re` of a function of `args` whose partial derivatives there are
+    /// `partials` (one per argument), with the chain rule's first derivatives
+    /// `sum_k partials[k] args[k]'`: the local preaccumulation of Griewank and Walther,
+    /// "Evaluating Derivatives", 2nd ed., SIAM 2008 (its chapter on Jacobian accumulation),
+    /// the local Jacobian written out. First order only: callers ask
+    /// [`Scalar::FROM_PARTIALS`] first.
+    fn from_partials(re: f64, args: &[Self], partials: &[f64]) -> Self {
+        args.iter()
+            .zip(partials)
+            .fold(Self::from(re), |sum, (&a, &p)| sum + (a - a.re()) * p)
+    }
 }
 
 impl Scalar for f64 {
@@ -325,6 +344,32 @@ pub(crate) use constant_ops;
 
 constant_ops!(Jet, chain);
 
+/// `$call` with the const `$N` the count `$n` of a design's parameters, one of 1 to
+/// [`crate::model::MAX_PARAMETERS`]: a model's evaluation with gradients runs over
+/// `Jet<N>` with as many derivatives as the design has parameters (a `Jet<16>` carried 16
+/// through every operation whatever the count). Panics on another count.
+macro_rules! with_count {
+    ($n:expr, |$N:ident| $call:expr) => {
+        $crate::model::scalar::with_count!(@each $n, $N, $call, 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+    };
+    (@each $n:expr, $N:ident, $call:expr, $($k:literal)*) => {
+        match $n {
+            $($k => {
+                const $N: usize = $k;
+                $call
+            })*
+            n => panic!(
+                "a design has 1 to {} parameters, got {n}",
+                $crate::model::MAX_PARAMETERS
+            ),
+        }
+    };
+}
+pub(crate) use with_count;
+
+// `with_count!`'s arms are written out to the largest count
+const _: () = assert!(crate::model::MAX_PARAMETERS == 16);
+
 impl<const N: usize> Scalar for Jet<N> {
     fn re(&self) -> f64 {
         self.re
@@ -357,6 +402,19 @@ impl<const N: usize> Scalar for Jet<N> {
     #[inline(always)]
     fn atan(self) -> Self {
         self.chain(self.re.atan(), 1.0 / (1.0 + self.re * self.re))
+    }
+
+    const FROM_PARTIALS: bool = true;
+
+    #[inline(always)]
+    fn from_partials(re: f64, args: &[Self], partials: &[f64]) -> Self {
+        let mut grad = [0.0; N];
+        for (a, &p) in args.iter().zip(partials) {
+            for (g, &d) in grad.iter_mut().zip(&a.grad) {
+                *g += d * p;
+            }
+        }
+        Jet { re, grad }
     }
 }
 
@@ -424,6 +482,28 @@ pub(crate) mod tests {
         // outside the kernel's range the library is used
         assert_eq!(sin_cos(2.0), 2.0f64.sin_cos());
         assert_eq!(sin_cos(0.0), (0.0, 1.0));
+    }
+
+    #[test]
+    fn from_partials_is_the_chain_rule() {
+        // f(u, v) = u^2 v at (u, v) with u = x + y, v = x y
+        let (x, y) = (Jet::<2>::variable(0.7, 0), Jet::<2>::variable(-1.3, 1));
+        let (u, v) = (x + y, x * y);
+        let direct = u * u * v;
+        let (du, dv) = (2.0 * u.re * v.re, u.re * u.re);
+        let chained = Jet::from_partials(direct.re, &[u, v], &[du, dv]);
+        // the generic default, as num-dual's numbers would have it
+        let generic = [u, v]
+            .iter()
+            .zip([du, dv])
+            .fold(Jet::from(direct.re), |s, (&a, p)| s + (a - a.re) * p);
+        const { assert!(<Jet<2> as Scalar>::FROM_PARTIALS && !<f64 as Scalar>::FROM_PARTIALS) };
+        assert_eq!(chained.re, direct.re);
+        for i in 0..2 {
+            let g = direct.grad[i];
+            assert!((chained.grad[i] - g).abs() <= 1e-15 * g.abs(), "{i}");
+            assert!((generic.grad[i] - g).abs() <= 1e-15 * g.abs(), "{i}");
+        }
     }
 
     #[test]

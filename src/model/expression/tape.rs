@@ -25,6 +25,84 @@ pub struct Tape {
     registers: usize,
     /// The register of each expression, in the order compiled.
     outputs: Vec<u32>,
+    /// What [`Tape::run_in`] executes, from `ops` and `outputs`.
+    plan: Plan,
+}
+
+/// The tape as [`Tape::run_in`] runs it: the constants written first, out of the dispatch;
+/// the other operations, each with its register, in an order of their dependencies that
+/// runs operations of one code together (the dispatch's indirect jump then mostly goes
+/// where it went the last time, which a branch predictor guesses); the outputs' registers
+/// to check once each.
+#[derive(Debug, Clone, PartialEq)]
+struct Plan {
+    constants: Vec<(u32, f64)>,
+    steps: Vec<(u32, Op)>,
+    checked: Vec<u32>,
+}
+
+impl Plan {
+    fn new(inputs: usize, ops: &[Op], outputs: &[u32]) -> Self {
+        let mut constants = Vec::new();
+        // each operation's register, and the operation that fills each register
+        let mut filled_by = vec![usize::MAX; inputs];
+        let mut at = Vec::with_capacity(ops.len());
+        for (i, op) in ops.iter().enumerate() {
+            at.push(filled_by.len() as u32);
+            if op.code == Code::Const {
+                constants.push((filled_by.len() as u32, op.c));
+            }
+            let width = if op.code == Code::SinCos { 2 } else { 1 };
+            filled_by.extend(std::iter::repeat_n(i, width));
+        }
+        // the operations not yet placed, and how many of their operands are not yet filled
+        let operands = |op: &Op| {
+            let b = op.reads_b().then_some(op.b);
+            [Some(op.a), b]
+                .into_iter()
+                .flatten()
+                .map(|r| filled_by[r as usize])
+                .filter(|&i| i != usize::MAX && ops[i].code != Code::Const)
+        };
+        let mut waiting: Vec<usize> = ops.iter().map(|op| operands(op).count()).collect();
+        let mut readers = vec![Vec::new(); ops.len()];
+        for (i, op) in ops.iter().enumerate() {
+            for j in operands(op) {
+                readers[j].push(i);
+            }
+        }
+        let mut ready: Vec<usize> = (0..ops.len())
+            .filter(|&i| waiting[i] == 0 && ops[i].code != Code::Const)
+            .collect();
+        let mut steps = Vec::with_capacity(ops.len());
+        let mut last = None;
+        while !ready.is_empty() {
+            // the first ready operation of the last one's code, else the first ready one:
+            // the compiled order where the codes allow nothing better
+            let k = ready
+                .iter()
+                .position(|&i| Some(ops[i].code) == last)
+                .unwrap_or(0);
+            let i = ready.remove(k);
+            last = Some(ops[i].code);
+            steps.push((at[i], ops[i]));
+            for &j in &readers[i] {
+                waiting[j] -= 1;
+                if waiting[j] == 0 {
+                    let place = ready.partition_point(|&r| r < j);
+                    ready.insert(place, j);
+                }
+            }
+        }
+        let mut checked: Vec<u32> = outputs.iter().copied().filter(|&o| o != DROPPED).collect();
+        checked.sort_unstable();
+        checked.dedup();
+        Plan {
+            constants,
+            steps,
+            checked,
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -37,6 +115,8 @@ enum Code {
     Sub,
     /// `a - c`
     SubC,
+    /// `c - a`
+    SubFrom,
     Mul,
     /// `a * c`
     MulC,
@@ -127,6 +207,7 @@ impl Compiler {
             Kind::Sub(a, b) => match (self.node(e, a), self.node(e, b)) {
                 (C(x), C(y)) => return C(x - y),
                 (R(a), C(y)) => (Code::SubC, a, 0, y),
+                (C(x), R(b)) => (Code::SubFrom, b, 0, x),
                 (x, y) => {
                     let (a, b) = (self.register(x), self.register(y));
                     (Code::Sub, a, b, 0.0)
@@ -186,18 +267,20 @@ impl Tape {
             registers: inputs as u32,
             seen: HashMap::new(),
         };
-        let outputs = expressions
+        let outputs: Vec<u32> = expressions
             .into_iter()
             .map(|e| {
                 let v = c.node(e, e.root);
                 c.register(v)
             })
             .collect();
+        let plan = Plan::new(inputs, &c.ops, &outputs);
         Tape {
             inputs,
             ops: c.ops,
             registers: c.registers as usize,
             outputs,
+            plan,
         }
     }
 
@@ -258,7 +341,7 @@ impl Tape {
             }
             r += width;
         }
-        let outputs = self
+        let outputs: Vec<u32> = self
             .outputs
             .iter()
             .enumerate()
@@ -270,11 +353,13 @@ impl Tape {
                 }
             })
             .collect();
+        let plan = Plan::new(self.inputs, &ops, &outputs);
         Tape {
             inputs: self.inputs,
             ops,
             registers: registers as usize,
             outputs,
+            plan,
         }
     }
 
@@ -326,23 +411,27 @@ impl Tape {
     /// twice, and the moves and the push cost more than the operation's arithmetic.
     pub fn run_in<D: Scalar>(&self, registers: &mut [D]) -> bool {
         debug_assert_eq!(registers.len(), self.registers);
+        for &(r, c) in &self.plan.constants {
+            registers[r as usize] = D::from(c);
+        }
         let mut fine = true;
-        let mut r = self.inputs;
-        for op in &self.ops {
-            let (done, rest) = registers.split_at_mut(r);
+        for (r, op) in &self.plan.steps {
+            // every operand's register is below the operation's own
+            let (done, rest) = registers.split_at_mut(*r as usize);
             let a = || done[op.a as usize];
             let b = || done[op.b as usize];
-            r += 1;
             // each arm writes its register itself: a value the match returned went through a
             // temporary, one more copy of a `Jet<8>` per operation
             let out = &mut rest[0];
             match op.code {
-                Code::Const => *out = D::from(op.c),
+                Code::Const => unreachable!("written before the steps"),
                 Code::Neg => *out = -a(),
                 Code::Add => *out = a() + b(),
                 Code::AddC => *out = a() + op.c,
                 Code::Sub => *out = a() - b(),
                 Code::SubC => *out = a() - op.c,
+                // as the tree computes it: the constant a scalar, a zero's sign kept
+                Code::SubFrom => *out = D::from(op.c) - a(),
                 Code::Mul => *out = a() * b(),
                 Code::MulC => *out = a() * op.c,
                 Code::Div => {
@@ -365,16 +454,15 @@ impl Tape {
                     let (s, c) = a().sin_cos();
                     *out = s;
                     rest[1] = c;
-                    r += 1;
                 }
                 Code::Call(f) => *out = call(f, a(), b, &mut fine),
             }
         }
-        fine && self
-            .outputs
+        // without a branch per output: each is checked, as all are finite but on failure
+        self.plan
+            .checked
             .iter()
-            .filter(|&&o| o != DROPPED)
-            .all(|&o| registers[o as usize].re().is_finite())
+            .fold(fine, |f, &o| f & registers[o as usize].re().is_finite())
     }
 
     /// How many names' values [`Tape::run`] reads.
@@ -481,6 +569,26 @@ mod tests {
         }
         assert_eq!(odd.outputs[0], DROPPED);
         assert_eq!(kept.len(), odd.registers());
+        // the operations of one code run together: fewer changes of code than compiled
+        let changes = |codes: Vec<Code>| codes.windows(2).filter(|w| w[0] != w[1]).count();
+        let compiled = tape
+            .ops
+            .iter()
+            .map(|op| op.code)
+            .filter(|&c| c != Code::Const);
+        let planned = tape.plan.steps.iter().map(|(_, op)| op.code);
+        assert!(changes(planned.collect()) < changes(compiled.collect()));
+        assert_eq!(
+            tape.plan.steps.len() + tape.plan.constants.len(),
+            tape.ops.len()
+        );
+        // a constant less a register: the tree's zero, with its sign
+        let e = Expression::parse("1 - l2", &NAMES).unwrap();
+        let one = Tape::compile([&e], 3);
+        assert!(one.run(&[1.0, 0.0, 0.0], &mut plain));
+        let zero = plain[one.output(0)];
+        assert_eq!(zero.to_bits(), e.eval(&[1.0, 0.0, 0.0]).unwrap().to_bits());
+        assert_eq!(zero.to_bits(), 0.0f64.to_bits());
         // a constant is known as one
         let constants: Vec<Expression> = ["-1", "l2", "2*3", "l2 - 1"]
             .iter()

@@ -47,7 +47,7 @@ use super::fit::FitLimit;
 use super::material::Material;
 use super::scalar::{max, Scalar};
 use super::Dimension;
-use kinds::{FitRatio, Kind};
+use kinds::{CompliancePartials, FitRatio, Kind};
 
 /// The most dimensions a hinge kind has.
 pub const MAX_HINGE_DIMENSIONS: usize = 3;
@@ -244,6 +244,17 @@ impl HingeKind {
         material: &Material,
     ) -> Compliance<D> {
         with_kind!(self, k => k.compliance(dims, width, material))
+    }
+
+    /// [`HingeKind::compliance`] over `f64` with its partial derivatives by each dimension,
+    /// where the kind has them in closed form ([`Kind::compliance_partials`]; the strip).
+    pub fn compliance_partials(
+        self,
+        dims: &[f64],
+        width: f64,
+        material: &Material,
+    ) -> Option<CompliancePartials> {
+        with_kind!(self, k => k.compliance_partials(dims, width, material))
     }
 
     /// The factor by which the largest surface stress of a notch exceeds the beam stress
@@ -470,6 +481,43 @@ mod tests {
         let c22_bending = c.c22 - l / (mat.shear_modulus() * w * t);
         assert!((c.c33 - 3.0 * c22_bending / (l * l)).abs() <= 1e-12 * c.c33);
         assert!((c.c23 - 6.0 * c22_bending / (4.0 * l)).abs() <= 1e-12 * c.c23);
+    }
+
+    #[test]
+    fn strip_partials_are_the_formulas_derivatives() {
+        use crate::model::scalar::Jet;
+        let mat = Material::al7075_t6();
+        let w = 10e-3;
+        for dims in [
+            [2e-3, 0.4e-3],
+            [0.5e-3, 2e-3],
+            [20e-3, 0.7e-3],
+            [0.0, 0.5e-3],
+        ] {
+            let (c, by) = HingeKind::Strip
+                .compliance_partials(&dims, w, &mat)
+                .unwrap();
+            // the values are the formula's over f64, bit for bit
+            assert_eq!(c, HingeKind::Strip.compliance(&dims, w, &mat));
+            // the partials are its forward-mode derivatives, to rounding
+            let jets = [Jet::<2>::variable(dims[0], 0), Jet::variable(dims[1], 1)];
+            let j = HingeKind::Strip.compliance(&jets, w, &mat);
+            let pick = |c: &Compliance<f64>| [c.c11, c.c22, c.c23, c.c33];
+            let dual = [j.c11, j.c22, j.c23, j.c33];
+            for (k, by_k) in by.iter().take(2).enumerate() {
+                for (exact, jet) in pick(by_k).iter().zip(&dual) {
+                    let d = jet.grad[k];
+                    assert!(
+                        (exact - d).abs() <= 1e-14 * d.abs().max(1e-300),
+                        "{dims:?} d/d{k}: {exact} vs {d}"
+                    );
+                }
+            }
+        }
+        assert_eq!(
+            HingeKind::Circular.compliance_partials(&[1e-3, 0.3e-3], w, &mat),
+            None
+        );
     }
 
     #[test]

@@ -31,9 +31,9 @@ use super::structure::{
 };
 use crate::model::expression::Tape;
 use crate::model::fit::FitLimit;
-use crate::model::hinge::{Compliance, HingeKind, HingeLoads};
+use crate::model::hinge::{Compliance, HingeKind, HingeLoads, MAX_HINGE_DIMENSIONS};
 use crate::model::material::Material;
-use crate::model::scalar::{max, Jet, Scalar};
+use crate::model::scalar::{max, with_count, Jet, Scalar};
 use crate::model::{unseed, Dimension, Model, OutputInfo, ParameterInfo};
 
 /// The actuator that drives the input (paper 004, Eq. 12-14), as the bridge's.
@@ -94,6 +94,9 @@ pub struct NetworkModel {
     directions: Vec<Option<[f64; 2]>>,
     /// The degrees of freedom the mirror axes hold, sorted, the same at every design.
     held: Vec<(usize, Dof)>,
+    /// Each port's read factor and load share (input first), the same at every design.
+    read: Vec<f64>,
+    share: Vec<f64>,
     /// Each expression's [`Role`], by its slot.
     roles: Vec<Role>,
 }
@@ -105,9 +108,6 @@ struct Evaluated<D> {
     /// Input first, then the outputs: each a unit load at the port's point along its unit
     /// direction (`force`), which the load cases take as they are, without a copy.
     ports: Vec<Load<D>>,
-    /// Each port's read factor and load share.
-    read: Vec<f64>,
-    share: Vec<f64>,
     /// Every described point (m), for the extent and the masses: each body's first, from
     /// `offsets[b]`, then the ground's, the hinges' ends and the beams'.
     points: Vec<[D; 2]>,
@@ -129,8 +129,6 @@ impl<D> Default for Evaluated<D> {
                 held: Vec::new(),
             },
             ports: Vec::new(),
-            read: Vec::new(),
-            share: Vec::new(),
             points: Vec::new(),
             offsets: Vec::new(),
             link_widths: Vec::new(),
@@ -153,6 +151,8 @@ struct Work<D> {
     evaluated: Evaluated<D>,
     solve: SolveBuffers<D>,
     stresses: Vec<(D, D)>,
+    /// The wanted outputs over `D`, for an evaluation with gradients.
+    outputs: Vec<D>,
 }
 
 impl<D> Default for Work<D> {
@@ -164,6 +164,7 @@ impl<D> Default for Work<D> {
             evaluated: Evaluated::default(),
             solve: SolveBuffers::default(),
             stresses: Vec::new(),
+            outputs: Vec::new(),
         }
     }
 }
@@ -374,6 +375,13 @@ impl NetworkModel {
             })
             .collect();
         let held = axis_holds(d, None, &[]);
+        let ports = || std::iter::once(&d.input).chain(&d.outputs);
+        let read = ports()
+            .map(|p| if p.across.is_some() { 2.0 } else { 1.0 })
+            .collect();
+        let share = ports()
+            .map(|p| 0.5f64.powi(d.bodies[p.body].on_axis.len() as i32))
+            .collect();
         let mut fit = Vec::new();
         for hinge in &d.hinges {
             // a range of fit binds a ratio of parameters: only where each dimension is one
@@ -403,6 +411,8 @@ impl NetworkModel {
             statics,
             directions,
             held,
+            read,
+            share,
             roles,
         }
     }
@@ -511,8 +521,6 @@ impl NetworkModel {
         let Evaluated {
             network,
             ports,
-            read,
-            share,
             points,
             offsets,
             link_widths,
@@ -584,7 +592,7 @@ impl NetworkModel {
             let (s, c) = eval(&h.angle)?.sin_cos();
             f.axis = [c, s];
             f.length = h.kind.length(dd);
-            f.compliance = h.kind.compliance(dd, d.width, &self.material);
+            hinge_compliance(h.kind, dd, d.width, &self.material, &mut f.compliance);
             join(f, modulus, first, extent.then_some(&mut *points));
         }
         let beams = d.beams.iter().zip(dims[d.hinges.len()..].iter_mut());
@@ -644,8 +652,6 @@ impl NetworkModel {
                 },
             );
         }
-        read.clear();
-        share.clear();
         let described = std::iter::once(&d.input).chain(&d.outputs);
         for ((p, known), port) in described.zip(&self.directions).zip(ports.iter_mut()) {
             port.force = match known {
@@ -661,8 +667,6 @@ impl NetworkModel {
             };
             port.body = p.body;
             port.point = point(&p.at).map_err(Message::message)?;
-            read.push(if p.across.is_some() { 2.0 } else { 1.0 });
-            share.push(0.5f64.powi(d.bodies[p.body].on_axis.len() as i32));
         }
         measures.clear();
         for m in &d.measures {
@@ -769,7 +773,8 @@ impl NetworkModel {
         let input: Option<Displacements<D>> = if needs_input { case(0) } else { None };
         let output: Option<Displacements<D>> = if needs_output { case(count - 1) } else { None };
         // W_ij = read_i C_ij share_j
-        let w = |u: &Displacements<D>, i: usize, j: usize| along(u, i) * (e.read[i] * e.share[j]);
+        let w =
+            |u: &Displacements<D>, i: usize, j: usize| along(u, i) * (self.read[i] * self.share[j]);
         let w_ii = input.as_ref().map(|u| w(u, 0, 0));
         let k_in = || w_ii.expect("listed").recip();
         let stroke_in = || match self.actuator.stiffness {
@@ -781,7 +786,7 @@ impl NetworkModel {
         };
         let amplification = |o: usize| {
             let u = input.as_ref().expect("listed");
-            w(u, o + 1, 0) / w(u, 0, 0)
+            w(u, o + 1, 0) / w_ii.expect("listed")
         };
         // the first output's stiffnesses: the input free, on the actuator, held
         let condensed = |actuator: Option<f64>| {
@@ -796,11 +801,12 @@ impl NetworkModel {
         // the hinges' loads and stresses under the largest actuator force, found once
         let largest =
             w_ii.map(|w| w.recip() * self.actuator.nominal_stroke + self.actuator.preload);
-        let force = || largest.expect("listed");
+        // the described part's share of it, once for every flexure
+        let shared = largest.map(|f| f * self.share[0]);
         let loads = |h: usize| {
             let u = input.as_ref().expect("listed");
             let l = e.network.flexure_loads(h, u);
-            let f = force() * e.share[0];
+            let f = shared.expect("listed");
             HingeLoads {
                 axial: l.axial * f,
                 shear: l.shear * f,
@@ -876,7 +882,7 @@ impl NetworkModel {
                     let u = input.as_ref().expect("listed");
                     let f = &e.network.flexures[h];
                     let turn = u.at(f.to, f.start_plus_length())[2] - u.at(f.from, f.start)[2];
-                    turn * (force() * e.share[0])
+                    turn * shared.expect("listed")
                 }
                 SpanX => extent(0),
                 SpanY => extent(1),
@@ -1046,7 +1052,7 @@ impl NetworkModel {
                 body: port.body,
                 point: port.point,
                 direction: port.force,
-                stiffness: D::from(k * e.read[0] * e.share[0]),
+                stiffness: D::from(k * self.read[0] * self.share[0]),
             }
         });
         let line = mounting.map(|(_, line)| line);
@@ -1070,7 +1076,7 @@ impl NetworkModel {
             let stretched = !d.input.across.is_some_and(|a| anti.contains(&a));
             network.springs.extend(stack.filter(|_| stretched));
             let mut inertia = inertia.clone();
-            let mut payload_share = e.share[1];
+            let mut payload_share = self.share[1];
             let mut images = Vec::new();
             if let Some((port, line)) = mounting {
                 let flip_y = line == Axis::X;
@@ -1143,16 +1149,23 @@ impl NetworkModel {
         jacobian: &mut [f64],
     ) {
         let seeded: [Jet<N>; N] = std::array::from_fn(|i| Jet::variable(x[i], i));
-        let mut y = vec![Jet::<N>::from(0.0); wanted.len()];
+        let mut work = take::<Jet<N>>();
+        // the outputs' buffer is the thread's too: allocated for each evaluation, it cost
+        // about as much as the seeding and the unseeding together
+        let mut y = std::mem::take(&mut work.outputs);
+        y.clear();
+        y.resize(wanted.len(), Jet::from(0.0));
         if self
-            .evaluate_generic(&seeded, None, wanted, &mut y)
-            .is_err()
+            .evaluate_in(&seeded, None, wanted, &mut y, &mut work)
+            .is_ok()
         {
+            unseed(&y, out, jacobian);
+        } else {
             out.fill(f64::NAN);
             jacobian.fill(f64::NAN);
-            return;
         }
-        unseed(&y, out, jacobian);
+        work.outputs = y;
+        give(work);
     }
 }
 
@@ -1180,6 +1193,40 @@ fn join<D: Scalar>(
         points.push(f.start);
         points.push(end);
     }
+}
+
+/// Hinge `kind`'s compliance at `dims` (SI) into `out`: where the scalar is a number of first
+/// derivatives alone and the kind has its partial derivatives in closed form, its tangent
+/// is their chain rule, a few products a coefficient where the formula's every operation
+/// over the number was one; elsewhere the kind's formula over the scalar. The values are
+/// the formula's, bit for bit, either way.
+#[inline(always)]
+fn hinge_compliance<D: Scalar>(
+    kind: HingeKind,
+    dims: &[D],
+    width: f64,
+    material: &Material,
+    out: &mut Compliance<D>,
+) {
+    if D::FROM_PARTIALS && dims.len() <= MAX_HINGE_DIMENSIONS {
+        let mut plain = [0.0; MAX_HINGE_DIMENSIONS];
+        for (p, v) in plain.iter_mut().zip(dims) {
+            *p = v.re();
+        }
+        if let Some((c, by)) = kind.compliance_partials(&plain[..dims.len()], width, material) {
+            let n = dims.len();
+            let chain = |re: f64, pick: fn(&Compliance<f64>) -> f64| {
+                let partials: [f64; MAX_HINGE_DIMENSIONS] = std::array::from_fn(|k| pick(&by[k]));
+                D::from_partials(re, dims, &partials[..n])
+            };
+            out.c11 = chain(c.c11, |c| c.c11);
+            out.c22 = chain(c.c22, |c| c.c22);
+            out.c23 = chain(c.c23, |c| c.c23);
+            out.c33 = chain(c.c33, |c| c.c33);
+            return;
+        }
+    }
+    *out = kind.compliance(dims, width, material);
 }
 
 /// A flexure of zeros, for a slot that each evaluation overwrites.
@@ -1416,39 +1463,13 @@ fn domain_error<D: Scalar>(h: &HingeDescription, dims: &[D]) -> Option<String> {
         for (p, v) in plain.iter_mut().zip(dims) {
             *p = v.re();
         }
-        let stems: [&str; MOST] =
-            std::array::from_fn(|i| h.kind.dimensions().get(i).map_or("", |info| info.stem));
+        // the names only make the message, which the second call below makes
         h.kind
-            .domain_error(&plain[..dims.len()], &stems[..dims.len()])?;
+            .domain_error(&plain[..dims.len()], &[""; MOST][..dims.len()])?;
     }
     let names: Vec<&str> = h.dimensions.iter().map(|e| e.key.as_str()).collect();
     let plain: Vec<f64> = dims.iter().map(|v| v.re()).collect();
     h.kind.domain_error(&plain, &names)
-}
-
-/// `$self.gradients::<N>(...)` with `N` the design's parameter count.
-macro_rules! per_count {
-    ($n:expr, $self:ident, $($arg:expr),*) => {
-        match $n {
-            1 => $self.gradients::<1>($($arg),*),
-            2 => $self.gradients::<2>($($arg),*),
-            3 => $self.gradients::<3>($($arg),*),
-            4 => $self.gradients::<4>($($arg),*),
-            5 => $self.gradients::<5>($($arg),*),
-            6 => $self.gradients::<6>($($arg),*),
-            7 => $self.gradients::<7>($($arg),*),
-            8 => $self.gradients::<8>($($arg),*),
-            9 => $self.gradients::<9>($($arg),*),
-            10 => $self.gradients::<10>($($arg),*),
-            11 => $self.gradients::<11>($($arg),*),
-            12 => $self.gradients::<12>($($arg),*),
-            13 => $self.gradients::<13>($($arg),*),
-            14 => $self.gradients::<14>($($arg),*),
-            15 => $self.gradients::<15>($($arg),*),
-            16 => $self.gradients::<16>($($arg),*),
-            n => panic!("a network has 1 to {} parameters, got {n}", crate::model::MAX_PARAMETERS),
-        }
-    };
 }
 
 impl Model for NetworkModel {
@@ -1477,7 +1498,7 @@ impl Model for NetworkModel {
         out: &mut [f64],
         jacobian: &mut [f64],
     ) {
-        per_count!(x.len(), self, x, wanted, out, jacobian)
+        with_count!(x.len(), |N| self.gradients::<N>(x, wanted, out, jacobian))
     }
 
     fn domain_error(&self, x: &[f64]) -> Option<String> {

@@ -20,6 +20,13 @@ use crate::model::material::Material;
 use crate::model::scalar::Scalar;
 use crate::model::Dimension;
 
+/// A compliance and its partial derivatives by each of the hinge's dimensions
+/// ([`Kind::compliance_partials`]).
+pub type CompliancePartials = (
+    Compliance<f64>,
+    [Compliance<f64>; super::MAX_HINGE_DIMENSIONS],
+);
+
 /// A dimension of a kind, a length: `stem` names it (after the hinge in a mechanism, as a
 /// flag of `flexopt hinge`), `description` says what it is in both places.
 pub(super) const fn dim(stem: &'static str, description: &'static str) -> HingeDimension {
@@ -90,6 +97,20 @@ pub trait Kind: Sized {
 
     /// The compliance coefficients (paper 004, Eq. 1) at section width `width` (m).
     fn compliance<D: Scalar>(&self, dims: &[D], width: f64, material: &Material) -> Compliance<D>;
+
+    /// [`Kind::compliance`] over `f64` and its partial derivatives by each dimension (the
+    /// entries past the kind's count unused), where the kind has them in closed form: a
+    /// dual number's tangent is then the chain rule over them ([`Scalar::from_partials`]),
+    /// not the formula's every operation over the dual number. `None`: the caller takes
+    /// [`Kind::compliance`] over its own scalar.
+    fn compliance_partials(
+        &self,
+        _dims: &[f64],
+        _width: f64,
+        _material: &Material,
+    ) -> Option<CompliancePartials> {
+        None
+    }
 
     /// The factor by which the largest surface stress exceeds the beam stress at the
     /// thinnest section in bending, `K_t`.

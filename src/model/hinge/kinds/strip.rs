@@ -1,7 +1,7 @@
 //! The leaf (strip) hinge: a straight beam of constant rectangular section, `l` long and
 //! `t` thick, paper 004's hinge.
 
-use super::{dim, positive, FitRatio, Kind};
+use super::{dim, positive, CompliancePartials, FitRatio, Kind};
 use crate::model::fit::FitRange;
 use crate::model::hinge::{Compliance, HingeDimension, HingeLoads};
 use crate::model::material::Material;
@@ -79,6 +79,44 @@ impl Kind for Strip {
             c23: l_inv * length * 6.0,
             c33: l_inv * 12.0,
         }
+    }
+
+    /// Eq. 2's derivatives: with `A = 1 / (E w)`, each coefficient is a monomial
+    /// `l^p t^-q` times a constant (or two, `c22`), so `d/dl = p c / l` and `d/dt = -q c / t`,
+    /// written without dividing by `l`, which may be zero.
+    fn compliance_partials(
+        &self,
+        dims: &[f64],
+        width: f64,
+        material: &Material,
+    ) -> Option<CompliancePartials> {
+        let (length, thickness) = (dims[0], dims[1]);
+        // the values are Eq. 2's own code's, bit for bit
+        let c = self.compliance(dims, width, material);
+        let inv = (thickness * thickness * thickness * (material.youngs_modulus * width)).recip();
+        let t2 = thickness * thickness;
+        let shear = t2 * (2.0 * (1.0 + material.poisson_ratio));
+        // l A / t^4
+        let over_t = length * inv / thickness;
+        let zero = Compliance {
+            c11: 0.0,
+            c22: 0.0,
+            c23: 0.0,
+            c33: 0.0,
+        };
+        let by_length = Compliance {
+            c11: inv * t2,
+            c22: inv * (length * length * 12.0 + shear),
+            c23: length * inv * 12.0,
+            c33: inv * 12.0,
+        };
+        let by_thickness = Compliance {
+            c11: -over_t * t2,
+            c22: -over_t * (length * length * 12.0 + shear),
+            c23: -over_t * length * 18.0,
+            c33: -over_t * 36.0,
+        };
+        Some((c, [by_length, by_thickness, zero]))
     }
 
     /// 1: paper 004 takes its beam stress at the clamped ends, where a sharp corner has no

@@ -38,8 +38,8 @@ use crate::model::clearance::{clearance, clearance_below, Feature, Pt, Solid};
 use crate::model::expression::Tape;
 use crate::model::hinge::{HingeKind, MAX_HINGE_DIMENSIONS};
 use crate::model::part_rules::{PartRule, Witness};
-use crate::model::scalar::{max, min, Jet, Scalar};
-use crate::model::{Dimension, MAX_PARAMETERS};
+use crate::model::scalar::{max, min, with_count, Jet, Scalar};
+use crate::model::Dimension;
 
 /// The margin (m) a clearance rule reads when every pair is farther than this beyond it:
 /// the search looks only at the pieces whose bounding boxes come within it.
@@ -967,21 +967,6 @@ pub struct Rules<'a> {
     pub s: &'a PartSettings,
 }
 
-/// `$call` with the const `N` the design's parameter count `$n`, one of `$k`, as the
-/// model's own evaluation dispatches: a `Jet<16>` carried 16 derivatives through every
-/// operation whatever the count.
-macro_rules! with_count {
-    ($n:expr, |$N:ident| $call:expr, $($k:literal)*) => {
-        match $n {
-            $($k => {
-                const $N: usize = $k;
-                $call
-            })*
-            n => panic!("a network has 1 to {MAX_PARAMETERS} parameters, got {n}"),
-        }
-    };
-}
-
 impl Rules<'_> {
     /// Each rule's margin (m) at the design `x` (SI), the first `out.len()` of them; NaN
     /// where an expression has no value at `x`.
@@ -1014,11 +999,8 @@ impl Rules<'_> {
         // the values as `margins` computes them, and the nearest pairs found once, on them
         let selection = self.layout.find(&real, self.s, out);
         let rows = out.len();
-        with_count!(
-            x.len(),
-            |N| self.gradients::<N>(x, &selection, rows, jacobian),
-            1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16
-        );
+        with_count!(x.len(), |N| self
+            .gradients::<N>(x, &selection, rows, jacobian));
     }
 
     /// Whether the first `rows` rules take clearances, not only the size rules: a study's
