@@ -90,6 +90,7 @@ pub fn max_violation(c: &[f64], meq: usize) -> f64 {
 /// first failure and so is a branch an entry: on the part's rules' Jacobians (197 entries
 /// in wei2017's first stage, tested at every evaluation with gradients) it was 3.5 % of the
 /// study's instructions.
+#[allow(clippy::eq_op)] // `v - v` is the test
 pub fn all_finite(a: &[f64]) -> bool {
     let mut lanes = [0.0; 4];
     let chunks = a.chunks_exact(4);

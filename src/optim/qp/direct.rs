@@ -128,7 +128,7 @@ pub(super) fn solve_on_active_set(
         if !ws.in_active[i] {
             let row = &rows.c[i * n..(i + 1) * n];
             let slack = dot(row, x) - rows.b[i];
-            if slack >= 0.0 && slack < f64::INFINITY {
+            if (0.0..f64::INFINITY).contains(&slack) {
                 continue;
             }
             let scaled = slack / (1.0 + rows.b[i].abs() + norm(row));

@@ -456,6 +456,7 @@ impl Rows<'_> {
     /// of 8 variables, the product's 30 among them; 64 out of line; callgrind, wei2017's
     /// study).
     #[inline(never)]
+    #[allow(clippy::needless_range_loop)] // `i` indexes the rows, `b`, `in_active` and the sizes
     fn most_violated(
         &self,
         meq: usize,
