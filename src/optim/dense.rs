@@ -84,6 +84,26 @@ pub fn max_violation(c: &[f64], meq: usize) -> f64 {
         )
 }
 
+/// Whether every entry of `a` is finite: `v - v` is `0` for a finite `v` and NaN for an
+/// infinite or NaN one, summed in four independent lanes (the sum is `0` or NaN whatever the
+/// order), which the compiler turns into packed arithmetic. `all(is_finite)` stops at the
+/// first failure and so is a branch an entry: on the part's rules' Jacobians (197 entries
+/// in wei2017's first stage, tested at every evaluation with gradients) it was 3.5 % of the
+/// study's instructions.
+#[allow(clippy::eq_op)] // `v - v` is the test
+pub fn all_finite(a: &[f64]) -> bool {
+    let mut lanes = [0.0; 4];
+    let chunks = a.chunks_exact(4);
+    let rest = chunks.remainder();
+    for chunk in chunks {
+        for (l, &v) in lanes.iter_mut().zip(chunk) {
+            *l += v - v;
+        }
+    }
+    let tail: f64 = rest.iter().map(|&v| v - v).sum();
+    lanes.iter().sum::<f64>() + tail == 0.0
+}
+
 /// `sum_i viol_i`.
 pub fn violation_l1(c: &[f64], meq: usize) -> f64 {
     c.iter()
@@ -122,6 +142,22 @@ mod tests {
         );
         // indefinite: fails
         assert!(!cholesky(&mut l, 2, 2, 0.0, |r, c| [1.0, 2.0, 2.0, 1.0][r * 2 + c]));
+    }
+
+    #[test]
+    fn all_finite_is_every_entry_finite() {
+        for len in 0..11 {
+            let finite: Vec<f64> = (0..len).map(|k| 1e300 * (k as f64 - 4.5)).collect();
+            assert!(all_finite(&finite), "{len}");
+            for k in 0..len {
+                for bad in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+                    let mut v = finite.clone();
+                    v[k] = bad;
+                    assert!(!all_finite(&v), "{len} {k} {bad}");
+                }
+            }
+        }
+        assert!(all_finite(&[f64::MAX, -f64::MAX, f64::MIN_POSITIVE, -0.0]));
     }
 
     #[test]

@@ -122,11 +122,16 @@ pub(super) fn solve_on_active_set(
     for (&j, &zj) in free.iter().zip(z.iter()) {
         x[j] = zj;
     }
-    // every other row satisfied, as closely as the dual method's stop asks
+    // every other row satisfied, as closely as the dual method's stop asks; a finite slack
+    // >= 0 passes whatever the row's size, which is worked out only below zero
     for i in meq..mg {
         if !ws.in_active[i] {
             let row = &rows.c[i * n..(i + 1) * n];
-            let scaled = (dot(row, x) - rows.b[i]) / (1.0 + rows.b[i].abs() + norm(row));
+            let slack = dot(row, x) - rows.b[i];
+            if (0.0..f64::INFINITY).contains(&slack) {
+                continue;
+            }
+            let scaled = slack / (1.0 + rows.b[i].abs() + norm(row));
             if !at_least(scaled, -1e-14) {
                 return false;
             }

@@ -44,7 +44,7 @@ mod screening;
 mod subproblem;
 mod termination;
 
-use super::dense::{inf_norm, max_violation};
+use super::dense::{all_finite, inf_norm, max_violation};
 use super::problem::{clamp_into, Problem, Solution, Status};
 use curvature::Curvature;
 use line_search::{LineSearch, Outcome};
@@ -121,13 +121,7 @@ impl Iterate {
 
     /// Whether the objective, the constraints and their gradients are all finite.
     fn finite_with_gradient(&self) -> bool {
-        self.f.is_finite()
-            && self
-                .c
-                .iter()
-                .chain(&self.g)
-                .chain(&self.jac)
-                .all(|v| v.is_finite())
+        self.f.is_finite() && all_finite(&self.c) && all_finite(&self.g) && all_finite(&self.jac)
     }
 
     /// [`Iterate::evaluate`] where only the rows with `needed` are read afterwards
@@ -147,7 +141,7 @@ impl Iterate {
     /// finite. Most trial points of a line search are rejected, and need no more.
     fn evaluate_values(&mut self, problem: &dyn Problem) -> bool {
         self.f = problem.evaluate(&self.x, &mut self.c);
-        self.f.is_finite() && self.c.iter().all(|v| v.is_finite())
+        self.f.is_finite() && all_finite(&self.c)
     }
 }
 
