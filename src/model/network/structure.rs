@@ -175,7 +175,13 @@ pub struct Displacements<'a, D: Clone> {
     /// terms a held one would give are left out (the same numbers, but for the sign of a
     /// zero). A lookup, where a search of the held list cost about the terms it saved.
     index: Cow<'a, [usize]>,
+    /// Each flexure's stiffness in its own frame, as the solve formed it.
+    stiffness: Cow<'a, [Stiffness<D>]>,
 }
+
+/// A flexure's stiffness in its own frame, `K = C^-1`: `[k11, k22, k23, k33]`, its axial
+/// entry and its bending block `[k22 k23; k23 k33]`.
+pub type Stiffness<D> = [D; 4];
 
 /// A load case of [`Network::solve_cases_in`]: its loads, and the bodies whose
 /// displacements are read (`None`: every body's).
@@ -185,8 +191,8 @@ pub struct Case<'a, D> {
     pub read: Option<&'a [usize]>,
 }
 
-/// The buffers of [`Network::solve_cases_in`]: the free numbering, the factor, a load
-/// vector, the displacements of every case.
+/// The buffers of [`Network::solve_cases_in`]: the free numbering, the stiffness (and its
+/// factor), a load vector, the displacements of every case.
 #[derive(Debug, Clone)]
 pub struct SolveBuffers<D> {
     index: Vec<usize>,
@@ -195,6 +201,11 @@ pub struct SolveBuffers<D> {
     moved: Vec<[D; 3]>,
     /// A flexure's two ends, written in place for each flexure in turn.
     ends: Vec<End<D>>,
+    stiffness: Vec<Stiffness<D>>,
+    /// The factor's row `j` times the pivots, `L_jp D_p`.
+    scaled: Vec<D>,
+    /// Each flexure's terms of the stiffness: formed once per structure.
+    plan: Plan,
 }
 
 impl<D> Default for SolveBuffers<D> {
@@ -205,6 +216,9 @@ impl<D> Default for SolveBuffers<D> {
             f: Vec::new(),
             moved: Vec::new(),
             ends: Vec::new(),
+            stiffness: Vec::new(),
+            scaled: Vec::new(),
+            plan: Plan::default(),
         }
     }
 }
@@ -214,6 +228,7 @@ pub struct Solved<'a, D> {
     moved: &'a [[D; 3]],
     references: &'a [[D; 2]],
     index: &'a [usize],
+    stiffness: &'a [Stiffness<D>],
 }
 
 impl<'a, D: Clone> Solved<'a, D> {
@@ -224,6 +239,7 @@ impl<'a, D: Clone> Solved<'a, D> {
             bodies: Cow::Borrowed(&self.moved[c * n..(c + 1) * n]),
             references: self.references,
             index: Cow::Borrowed(self.index),
+            stiffness: Cow::Borrowed(self.stiffness),
         }
     }
 }
@@ -427,6 +443,7 @@ impl<D: Scalar> Network<D> {
                 bodies: Cow::Owned(solved.case(c).bodies.into_owned()),
                 references: &self.references,
                 index: Cow::Owned(solved.index.to_vec()),
+                stiffness: Cow::Owned(solved.stiffness.to_vec()),
             })
             .collect())
     }
@@ -446,6 +463,9 @@ impl<D: Scalar> Network<D> {
             f,
             moved,
             ends,
+            stiffness,
+            scaled,
+            plan,
         } = buffers;
         let m = self.free_numbering(index);
         k.clear();
@@ -454,11 +474,16 @@ impl<D: Scalar> Network<D> {
             ends.clear();
             ends.resize_with(2, End::zero);
         }
-        for (i, fl) in self.flexures.iter().enumerate() {
-            if fl.from == fl.to {
-                return Err(NetworkError::SelfJoined { flexure: i });
-            }
-            self.add_flexure_free(fl, index, k, m, ends);
+        if let Some(i) = self.flexures.iter().position(|fl| fl.from == fl.to) {
+            return Err(NetworkError::SelfJoined { flexure: i });
+        }
+        if !plan.fits(index, &self.flexures) {
+            *plan = Plan::form(index, m, &self.flexures);
+        }
+        stiffness.clear();
+        stiffness.resize(self.flexures.len(), [D::from(0.0); 4]);
+        for (i, (fl, kf)) in self.flexures.iter().zip(stiffness.iter_mut()).enumerate() {
+            self.add_flexure_free(fl, index, k, ends, plan.terms(i), kf);
         }
         for s in &self.springs {
             let r = sub(s.point, self.references[s.body]);
@@ -474,7 +499,7 @@ impl<D: Scalar> Network<D> {
                 }
             }
         }
-        factor(k, m).map_err(|free| {
+        factor(k, m, scaled).map_err(|free| {
             let dof = index.iter().position(|&i| i == free).unwrap_or(0);
             NetworkError::Free {
                 body: dof / 3,
@@ -529,6 +554,7 @@ impl<D: Scalar> Network<D> {
             moved,
             references: &self.references,
             index,
+            stiffness,
         })
     }
 
@@ -550,14 +576,17 @@ impl<D: Scalar> Network<D> {
 
     /// Flexure `f`'s stiffness into the lower triangle of `k`, the free degrees of freedom
     /// numbered by `index`: each block `A_i^T K A_j` of the module's formula, with the maps'
-    /// known zeros and ones skipped and each entry of the symmetric matrix formed once.
+    /// known zeros and ones skipped and each entry of the symmetric matrix formed once, by
+    /// the flexure's [`Plan`] terms; and its own stiffness `K` into `stiffness` (written in
+    /// place: returned, it was a `memcpy`).
     fn add_flexure_free(
         &self,
         f: &Flexure<D>,
         index: &[usize],
         k: &mut [D],
-        m: usize,
         ends: &mut [End<D>],
+        terms: [&[Term]; 4],
+        stiffness: &mut Stiffness<D>,
     ) {
         let c = &f.compliance;
         // K = C^-1: the axial entry, and the bending block's inverse
@@ -601,33 +630,125 @@ impl<D: Scalar> Network<D> {
         let (first, second) = ends.split_at_mut(1);
         end(&mut first[0], f.from, &f.start, Some(f.length));
         end(&mut second[0], f.to, &f.start_plus_length(), None);
-        let ends = &*ends;
-        for (ei, one) in ends.iter().enumerate() {
-            let Some(bi) = one.body else { continue };
-            for (ej, other) in ends.iter().enumerate() {
-                let Some(bj) = other.body else { continue };
-                for p in 0..3 {
-                    let gi = index[3 * bi + p];
-                    if gi == HELD {
-                        continue;
-                    }
-                    let a = &one.columns[p];
-                    for q in 0..3 {
-                        let gj = index[3 * bj + q];
-                        if gj == HELD || gj > gi {
+        let ends: &[End<D>; 2] = (&*ends).try_into().expect("two ends");
+        let dot = |t: &Term| dot(ends, t);
+        let third = |t: &Term| ends[t.other & 1].ka[t.q.min(2)][2];
+        let [same, same_turn, across, across_turn] = terms;
+        for t in same {
+            k[t.at] = k[t.at] + dot(t);
+        }
+        for t in same_turn {
+            k[t.at] = k[t.at] + (dot(t) + third(t));
+        }
+        for t in across {
+            k[t.at] = k[t.at] - dot(t);
+        }
+        for t in across_turn {
+            k[t.at] = k[t.at] - (dot(t) + third(t));
+        }
+        *stiffness = [k11, k22, k23, k33];
+    }
+}
+
+/// Term `t`'s `columns[p] . ka[q]`, the third row of `A` (0, 0, 1) left out. Inlined, its
+/// indices masked to the arrays' sizes: a call per term, with its bounds checks, cost
+/// about as much as the term's arithmetic.
+#[inline(always)]
+fn dot<D: Scalar>(ends: &[End<D>; 2], t: &Term) -> D {
+    let a = &ends[t.one & 1].columns[t.p.min(2)];
+    let kq = &ends[t.other & 1].ka[t.q.min(2)];
+    a[0] * kq[0] + a[1] * kq[1]
+}
+
+/// Each flexure's terms of the stiffness among the free degrees of freedom: which of its
+/// ends' columns meet in which entry of the lower triangle. They follow from the structure
+/// alone (the free numbering, the bodies each flexure joins), so they are formed once for
+/// a structure, not tested entry by entry at each design: those tests, on loops of zero to
+/// three trips, were the assembly's unpredictable branches.
+#[derive(Debug, Clone, Default)]
+struct Plan {
+    /// The structure the terms are for.
+    index: Vec<usize>,
+    bodies: Vec<(Body, Body)>,
+    terms: Vec<Term>,
+    /// Flexure `i`'s terms in four groups, `terms[groups[i][g]..groups[i][g + 1]]`: an end
+    /// with itself (added), with the end's rotation as `p` (added with `K`'s third row),
+    /// one end with the other (subtracted), and so with the rotation.
+    groups: Vec<[usize; 5]>,
+}
+
+/// Entry `at` of the stiffness gains `columns[p] . ka[q]` of ends `one` and `other`
+/// ([`End`]; end 0 on `from`, 1 on `to`).
+#[derive(Debug, Clone, Copy)]
+struct Term {
+    at: usize,
+    one: usize,
+    p: usize,
+    other: usize,
+    q: usize,
+}
+
+impl Plan {
+    fn fits<D>(&self, index: &[usize], flexures: &[Flexure<D>]) -> bool {
+        self.index == index
+            && self.bodies.len() == flexures.len()
+            && self
+                .bodies
+                .iter()
+                .zip(flexures)
+                .all(|(&(from, to), f)| from == f.from && to == f.to)
+    }
+
+    fn form<D>(index: &[usize], m: usize, flexures: &[Flexure<D>]) -> Plan {
+        let mut plan = Plan {
+            index: index.to_vec(),
+            bodies: flexures.iter().map(|f| (f.from, f.to)).collect(),
+            terms: Vec::new(),
+            groups: Vec::with_capacity(flexures.len()),
+        };
+        for f in flexures {
+            let mut groups: [Vec<Term>; 4] = Default::default();
+            let ends = [f.from, f.to];
+            for (one, bi) in ends.iter().enumerate() {
+                let Body::Rigid(bi) = *bi else { continue };
+                for (other, bj) in ends.iter().enumerate() {
+                    let Body::Rigid(bj) = *bj else { continue };
+                    for p in 0..3 {
+                        let gi = index[3 * bi + p];
+                        if gi == HELD {
                             continue;
                         }
-                        let kq = &other.ka[q];
-                        let mut v = a[0] * kq[0] + a[1] * kq[1];
-                        if p == 2 {
-                            v = v + kq[2];
+                        for q in 0..3 {
+                            let gj = index[3 * bj + q];
+                            if gj == HELD || gj > gi {
+                                continue;
+                            }
+                            let group = 2 * usize::from(one != other) + usize::from(p == 2);
+                            groups[group].push(Term {
+                                at: gi * m + gj,
+                                one,
+                                p,
+                                other,
+                                q,
+                            });
                         }
-                        let idx = gi * m + gj;
-                        k[idx] = if ei == ej { k[idx] + v } else { k[idx] - v };
                     }
                 }
             }
+            let mut bounds = [plan.terms.len(); 5];
+            for (g, terms) in groups.into_iter().enumerate() {
+                plan.terms.extend(terms);
+                bounds[g + 1] = plan.terms.len();
+            }
+            plan.groups.push(bounds);
         }
+        plan
+    }
+
+    /// Flexure `i`'s four groups of terms.
+    fn terms(&self, i: usize) -> [&[Term]; 4] {
+        let g = &self.groups[i];
+        std::array::from_fn(|j| &self.terms[g[j]..g[j + 1]])
     }
 }
 
@@ -660,7 +781,8 @@ impl<D: Scalar> Network<D> {
     /// The loads at flexure `i`'s end on its second body, in its own frame, under the
     /// displacements `u`: `K (u_Q - G u_P)`, the axial force, shear and moment its
     /// compliance relates to its deformation ([`crate::model::hinge::HingeLoads`], whose
-    /// stresses the hinge library gives).
+    /// stresses the hinge library gives). `K` is the one the solve formed: inverting the
+    /// compliance again cost three quotients of dual numbers per flexure.
     pub fn flexure_loads(&self, i: usize, u: &Displacements<D>) -> HingeLoads<D> {
         let f = &self.flexures[i];
         let (ex, ey) = (f.axis[0], f.axis[1]);
@@ -668,12 +790,11 @@ impl<D: Scalar> Network<D> {
         let q = u.in_frame(f.to, &f.start_plus_length(), ex, ey);
         // Q's motion relative to the rigid motion of P carried along the flexure
         let d = [q[0] - p[0], q[1] - (p[1] + f.length * p[2]), q[2] - p[2]];
-        let c = &f.compliance;
-        let det = c.c22 * c.c33 - c.c23 * c.c23;
+        let [k11, k22, k23, k33] = u.stiffness[i];
         HingeLoads {
-            axial: d[0] / c.c11,
-            shear: (c.c33 * d[1] - c.c23 * d[2]) / det,
-            moment: (c.c22 * d[2] - c.c23 * d[1]) / det,
+            axial: k11 * d[0],
+            shear: k22 * d[1] + k23 * d[2],
+            moment: k23 * d[1] + k33 * d[2],
         }
     }
 }
@@ -712,26 +833,31 @@ fn transfer<D: Scalar>(r: [D; 2], u: [D; 3]) -> [D; 3] {
 /// triangle is not read), or the first pivot that vanishes. Row `j` and each row below it
 /// are read as slices, whose entries are read in place: indexed into the whole matrix,
 /// every `Jet<8>` term was a bounds check and a copy, about a third of the factor's count.
-fn factor<D: Scalar>(k: &mut [D], n: usize) -> Result<(), usize> {
+/// Row `j` times the pivots, `w_p = L_jp D_p`, is formed once into `scaled` for the pivot
+/// and every row below (Golub and Van Loan, "Matrix Computations", 3rd ed., Johns Hopkins
+/// 1996, Sec. 4.1.2, Alg. 4.1.2): each term one product, where `L_ip L_jp D_p` was two.
+fn factor<D: Scalar>(k: &mut [D], n: usize, scaled: &mut Vec<D>) -> Result<(), usize> {
     let scale = (0..n).map(|i| k[i * n + i].re().abs()).fold(0.0, f64::max);
+    scaled.clear();
+    scaled.resize(n, D::from(0.0));
     for j in 0..n {
         let (above, rest) = k.split_at_mut(j * n);
         let (row_j, below) = rest.split_at_mut(n);
-        // the pivots of the rows above, `D_p`
-        let pivot = |p: usize| &above[p * n + p];
+        let w = &mut scaled[..j];
         let mut d = row_j[j];
-        for (p, l) in row_j[..j].iter().enumerate() {
-            d = d - *l * *l * *pivot(p);
+        for (p, (w, l)) in w.iter_mut().zip(&row_j[..j]).enumerate() {
+            *w = *l * above[p * n + p];
+            d = d - *l * *w;
         }
         if d.re().is_nan() || d.re() <= FREE_PIVOT * scale {
             return Err(j);
         }
         row_j[j] = d;
-        let row_j = &row_j[..j];
+        let w = &scaled[..j];
         for row_i in below.chunks_exact_mut(n) {
             let mut s = row_i[j];
-            for (p, (a, b)) in row_i[..j].iter().zip(row_j).enumerate() {
-                s = s - *a * *b * *pivot(p);
+            for (a, b) in row_i[..j].iter().zip(w) {
+                s = s - *a * *b;
             }
             row_i[j] = s / d;
         }
@@ -1061,6 +1187,45 @@ mod tests {
             joined.stiffness().map(|_| ()),
             Err(NetworkError::SelfJoined { flexure: 2 })
         );
+    }
+
+    /// The solve's buffers, kept from one network to the next (a thread evaluates several
+    /// models with them), form their plan of the assembly again when the structure changes:
+    /// the same flexures with a degree of freedom held, or the flexures joining other
+    /// bodies, solve as with fresh buffers, in any order.
+    #[test]
+    fn buffers_kept_across_structures_solve_as_fresh_ones() {
+        let free = two_stage(0.0004);
+        let mut held = two_stage(0.0004);
+        held.held = vec![(1, Dof::Rotation)];
+        let mut rejoined = two_stage(0.0004);
+        rejoined.flexures[1].to = Body::Rigid(1);
+        let loads = [Load {
+            body: 1,
+            point: [0.02, 0.001],
+            force: [0.3, -1.0],
+            moment: 0.002,
+        }];
+        let cases = [Case {
+            loads: &loads,
+            read: None,
+        }];
+        let mut buffers = SolveBuffers::default();
+        let mut solutions = Vec::new();
+        for net in [&free, &held, &rejoined, &free, &rejoined, &held, &held] {
+            let fresh = net.solve(&loads).unwrap();
+            let solved = net.solve_cases_in(&cases, &mut buffers).unwrap();
+            let kept = solved.case(0);
+            assert_eq!(&*kept.bodies, &*fresh.bodies);
+            for i in 0..net.flexures.len() {
+                assert_eq!(net.flexure_loads(i, &kept), net.flexure_loads(i, &fresh));
+            }
+            solutions.push(fresh.bodies[1]);
+        }
+        // the three structures differ, so a stale plan would show
+        assert_eq!(solutions[1][2], 0.0, "held");
+        assert!(solutions[0][2] != 0.0);
+        assert!(solutions[0][0] != solutions[2][0]);
     }
 
     /// A quarter of a rhombic bridge: one hinge from the input block (held on the output's
