@@ -280,22 +280,22 @@ fn the_quarter_as_a_flexure_network_has_appendix_as_coefficients() {
         let net = Network {
             references: vec![n2, g.nodes()[1], n5],
             flexures: vec![
-                Flexure {
-                    from: Body::Rigid(0),
-                    to: Body::Rigid(1),
-                    start: n2,
-                    axis: axis(g.delta2),
-                    length: x[0],
-                    compliance: hinge(x[0], x[2]),
-                },
-                Flexure {
-                    from: Body::Rigid(1),
-                    to: Body::Rigid(2),
-                    start: n4,
-                    axis: axis(g.delta4),
-                    length: x[5],
-                    compliance: hinge(x[5], x[7]),
-                },
+                Flexure::new(
+                    Body::Rigid(0),
+                    Body::Rigid(1),
+                    n2,
+                    axis(g.delta2),
+                    x[0],
+                    hinge(x[0], x[2]),
+                ),
+                Flexure::new(
+                    Body::Rigid(1),
+                    Body::Rigid(2),
+                    n4,
+                    axis(g.delta4),
+                    x[5],
+                    hinge(x[5], x[7]),
+                ),
             ],
             springs: vec![],
             held: vec![

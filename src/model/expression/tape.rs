@@ -37,8 +37,80 @@ pub struct Tape {
 #[derive(Debug, Clone, PartialEq)]
 struct Plan {
     constants: Vec<(u32, f64)>,
-    steps: Vec<(u32, Op)>,
+    steps: Vec<Step>,
     checked: Vec<u32>,
+}
+
+/// An operation as [`Tape::run_in`] runs it, into register `r`: its code a plain byte, the
+/// function of a [`Code::Call`] apart in `f`. The dispatch on [`Code`], whose `Call` holds
+/// a [`Function`] in the same byte, decoded that byte before its jump, five instructions
+/// an operation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Step {
+    r: u32,
+    a: u32,
+    b: u32,
+    run: Run,
+    f: Function,
+    c: f64,
+}
+
+/// [`Code`] without [`Code::Const`] (written before the steps) and without the function of
+/// [`Code::Call`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Run {
+    Neg,
+    Add,
+    AddC,
+    Sub,
+    SubC,
+    SubFrom,
+    Mul,
+    MulC,
+    Div,
+    DivC,
+    Powi,
+    Powf,
+    SinCos,
+    Call,
+}
+
+impl Step {
+    /// Whether `b` is a register the step reads ([`Op::reads_b`]).
+    fn reads_b(&self) -> bool {
+        matches!(
+            self.run,
+            Run::Add | Run::Sub | Run::Mul | Run::Div | Run::Call
+        )
+    }
+
+    fn new(r: u32, op: Op) -> Self {
+        let (run, f) = match op.code {
+            Code::Const => unreachable!("constants are written before the steps"),
+            Code::Neg => (Run::Neg, Function::Sin),
+            Code::Add => (Run::Add, Function::Sin),
+            Code::AddC => (Run::AddC, Function::Sin),
+            Code::Sub => (Run::Sub, Function::Sin),
+            Code::SubC => (Run::SubC, Function::Sin),
+            Code::SubFrom => (Run::SubFrom, Function::Sin),
+            Code::Mul => (Run::Mul, Function::Sin),
+            Code::MulC => (Run::MulC, Function::Sin),
+            Code::Div => (Run::Div, Function::Sin),
+            Code::DivC => (Run::DivC, Function::Sin),
+            Code::Powi => (Run::Powi, Function::Sin),
+            Code::Powf => (Run::Powf, Function::Sin),
+            Code::SinCos => (Run::SinCos, Function::Sin),
+            Code::Call(f) => (Run::Call, f),
+        };
+        Step {
+            r,
+            a: op.a,
+            b: op.b,
+            run,
+            f,
+            c: op.c,
+        }
+    }
 }
 
 impl Plan {
@@ -85,7 +157,7 @@ impl Plan {
                 .unwrap_or(0);
             let i = ready.remove(k);
             last = Some(ops[i].code);
-            steps.push((at[i], ops[i]));
+            steps.push(Step::new(at[i], ops[i]));
             for &j in &readers[i] {
                 waiting[j] -= 1;
                 if waiting[j] == 0 {
@@ -93,6 +165,14 @@ impl Plan {
                     ready.insert(place, j);
                 }
             }
+        }
+        // what `run_in` reads unchecked: every operand a register filled before its step, each
+        // step's registers within the tape's
+        let registers = filled_by.len();
+        for op in &steps {
+            let width = if op.run == Run::SinCos { 2 } else { 1 };
+            assert!(op.r as usize + width <= registers);
+            assert!(op.a < op.r && (!op.reads_b() || op.b < op.r));
         }
         let mut checked: Vec<u32> = outputs.iter().copied().filter(|&o| o != DROPPED).collect();
         checked.sort_unstable();
@@ -376,6 +456,21 @@ impl Tape {
         None
     }
 
+    /// The registers of the sine and the cosine of the `k`-th expression where the tape
+    /// computes them (another expression takes them): a caller that needs them too reads
+    /// them there, the same numbers, rather than forming them again.
+    pub fn sin_cos_of(&self, k: usize) -> Option<(usize, usize)> {
+        let target = *self.outputs.get(k)?;
+        let mut r = self.inputs;
+        for op in &self.ops {
+            if op.code == Code::SinCos && op.a == target {
+                return Some((r, r + 1));
+            }
+            r += if op.code == Code::SinCos { 2 } else { 1 };
+        }
+        None
+    }
+
     /// How many registers [`Tape::run`] fills.
     pub fn registers(&self) -> usize {
         self.registers
@@ -410,52 +505,60 @@ impl Tape {
     /// writes its register in place: built as a value and pushed, each `Jet<8>` was moved
     /// twice, and the moves and the push cost more than the operation's arithmetic.
     pub fn run_in<D: Scalar>(&self, registers: &mut [D]) -> bool {
-        debug_assert_eq!(registers.len(), self.registers);
+        assert_eq!(registers.len(), self.registers);
         for &(r, c) in &self.plan.constants {
             registers[r as usize] = D::from(c);
         }
         let mut fine = true;
-        for (r, op) in &self.plan.steps {
-            // every operand's register is below the operation's own
-            let (done, rest) = registers.split_at_mut(*r as usize);
-            let a = || done[op.a as usize];
-            let b = || done[op.b as usize];
+        for op in &self.plan.steps {
+            // every operand's register is below the operation's own. Unchecked: `Plan::new`
+            // asserts each operand read below the step's register and the step's registers
+            // within the tape's, whose count `registers` has (asserted above). Checked, the
+            // split and the reads cost about five instructions an operation, 160 an
+            // evaluation of wei2017's network with gradients.
+            // SAFETY: `op.r + 1 <= registers.len()` (`Plan::new`, and the assert above).
+            let (done, rest) = unsafe { registers.split_at_mut_unchecked(op.r as usize) };
+            // SAFETY: `op.a < op.r` and, where `b` is read, `op.b < op.r` (`Plan::new`), and
+            // `done` holds the registers below `op.r`.
+            let a = || unsafe { *done.get_unchecked(op.a as usize) };
+            // SAFETY: as for `a`; `b` is called only by the codes `Step::reads_b` lists.
+            let b = || unsafe { *done.get_unchecked(op.b as usize) };
             // each arm writes its register itself: a value the match returned went through a
             // temporary, one more copy of a `Jet<8>` per operation
-            let out = &mut rest[0];
-            match op.code {
-                Code::Const => unreachable!("written before the steps"),
-                Code::Neg => *out = -a(),
-                Code::Add => *out = a() + b(),
-                Code::AddC => *out = a() + op.c,
-                Code::Sub => *out = a() - b(),
-                Code::SubC => *out = a() - op.c,
+            // SAFETY: `op.r + 1 <= registers.len()` (`Plan::new`), so `rest` is not empty.
+            let out = unsafe { rest.get_unchecked_mut(0) };
+            match op.run {
+                Run::Neg => *out = -a(),
+                Run::Add => *out = a() + b(),
+                Run::AddC => *out = a() + op.c,
+                Run::Sub => *out = a() - b(),
+                Run::SubC => *out = a() - op.c,
                 // as the tree computes it: the constant a scalar, a zero's sign kept
-                Code::SubFrom => *out = D::from(op.c) - a(),
-                Code::Mul => *out = a() * b(),
-                Code::MulC => *out = a() * op.c,
-                Code::Div => {
+                Run::SubFrom => *out = D::from(op.c) - a(),
+                Run::Mul => *out = a() * b(),
+                Run::MulC => *out = a() * op.c,
+                Run::Div => {
                     let d = b();
                     fine &= d.re() != 0.0;
                     *out = a() / d;
                 }
-                Code::DivC => *out = a() / op.c,
-                Code::Powi => {
+                Run::DivC => *out = a() / op.c,
+                Run::Powi => {
                     let (x, n) = (a(), op.b as i32);
                     fine &= !(n < 0 && x.re() == 0.0);
                     *out = x.powi(n);
                 }
-                Code::Powf => {
+                Run::Powf => {
                     let x = a();
                     fine &= !(x.re() < 0.0 || (x.re() == 0.0 && op.c < 1.0));
                     *out = x.powf(op.c);
                 }
-                Code::SinCos => {
+                Run::SinCos => {
                     let (s, c) = a().sin_cos();
                     *out = s;
                     rest[1] = c;
                 }
-                Code::Call(f) => *out = call(f, a(), b, &mut fine),
+                Run::Call => *out = call(op.f, a(), b, &mut fine),
             }
         }
         // without a branch per output: each is checked, as all are finite but on failure
@@ -570,18 +673,29 @@ mod tests {
         assert_eq!(odd.outputs[0], DROPPED);
         assert_eq!(kept.len(), odd.registers());
         // the operations of one code run together: fewer changes of code than compiled
-        let changes = |codes: Vec<Code>| codes.windows(2).filter(|w| w[0] != w[1]).count();
+        fn changes<T: PartialEq>(codes: Vec<T>) -> usize {
+            codes.windows(2).filter(|w| w[0] != w[1]).count()
+        }
         let compiled = tape
             .ops
             .iter()
             .map(|op| op.code)
             .filter(|&c| c != Code::Const);
-        let planned = tape.plan.steps.iter().map(|(_, op)| op.code);
+        let planned = tape.plan.steps.iter().map(|op| (op.run, op.f));
         assert!(changes(planned.collect()) < changes(compiled.collect()));
         assert_eq!(
             tape.plan.steps.len() + tape.plan.constants.len(),
             tape.ops.len()
         );
+        // an angle's sine and cosine where another expression takes them, bit for bit
+        let angle = Expression::parse("delta2", &NAMES).unwrap();
+        let both = Tape::compile([&angle, &parsed[8]], 3);
+        let (sin, cos) = both.sin_cos_of(0).expect("cos(delta2) is on the tape");
+        assert!(both.run(&jets, &mut dual));
+        let (s, c) = jets[1].sin_cos();
+        assert!(dual[sin] == s && dual[cos] == c);
+        assert_eq!(both.sin_cos_of(1), None);
+        assert_eq!(Tape::compile([&angle], 3).sin_cos_of(0), None);
         // a constant less a register: the tree's zero, with its sign
         let e = Expression::parse("1 - l2", &NAMES).unwrap();
         let one = Tape::compile([&e], 3);

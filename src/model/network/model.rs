@@ -17,7 +17,7 @@
 //! output stroke times the output stiffness with the actuator in place (Thevenin's
 //! equivalent of the linear mechanism: Lobontiu, "Compliant Mechanisms", CRC 2002, Sec. 4.4).
 
-use std::any::Any;
+use std::any::{Any, TypeId};
 use std::borrow::Cow;
 use std::cell::RefCell;
 use std::convert::Infallible;
@@ -25,7 +25,7 @@ use std::convert::Infallible;
 use super::file::{Axis, Description, HingeDescription, Keyed, Point};
 use super::modes::{described_piece, Inertia, ModeError};
 use super::on_axis::flexure_on_mirror_axis;
-use super::structure::beam_compliance;
+use super::structure::{beam_compliance, end_of};
 use super::structure::{
     Body, Case, Displacements, Dof, Flexure, Load, Network, NetworkError, SolveBuffers, Spring,
 };
@@ -69,6 +69,55 @@ enum Quantity {
     Frequency(usize),
 }
 
+/// What an evaluation's wanted outputs need ([`NetworkModel::needs`]).
+#[derive(Debug, Clone, Copy, Default)]
+struct Needs {
+    /// How many natural frequencies, where any.
+    modes: Option<usize>,
+    /// The described points, for the spans or the masses.
+    extent: bool,
+    /// The input's load case.
+    input: bool,
+    /// The first output's load case.
+    output: bool,
+    /// The input's compliance condensed out of the output's (its case then read at the
+    /// input too).
+    condenses: bool,
+    /// The hinges' end stresses.
+    stresses: bool,
+}
+
+impl Needs {
+    /// What output `q` needs, on an actuator of stiffness `actuator` where given.
+    fn of(q: Quantity, actuator: Option<f64>) -> Self {
+        use Quantity::*;
+        Needs {
+            modes: match q {
+                Frequency(i) => Some(i + 1),
+                _ => None,
+            },
+            extent: matches!(q, SpanX | SpanY),
+            input: !matches!(q, SpanX | SpanY | Measure(_) | StrokeIn)
+                || (q == StrokeIn && actuator.is_some()),
+            output: matches!(q, KOut | KOutActuated | KOutBlocked | BlockedForce),
+            condenses: matches!(q, KOutActuated | KOutBlocked | BlockedForce),
+            stresses: matches!(q, StressMax | Stress(_) | StressEnd(..)),
+        }
+    }
+
+    /// What both need.
+    fn or(self, o: Self) -> Self {
+        Needs {
+            modes: self.modes.max(o.modes),
+            extent: self.extent | o.extent,
+            input: self.input | o.input,
+            output: self.output | o.output,
+            condenses: self.condenses | o.condenses,
+            stresses: self.stresses | o.stresses,
+        }
+    }
+}
+
 /// How many natural frequencies the model names (`f1`, `f2`, ...).
 const FREQUENCIES: usize = 3;
 
@@ -80,6 +129,9 @@ pub struct NetworkModel {
     actuator: Actuator,
     outputs: Vec<OutputInfo>,
     quantities: Vec<Quantity>,
+    /// What each output needs ([`NetworkModel::needs`]): found once, a pass over the wanted
+    /// outputs' quantities at each evaluation cost about 300 instructions.
+    needs: Vec<Needs>,
     /// For each output, the outputs it is the maximum of.
     max_of: Vec<Option<Vec<usize>>>,
     fit: Vec<FitLimit>,
@@ -89,6 +141,10 @@ pub struct NetworkModel {
     /// its first point, the links' widths, the ground's points) and the ports' constant
     /// directions: the statics' evaluations run this one.
     statics: Tape,
+    /// Each hinge's registers of the sine and the cosine of its angle in `tape` and in
+    /// `statics`, where the tape computes them for another expression (wei2017's
+    /// `l2*cos(delta2)`): read there, not computed again for the hinge's axis.
+    axes: [Vec<Option<(usize, usize)>>; 2],
     /// Each port's unit direction (input first) where its expressions are constants: the
     /// same numbers the scalars' normalization gives, found once.
     directions: Vec<Option<[f64; 2]>>,
@@ -146,8 +202,10 @@ impl<D> Default for Evaluated<D> {
 struct Work<D> {
     values: Vec<D>,
     registers: Vec<D>,
-    /// Each body's reference point, the first of its points met.
-    first: Vec<Option<[D; 2]>>,
+    /// Whether each body's reference point (the first of its points met) is written yet:
+    /// the points are written into the network's references in place, where a list of
+    /// `Option`s of them was copied into it.
+    placed: Vec<bool>,
     evaluated: Evaluated<D>,
     solve: SolveBuffers<D>,
     stresses: Vec<(D, D)>,
@@ -160,7 +218,7 @@ impl<D> Default for Work<D> {
         Work {
             values: Vec::new(),
             registers: Vec::new(),
-            first: Vec::new(),
+            placed: Vec::new(),
             evaluated: Evaluated::default(),
             solve: SolveBuffers::default(),
             stresses: Vec::new(),
@@ -170,25 +228,27 @@ impl<D> Default for Work<D> {
 }
 
 thread_local! {
-    /// The thread's spare [`Work`]s, one per scalar type it evaluated with.
-    static SPARE: RefCell<Vec<Box<dyn Any>>> = const { RefCell::new(Vec::new()) };
+    /// The thread's spare [`Work`]s, one per scalar type it evaluated with, each with its
+    /// type's id: compared here, where asking each box for its type was a virtual call.
+    static SPARE: RefCell<Vec<(TypeId, Box<dyn Any>)>> = const { RefCell::new(Vec::new()) };
 }
 
 /// The thread's spare [`Work`] for `D`, or a new one. Taken out rather than borrowed, so
 /// that an evaluation inside another (none today) would only allocate its own.
 fn take<D: 'static>() -> Box<Work<D>> {
+    let id = TypeId::of::<Work<D>>();
     SPARE
         .with(|spare| {
             let mut spare = spare.borrow_mut();
-            let i = spare.iter().position(|w| w.is::<Work<D>>())?;
-            spare.swap_remove(i).downcast().ok()
+            let i = spare.iter().position(|(t, _)| *t == id)?;
+            spare.swap_remove(i).1.downcast().ok()
         })
         .unwrap_or_default()
 }
 
 /// `work` back among the thread's spares.
 fn give<D: 'static>(work: Box<Work<D>>) {
-    SPARE.with(|spare| spare.borrow_mut().push(work));
+    SPARE.with(|spare| spare.borrow_mut().push((TypeId::of::<Work<D>>(), work)));
 }
 
 impl NetworkModel {
@@ -399,14 +459,24 @@ impl NetworkModel {
                 fit.extend(hinge.kind.fit_limits(&owner, &index, &names));
             }
         }
+        let needs = quantities
+            .iter()
+            .map(|&q| Needs::of(q, actuator.stiffness))
+            .collect();
+        let axes = [&tape, &statics].map(|t| {
+            let hinges = description.hinges.iter();
+            hinges.map(|h| t.sin_cos_of(h.angle.slot)).collect()
+        });
         NetworkModel {
             description,
             material,
             actuator,
             outputs,
+            needs,
             quantities,
             max_of,
             fit,
+            axes,
             tape,
             statics,
             directions,
@@ -455,7 +525,7 @@ impl NetworkModel {
         let Work {
             values,
             registers,
-            first,
+            placed,
             evaluated,
             ..
         } = work;
@@ -474,12 +544,14 @@ impl NetworkModel {
         *deg = D::from(std::f64::consts::PI / 180.0);
         if tape.run_in(registers) {
             let registers = &*registers;
+            let axes = &self.axes[usize::from(!extent)];
             self.build(
                 modulus,
                 extent,
                 |e: &Keyed| Ok::<_, Infallible>(registers[tape.output(e.slot)]),
+                |h| axes[h].map(|(sin, cos)| [registers[cos], registers[sin]]),
                 evaluated,
-                first,
+                placed,
             )
         } else {
             // the trees read the names' values, which the tape has kept
@@ -494,8 +566,9 @@ impl NetworkModel {
                         .eval(values)
                         .map_err(|err| format!("{} = \"{}\": {err}", e.key, e.expression.source()))
                 },
+                |_| None,
                 evaluated,
-                first,
+                placed,
             )
         }
     }
@@ -509,8 +582,9 @@ impl NetworkModel {
         modulus: Option<D>,
         extent: bool,
         eval: impl Fn(&Keyed) -> Result<D, E>,
+        axis: impl Fn(usize) -> Option<[D; 2]>,
         out: &mut Evaluated<D>,
-        first: &mut Vec<Option<[D; 2]>>,
+        placed: &mut Vec<bool>,
     ) -> Result<(), String> {
         let d = &self.description;
         let unit = d.unit;
@@ -518,6 +592,12 @@ impl NetworkModel {
         let eval = |e: &Keyed| raw(e).map_err(Message::message);
         let length = |e: &Keyed| raw(e).map(|v| v * unit);
         let point = |p: &Point| -> Result<[D; 2], E> { Ok([length(&p[0])?, length(&p[1])?]) };
+        // written in place: a point returned was a `memcpy` of two `Jet<8>`s
+        let point_into = |p: &Point, out: &mut [D; 2]| -> Result<(), String> {
+            out[0] = length(&p[0]).map_err(Message::message)?;
+            out[1] = length(&p[1]).map_err(Message::message)?;
+            Ok(())
+        };
         let Evaluated {
             network,
             ports,
@@ -530,8 +610,13 @@ impl NetworkModel {
         points.clear();
         offsets.clear();
         link_widths.clear();
-        first.clear();
-        first.resize(d.bodies.len(), None);
+        placed.clear();
+        placed.resize(d.bodies.len(), false);
+        let references = &mut network.references;
+        if references.len() != d.bodies.len() {
+            references.clear();
+            references.resize(d.bodies.len(), [D::from(0.0); 2]);
+        }
         for (b, body) in d.bodies.iter().enumerate() {
             if extent {
                 offsets.push(points.len());
@@ -543,13 +628,14 @@ impl NetworkModel {
                 );
             }
             // the statics read a body's first point alone, its reference
-            for p in body.points.iter().take(if extent { usize::MAX } else { 1 }) {
-                let q = point(p).map_err(Message::message)?;
-                if first[b].is_none() {
-                    first[b] = Some(q);
-                }
+            if let Some(p) = body.points.first() {
+                point_into(p, &mut references[b])?;
+                placed[b] = true;
                 if extent {
-                    points.push(q);
+                    points.push(references[b]);
+                    for p in &body.points[1..] {
+                        points.push(point(p).map_err(Message::message)?);
+                    }
                 }
             }
         }
@@ -569,11 +655,12 @@ impl NetworkModel {
             network.flexures.resize(count, idle_flexure());
         }
         dims.resize_with(count, Vec::new);
-        for ((h, dd), f) in d
+        for (i, ((h, dd), f)) in d
             .hinges
             .iter()
             .zip(dims.iter_mut())
             .zip(&mut network.flexures)
+            .enumerate()
         {
             dd.clear();
             for (e, info) in h.dimensions.iter().zip(h.kind.dimensions()) {
@@ -588,12 +675,24 @@ impl NetworkModel {
             }
             f.from = h.from.map_or(Body::Ground, Body::Rigid);
             f.to = h.to.map_or(Body::Ground, Body::Rigid);
-            f.start = point(&h.start).map_err(Message::message)?;
-            let (s, c) = eval(&h.angle)?.sin_cos();
-            f.axis = [c, s];
+            point_into(&h.start, &mut f.start)?;
+            f.axis = match axis(i) {
+                Some(axis) => axis,
+                None => {
+                    let (s, c) = eval(&h.angle)?.sin_cos();
+                    [c, s]
+                }
+            };
             f.length = h.kind.length(dd);
+            f.end = end_of(&f.start, &f.axis, f.length);
             hinge_compliance(h.kind, dd, d.width, &self.material, &mut f.compliance);
-            join(f, modulus, first, extent.then_some(&mut *points));
+            join(
+                f,
+                modulus,
+                references,
+                placed,
+                extent.then_some(&mut *points),
+            );
         }
         let beams = d.beams.iter().zip(dims[d.hinges.len()..].iter_mut());
         for ((b, dd), f) in beams.zip(&mut network.flexures[d.hinges.len()..]) {
@@ -619,24 +718,28 @@ impl NetworkModel {
             dd.clear();
             dd.push(l);
             dd.push(thickness);
-            *f = Flexure {
-                from: b.from.map_or(Body::Ground, Body::Rigid),
-                to: b.to.map_or(Body::Ground, Body::Rigid),
+            *f = Flexure::new(
+                b.from.map_or(Body::Ground, Body::Rigid),
+                b.to.map_or(Body::Ground, Body::Rigid),
                 start,
-                axis: [dx / l, dy / l],
-                length: l,
-                compliance: beam_compliance(l, thickness, d.width, &self.material),
-            };
-            join(f, modulus, first, extent.then_some(&mut *points));
+                [dx / l, dy / l],
+                l,
+                beam_compliance(l, thickness, d.width, &self.material),
+            );
+            join(
+                f,
+                modulus,
+                references,
+                placed,
+                extent.then_some(&mut *points),
+            );
         }
         network.held.clear();
         network.held.extend_from_slice(&self.held);
         network.springs.clear();
-        network.references.clear();
-        network.references.extend(
-            first
-                .iter()
-                .map(|r| r.expect("every body has a hinge or a beam, whose end is a point of it")),
+        assert!(
+            placed.iter().all(|&p| p),
+            "every body has a hinge or a beam, whose end is a point of it"
         );
         // written in place, as the flexures
         if ports.len() != self.directions.len() {
@@ -666,7 +769,7 @@ impl NetworkModel {
                 }
             };
             port.body = p.body;
-            port.point = point(&p.at).map_err(Message::message)?;
+            point_into(&p.at, &mut port.point)?;
         }
         measures.clear();
         for m in &d.measures {
@@ -703,17 +806,14 @@ impl NetworkModel {
         out: &mut [D],
         work: &mut Work<D>,
     ) -> Result<(), String> {
-        let modes = wanted
-            .iter()
-            .filter_map(|&w| match self.quantities[w] {
-                Quantity::Frequency(i) => Some(i + 1),
-                _ => None,
-            })
-            .max();
-        let extent = modes.is_some()
-            || wanted
-                .iter()
-                .any(|&w| matches!(self.quantities[w], Quantity::SpanX | Quantity::SpanY));
+        let Needs {
+            modes,
+            extent,
+            input: needs_input,
+            output: needs_output,
+            condenses,
+            stresses: needs_stresses,
+        } = self.needs(wanted);
         self.at(x, modulus, extent, work)?;
         let Work {
             evaluated: e,
@@ -723,14 +823,7 @@ impl NetworkModel {
         } = work;
         let e = &*e;
         let free = |err| self.network_error(err);
-        let needs = |f: &dyn Fn(Quantity) -> bool| wanted.iter().any(|&w| f(self.quantities[w]));
         use Quantity::*;
-        let needs_input = needs(&|q| {
-            !matches!(q, SpanX | SpanY | Measure(_) | StrokeIn)
-                || (q == StrokeIn && self.actuator.stiffness.is_some())
-        });
-        let needs_output =
-            needs(&|q| matches!(q, KOut | KOutActuated | KOutBlocked | BlockedForce));
         // read in place: a port copied out of the list, or into a load, was a `memcpy`
         let along = |u: &Displacements<D>, i: usize| {
             let p = &e.ports[i];
@@ -743,7 +836,6 @@ impl NetworkModel {
         );
         // the output's case is read at the output alone, or at the input too where the
         // input's compliance is condensed out
-        let condenses = needs(&|q| matches!(q, KOutActuated | KOutBlocked | BlockedForce));
         let port_bodies = [e.ports[1].body, e.ports[0].body];
         let read_out = &port_bodies[..if condenses { 2 } else { 1 }];
         let mut cases = [Case {
@@ -827,11 +919,12 @@ impl NetworkModel {
         };
         // each hinge's two end stresses once, however many outputs read them
         stresses.clear();
-        if needs(&|q| matches!(q, StressMax | Stress(_) | StressEnd(..))) {
+        if needs_stresses {
             stresses.extend((0..flexures).map(ends));
         }
         let stresses = &*stresses;
-        let ends = |h: usize| stresses[h];
+        // read in place: the pair copied out was two `Jet<8>`s for one
+        let ends = |h: usize| &stresses[h];
         let extent = |i: usize| {
             let hi = e
                 .points
@@ -861,27 +954,27 @@ impl NetworkModel {
                 BlockedForce => amplification(0) * stroke_in() * condensed(self.actuator.stiffness),
                 StressMax => (0..flexures)
                     .map(|h| {
-                        let (a, b) = ends(h);
+                        let (a, b) = *ends(h);
                         max(a, b)
                     })
                     .reduce(max)
                     .unwrap_or(D::from(0.0)),
                 Stress(h) => {
-                    let (a, b) = ends(h);
+                    let (a, b) = *ends(h);
                     max(a, b)
                 }
                 StressEnd(h, to) => {
                     let (a, b) = ends(h);
                     if to {
-                        b
+                        *b
                     } else {
-                        a
+                        *a
                     }
                 }
                 Rotation(h) => {
                     let u = input.as_ref().expect("listed");
                     let f = &e.network.flexures[h];
-                    let turn = u.at(f.to, f.start_plus_length())[2] - u.at(f.from, f.start)[2];
+                    let turn = u.at(f.to, f.end)[2] - u.at(f.from, f.start)[2];
                     turn * shared.expect("listed")
                 }
                 SpanX => extent(0),
@@ -897,6 +990,15 @@ impl NetworkModel {
             }
         }
         Ok(())
+    }
+
+    /// What the `wanted` outputs need.
+    fn needs(&self, wanted: &[usize]) -> Needs {
+        let mut n = wanted
+            .iter()
+            .fold(Needs::default(), |n, &w| n.or(self.needs[w]));
+        n.extent |= n.modes.is_some();
+        n
     }
 
     /// How many modes [`Self::frequencies`] finds: the degrees of freedom of the described
@@ -1040,7 +1142,7 @@ impl NetworkModel {
         let flexures = e.network.flexures[d.hinges.len()..].iter();
         for ((b, f), dims) in d.beams.iter().zip(flexures).zip(&e.dims[d.hinges.len()..]) {
             let half = dims[0] * dims[1] * (0.5 * density * width);
-            for (body, at) in [(b.from, f.start), (b.to, f.start_plus_length())] {
+            for (body, at) in [(b.from, f.start), (b.to, f.end)] {
                 if let Some(body) = body {
                     inertia[body] = inertia[body].with_point_mass(half, at);
                 }
@@ -1153,8 +1255,11 @@ impl NetworkModel {
         // the outputs' buffer is the thread's too: allocated for each evaluation, it cost
         // about as much as the seeding and the unseeding together
         let mut y = std::mem::take(&mut work.outputs);
-        y.clear();
-        y.resize(wanted.len(), Jet::from(0.0));
+        // zeroed only when the count changes: the evaluation writes every slot it returns
+        if y.len() != wanted.len() {
+            y.clear();
+            y.resize(wanted.len(), Jet::from(0.0));
+        }
         if self
             .evaluate_in(&seeded, None, wanted, &mut y, &mut work)
             .is_ok()
@@ -1175,23 +1280,24 @@ impl NetworkModel {
 fn join<D: Scalar>(
     f: &mut Flexure<D>,
     modulus: Option<D>,
-    first: &mut [Option<[D; 2]>],
+    references: &mut [[D; 2]],
+    placed: &mut [bool],
     points: Option<&mut Vec<[D; 2]>>,
 ) {
     if let Some(m) = modulus {
         f.compliance = f.compliance.with_modulus(m);
     }
-    let end = f.start_plus_length();
-    for (body, p) in [(f.from, &f.start), (f.to, &end)] {
+    for (body, p) in [(f.from, &f.start), (f.to, &f.end)] {
         if let Body::Rigid(b) = body {
-            if first[b].is_none() {
-                first[b] = Some(*p);
+            if !placed[b] {
+                references[b] = *p;
+                placed[b] = true;
             }
         }
     }
     if let Some(points) = points {
         points.push(f.start);
-        points.push(end);
+        points.push(f.end);
     }
 }
 
@@ -1238,6 +1344,7 @@ fn idle_flexure<D: Scalar>() -> Flexure<D> {
         start: [zero; 2],
         axis: [zero; 2],
         length: zero,
+        end: [zero; 2],
         compliance: Compliance {
             c11: zero,
             c22: zero,
@@ -1463,9 +1570,11 @@ fn domain_error<D: Scalar>(h: &HingeDescription, dims: &[D]) -> Option<String> {
         for (p, v) in plain.iter_mut().zip(dims) {
             *p = v.re();
         }
-        // the names only make the message, which the second call below makes
+        // the names only make the message, which the second call below makes (a constant:
+        // an array of them built at each call was 128 bytes written)
+        const NONE: [&str; MOST] = [""; MOST];
         h.kind
-            .domain_error(&plain[..dims.len()], &[""; MOST][..dims.len()])?;
+            .domain_error(&plain[..dims.len()], &NONE[..dims.len()])?;
     }
     let names: Vec<&str> = h.dimensions.iter().map(|e| e.key.as_str()).collect();
     let plain: Vec<f64> = dims.iter().map(|v| v.re()).collect();

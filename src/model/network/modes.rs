@@ -271,6 +271,7 @@ impl<D: Scalar> Network<D> {
             to: map(f.to),
             start: reflect(f.start),
             axis: reflect(f.axis),
+            end: reflect(f.end),
             ..*f
         }));
         let mut springs = Vec::new();
@@ -428,13 +429,15 @@ mod tests {
         let guide = |t: Jet<1>| {
             let c =
                 HingeKind::Strip.compliance(&[Jet::from(0.01), t], 0.01, &Material::al7075_t6());
-            let leaf = |y: f64| Flexure {
-                from: Body::Ground,
-                to: Body::Rigid(0),
-                start: [Jet::from(0.0), Jet::from(y)],
-                axis: [Jet::from(1.0), Jet::from(0.0)],
-                length: Jet::from(0.01),
-                compliance: c,
+            let leaf = |y: f64| {
+                Flexure::new(
+                    Body::Ground,
+                    Body::Rigid(0),
+                    [Jet::from(0.0), Jet::from(y)],
+                    [Jet::from(1.0), Jet::from(0.0)],
+                    Jet::from(0.01),
+                    c,
+                )
             };
             Network {
                 references: vec![[Jet::from(0.01), Jet::from(0.0)]],

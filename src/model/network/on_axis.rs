@@ -25,7 +25,7 @@ pub fn flexure_on_mirror_axis(d: &Description, flexures: &[Flexure<f64>]) -> Opt
         .map(|h| ("hinge", h.name.as_str(), &h.key))
         .chain(d.beams.iter().map(|b| ("beam", b.name.as_str(), &b.key)));
     for (f, (what, name, key)) in flexures.iter().zip(names) {
-        let end = f.start_plus_length();
+        let end = f.end;
         for &axis in &d.mirror {
             let across = |p: [f64; 2]| match axis {
                 Axis::X => p[1],

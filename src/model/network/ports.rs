@@ -90,14 +90,14 @@ mod tests {
         let c = HingeKind::Strip.compliance(&[0.001, 0.0003], 0.01, &Material::al7075_t6());
         let net = Network {
             references: vec![[0.0, 0.0]],
-            flexures: vec![Flexure {
-                from: Body::Ground,
-                to: Body::Rigid(0),
-                start: [0.0, -0.001],
-                axis: [0.0, 1.0],
-                length: 0.001,
-                compliance: c,
-            }],
+            flexures: vec![Flexure::new(
+                Body::Ground,
+                Body::Rigid(0),
+                [0.0, -0.001],
+                [0.0, 1.0],
+                0.001,
+                c,
+            )],
             springs: vec![],
             held: vec![],
         };

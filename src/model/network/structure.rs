@@ -83,7 +83,8 @@ pub enum Body {
 }
 
 /// A flexure from `start` on `from` along `axis` (a unit vector) for `length`, ending on
-/// `to`; `compliance` is at its end on `to` with its start clamped, in its own frame.
+/// `to` at `end`; `compliance` is at its end on `to` with its start clamped, in its own
+/// frame.
 #[derive(Debug, Clone, Copy)]
 pub struct Flexure<D> {
     pub from: Body,
@@ -91,6 +92,9 @@ pub struct Flexure<D> {
     pub start: [D; 2],
     pub axis: [D; 2],
     pub length: D,
+    /// `start + length * axis`, kept: the build, the assembly and the end loads each read
+    /// it, and formed at each read it cost about 100 instructions a time over `Jet<8>`.
+    pub end: [D; 2],
     pub compliance: Compliance<D>,
 }
 
@@ -381,7 +385,7 @@ impl<D: Scalar> Network<D> {
             }
             out
         };
-        let end = f.start_plus_length();
+        let end = f.end;
         let map = |body: Body, point: [D; 2]| -> Option<(usize, [[D; 3]; 3])> {
             let Body::Rigid(b) = body else { return None };
             let r = sub(point, self.references[b]);
@@ -467,7 +471,13 @@ impl<D: Scalar> Network<D> {
             scaled,
             plan,
         } = buffers;
-        let m = self.free_numbering(index);
+        // the free numbering is the plan's while the structure is the one it was formed for
+        if !plan.fits(bodies, &self.held, &self.flexures) {
+            let m = self.free_numbering(index);
+            *plan = Plan::form(index, m, &self.held, &self.flexures);
+        }
+        let plan = &*plan;
+        let (index, m) = (&plan.index[..], plan.m);
         k.clear();
         k.resize(m * m, D::from(0.0));
         if ends.len() != 2 {
@@ -477,11 +487,11 @@ impl<D: Scalar> Network<D> {
         if let Some(i) = self.flexures.iter().position(|fl| fl.from == fl.to) {
             return Err(NetworkError::SelfJoined { flexure: i });
         }
-        if !plan.fits(index, &self.flexures) {
-            *plan = Plan::form(index, m, &self.flexures);
+        // every flexure's slot is written below: zeroed only when the count changes
+        if stiffness.len() != self.flexures.len() {
+            stiffness.clear();
+            stiffness.resize(self.flexures.len(), [D::from(0.0); 4]);
         }
-        stiffness.clear();
-        stiffness.resize(self.flexures.len(), [D::from(0.0); 4]);
         for (i, (fl, kf)) in self.flexures.iter().zip(stiffness.iter_mut()).enumerate() {
             self.add_flexure_free(fl, index, k, ends, plan.terms(i), kf);
         }
@@ -585,13 +595,16 @@ impl<D: Scalar> Network<D> {
         index: &[usize],
         k: &mut [D],
         ends: &mut [End<D>],
-        terms: [&[Term]; 4],
+        terms: [&[Term]; 7],
         stiffness: &mut Stiffness<D>,
     ) {
         let c = &f.compliance;
-        // K = C^-1: the axial entry, and the bending block's inverse
+        // K = C^-1: the axial entry, and the bending block's inverse, formed in its slot (formed
+        // apart and then stored, the four were a `memcpy`)
         let det = c.c22 * c.c33 - c.c23 * c.c23;
-        let (k11, k22, k23, k33) = (c.c11.recip(), c.c33 / det, -(c.c23 / det), c.c22 / det);
+        *stiffness = [c.c11.recip(), c.c33 / det, -(c.c23 / det), c.c22 / det];
+        let [k11, k22, k23, k33] = &*stiffness;
+        let (k11, k22, k23, k33) = (*k11, *k22, *k23, *k33);
         let (ex, ey) = (f.axis[0], f.axis[1]);
         // an end's map R T(r) from its body's reference motion to the end's motion in the
         // flexure's frame, by columns (u, v, theta); its third row is (0, 0, 1). The
@@ -629,16 +642,30 @@ impl<D: Scalar> Network<D> {
         };
         let (first, second) = ends.split_at_mut(1);
         end(&mut first[0], f.from, &f.start, Some(f.length));
-        end(&mut second[0], f.to, &f.start_plus_length(), None);
+        end(&mut second[0], f.to, &f.end, None);
         let ends: &[End<D>; 2] = (&*ends).try_into().expect("two ends");
         let dot = |t: &Term| dot(ends, t);
         let third = |t: &Term| ends[t.other & 1].ka[t.q.min(2)][2];
-        let [same, same_turn, across, across_turn] = terms;
+        let [pairs, same_moves, same, same_turn, across_moves, across, across_turn] = terms;
+        // a translation's columns and `K A` are the same at both ends (`R`, and `K R`), so
+        // each product of two translations is formed once for the flexure, bit for bit the
+        // one each of its terms formed
+        let mut moves = [[D::from(0.0); 2]; 2];
+        for t in pairs {
+            moves[t.p & 1][t.q & 1] = dot(t);
+        }
+        let moves = |t: &Term| moves[t.p & 1][t.q & 1];
+        for t in same_moves {
+            k[t.at] = k[t.at] + moves(t);
+        }
         for t in same {
             k[t.at] = k[t.at] + dot(t);
         }
         for t in same_turn {
             k[t.at] = k[t.at] + (dot(t) + third(t));
+        }
+        for t in across_moves {
+            k[t.at] = k[t.at] - moves(t);
         }
         for t in across {
             k[t.at] = k[t.at] - dot(t);
@@ -646,7 +673,6 @@ impl<D: Scalar> Network<D> {
         for t in across_turn {
             k[t.at] = k[t.at] - (dot(t) + third(t));
         }
-        *stiffness = [k11, k22, k23, k33];
     }
 }
 
@@ -667,14 +693,20 @@ fn dot<D: Scalar>(ends: &[End<D>; 2], t: &Term) -> D {
 /// three trips, were the assembly's unpredictable branches.
 #[derive(Debug, Clone, Default)]
 struct Plan {
-    /// The structure the terms are for.
+    /// The structure the terms are for: its bodies' count, the degrees of freedom held,
+    /// and the free numbering they give ([`Network::free_numbering`]), `m` of them free.
+    count: usize,
+    held: Vec<(usize, Dof)>,
     index: Vec<usize>,
+    m: usize,
     bodies: Vec<(Body, Body)>,
     terms: Vec<Term>,
-    /// Flexure `i`'s terms in four groups, `terms[groups[i][g]..groups[i][g + 1]]`: an end
-    /// with itself (added), with the end's rotation as `p` (added with `K`'s third row),
-    /// one end with the other (subtracted), and so with the rotation.
-    groups: Vec<[usize; 5]>,
+    /// Flexure `i`'s terms in seven groups, `terms[groups[i][g]..groups[i][g + 1]]`: the
+    /// distinct pairs `(p, q)` of two translations among its terms (each once, `at`
+    /// unused); then an end with itself (added): two translations, the others, the end's
+    /// rotation as `p` (added with `K`'s third row); then one end with the other
+    /// (subtracted), in the same three groups.
+    groups: Vec<[usize; 8]>,
 }
 
 /// Entry `at` of the stiffness gains `columns[p] . ka[q]` of ends `one` and `other`
@@ -689,8 +721,9 @@ struct Term {
 }
 
 impl Plan {
-    fn fits<D>(&self, index: &[usize], flexures: &[Flexure<D>]) -> bool {
-        self.index == index
+    fn fits<D>(&self, count: usize, held: &[(usize, Dof)], flexures: &[Flexure<D>]) -> bool {
+        self.count == count
+            && self.held == held
             && self.bodies.len() == flexures.len()
             && self
                 .bodies
@@ -699,15 +732,18 @@ impl Plan {
                 .all(|(&(from, to), f)| from == f.from && to == f.to)
     }
 
-    fn form<D>(index: &[usize], m: usize, flexures: &[Flexure<D>]) -> Plan {
+    fn form<D>(index: &[usize], m: usize, held: &[(usize, Dof)], flexures: &[Flexure<D>]) -> Plan {
         let mut plan = Plan {
+            count: index.len() / 3,
+            held: held.to_vec(),
             index: index.to_vec(),
+            m,
             bodies: flexures.iter().map(|f| (f.from, f.to)).collect(),
             terms: Vec::new(),
             groups: Vec::with_capacity(flexures.len()),
         };
         for f in flexures {
-            let mut groups: [Vec<Term>; 4] = Default::default();
+            let mut groups: [Vec<Term>; 7] = Default::default();
             let ends = [f.from, f.to];
             for (one, bi) in ends.iter().enumerate() {
                 let Body::Rigid(bi) = *bi else { continue };
@@ -723,19 +759,30 @@ impl Plan {
                             if gj == HELD || gj > gi {
                                 continue;
                             }
-                            let group = 2 * usize::from(one != other) + usize::from(p == 2);
-                            groups[group].push(Term {
+                            let term = Term {
                                 at: gi * m + gj,
                                 one,
                                 p,
                                 other,
                                 q,
-                            });
+                            };
+                            let moves = p < 2 && q < 2;
+                            if moves && !groups[0].iter().any(|t| (t.p, t.q) == (p, q)) {
+                                groups[0].push(term);
+                            }
+                            let kind = if moves {
+                                0
+                            } else if p == 2 {
+                                2
+                            } else {
+                                1
+                            };
+                            groups[1 + 3 * usize::from(one != other) + kind].push(term);
                         }
                     }
                 }
             }
-            let mut bounds = [plan.terms.len(); 5];
+            let mut bounds = [plan.terms.len(); 8];
             for (g, terms) in groups.into_iter().enumerate() {
                 plan.terms.extend(terms);
                 bounds[g + 1] = plan.terms.len();
@@ -745,8 +792,10 @@ impl Plan {
         plan
     }
 
-    /// Flexure `i`'s four groups of terms.
-    fn terms(&self, i: usize) -> [&[Term]; 4] {
+    /// Flexure `i`'s seven groups of terms. Inlined: called, the seven slices cost about a
+    /// hundred instructions a flexure.
+    #[inline(always)]
+    fn terms(&self, i: usize) -> [&[Term]; 7] {
         let g = &self.groups[i];
         std::array::from_fn(|j| &self.terms[g[j]..g[j + 1]])
     }
@@ -787,7 +836,7 @@ impl<D: Scalar> Network<D> {
         let f = &self.flexures[i];
         let (ex, ey) = (f.axis[0], f.axis[1]);
         let p = u.in_frame(f.from, &f.start, ex, ey);
-        let q = u.in_frame(f.to, &f.start_plus_length(), ex, ey);
+        let q = u.in_frame(f.to, &f.end, ex, ey);
         // Q's motion relative to the rigid motion of P carried along the flexure
         let d = [q[0] - p[0], q[1] - (p[1] + f.length * p[2]), q[2] - p[2]];
         let [k11, k22, k23, k33] = u.stiffness[i];
@@ -800,14 +849,31 @@ impl<D: Scalar> Network<D> {
 }
 
 impl<D: Scalar> Flexure<D> {
-    /// Its end on `to`.
-    #[inline]
-    pub fn start_plus_length(&self) -> [D; 2] {
-        [
-            self.start[0] + self.axis[0] * self.length,
-            self.start[1] + self.axis[1] * self.length,
-        ]
+    /// The flexure from `start` on `from` along the unit `axis` for `length` to `to`.
+    pub fn new(
+        from: Body,
+        to: Body,
+        start: [D; 2],
+        axis: [D; 2],
+        length: D,
+        compliance: Compliance<D>,
+    ) -> Self {
+        Flexure {
+            from,
+            to,
+            start,
+            axis,
+            length,
+            end: end_of(&start, &axis, length),
+            compliance,
+        }
     }
+}
+
+/// `start + length * axis`: a flexure's end on `to`.
+#[inline(always)]
+pub fn end_of<D: Scalar>(start: &[D; 2], axis: &[D; 2], length: D) -> [D; 2] {
+    [start[0] + axis[0] * length, start[1] + axis[1] * length]
 }
 
 fn product<D: Scalar>(a: [[D; 3]; 3], b: [[D; 3]; 3]) -> [[D; 3]; 3] {
@@ -918,15 +984,8 @@ mod tests {
             let phi = -3.0 + 0.5 * k as f64;
             let (s, co) = phi.sin_cos();
             let start = [0.003, -0.002];
-            let f = Flexure {
-                from: Body::Ground,
-                to: Body::Rigid(0),
-                start,
-                axis: [co, s],
-                length: 0.004,
-                compliance: c,
-            };
-            let end = f.start_plus_length();
+            let f = Flexure::new(Body::Ground, Body::Rigid(0), start, [co, s], 0.004, c);
+            let end = f.end;
             let net = Network {
                 references: vec![end],
                 flexures: vec![f],
@@ -966,14 +1025,7 @@ mod tests {
     fn a_parallelogram_guide_has_the_guided_beams_stiffness() {
         let (l, t, h) = (0.01, 0.0003, 0.02);
         let c = strip(l, t);
-        let leaf = |y: f64| Flexure {
-            from: Body::Ground,
-            to: Body::Rigid(0),
-            start: [0.0, y],
-            axis: [1.0, 0.0],
-            length: l,
-            compliance: c,
-        };
+        let leaf = |y: f64| Flexure::new(Body::Ground, Body::Rigid(0), [0.0, y], [1.0, 0.0], l, c);
         let net = Network {
             references: vec![[l, 0.0]],
             flexures: vec![leaf(-h / 2.0), leaf(h / 2.0)],
@@ -1065,13 +1117,15 @@ mod tests {
     /// and to the ground by one strip each, with an actuator's spring on the first.
     fn two_stage<D: Scalar>(t: D) -> Network<D> {
         let c = |l: f64| strip(D::from(l), t);
-        let flexure = |from, to, start: [f64; 2], axis: [f64; 2], l: f64| Flexure {
-            from,
-            to,
-            start: start.map(D::from),
-            axis: axis.map(D::from),
-            length: D::from(l),
-            compliance: c(l),
+        let flexure = |from, to, start: [f64; 2], axis: [f64; 2], l: f64| {
+            Flexure::new(
+                from,
+                to,
+                start.map(D::from),
+                axis.map(D::from),
+                D::from(l),
+                c(l),
+            )
         };
         Network {
             references: vec![[D::from(0.01), D::from(0.0)], [D::from(0.02), D::from(0.0)]],
@@ -1252,14 +1306,14 @@ mod tests {
                 let end = [length * co, length * s];
                 let net = Network {
                     references: vec![[0.0, 0.0], end],
-                    flexures: vec![Flexure {
-                        from: Body::Rigid(0),
-                        to: Body::Rigid(1),
-                        start: [0.0, 0.0],
-                        axis: [co, s],
+                    flexures: vec![Flexure::new(
+                        Body::Rigid(0),
+                        Body::Rigid(1),
+                        [0.0, 0.0],
+                        [co, s],
                         length,
-                        compliance: c,
-                    }],
+                        c,
+                    )],
                     springs: vec![],
                     held: vec![
                         (0, Dof::Y),
