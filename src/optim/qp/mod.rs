@@ -531,7 +531,7 @@ impl Rows<'_> {
     /// [`Rows::most_violated`] for rows of `N` entries (`N == self.n`), or of any length
     /// where `N` is 0.
     #[inline(always)]
-    #[allow(clippy::needless_range_loop)] // `i` indexes the rows, `b`, `in_active` and the sizes
+    #[allow(clippy::needless_range_loop)] // `i` indexes `b`, `in_active` and the sizes
     fn most_violated_of<const N: usize>(
         &self,
         meq: usize,
@@ -542,16 +542,30 @@ impl Rows<'_> {
         let (n, mg) = (self.n, self.mg);
         let mut worst = 0.0;
         let mut p = usize::MAX;
-        for i in meq..mg {
-            if in_active[i] {
-                continue;
-            }
-            let r = dot_of::<N>(&self.c[i * n..(i + 1) * n], x) - self.b[i];
+        let mut consider = |i: usize, r: f64| {
             if r < 0.0 {
                 let s = r * self.inv_scale(i, inv_scale);
                 if s < worst {
                     worst = s;
                     p = i;
+                }
+            }
+        };
+        if N == 0 {
+            for i in meq..mg {
+                if !in_active[i] {
+                    consider(i, dot(&self.c[i * n..(i + 1) * n], x) - self.b[i]);
+                }
+            }
+        } else {
+            // the rows walked as arrays, no index worked out and checked for each
+            let rows = (meq..mg)
+                .zip(self.c[meq * N..mg * N].chunks_exact(N))
+                .zip(&self.b[meq..mg])
+                .zip(&in_active[meq..mg]);
+            for (((i, row), &b), &active) in rows {
+                if !active {
+                    consider(i, dot_of::<N>(row, x) - b);
                 }
             }
         }
