@@ -167,6 +167,7 @@ pub(super) fn solve_on_active_set(
 /// the dual method's stop asks; a finite slack `>= 0` passes whatever the row's size,
 /// which is worked out only below zero. Rows of `N` entries ([`dot_of`]).
 #[inline(always)]
+#[allow(clippy::needless_range_loop)] // `i` indexes the rows, `b` and `in_active`
 fn others_met<const N: usize>(rows: &Rows, meq: usize, in_active: &[bool], x: &[f64]) -> bool {
     let n = rows.n;
     for i in meq..rows.mg {
