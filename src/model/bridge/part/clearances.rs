@@ -513,17 +513,30 @@ const KEY_BITS: usize = 9 + 2 * MAX_HINGE_DIMENSIONS + 4;
 
 impl SearchKey {
     fn new(s: &PartSettings, layout: &Layout, g: &Geometry<f64>) -> Self {
+        // every setting named, so that a setting added to the part is added here too
+        let PartSettings {
+            link_thickness,
+            fillet_radius,
+            input_block_width,
+            input_block_height,
+            output_block_width,
+            output_block_height,
+            min_slot,
+            actuator_length,
+            actuator_height,
+            enforce,
+        } = *s;
         let mut bits = [0; KEY_BITS];
         let values = [
-            s.link_thickness,
-            s.fillet_radius,
-            s.input_block_width,
-            s.input_block_height,
-            s.output_block_width,
-            s.output_block_height,
-            s.min_slot,
-            s.actuator_length.unwrap_or(0.0),
-            s.actuator_height.unwrap_or(0.0),
+            link_thickness,
+            fillet_radius,
+            input_block_width,
+            input_block_height,
+            output_block_width,
+            output_block_height,
+            min_slot,
+            actuator_length.unwrap_or(0.0),
+            actuator_height.unwrap_or(0.0),
         ]
         .into_iter()
         .chain(g.b.dims)
@@ -535,8 +548,8 @@ impl SearchKey {
         SearchKey {
             kinds: [layout.hinge_b, layout.hinge_d, g.b.kind, g.d.kind],
             bits,
-            actuator: [s.actuator_length.is_some(), s.actuator_height.is_some()],
-            enforce: s.enforce,
+            actuator: [actuator_length.is_some(), actuator_height.is_some()],
+            enforce,
         }
     }
 }
