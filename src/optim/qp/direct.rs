@@ -1,6 +1,6 @@
 //! A QP solved directly on a hinted active set, as an equality-constrained problem.
 
-use super::{QpWorkspace, Rows};
+use super::{dot_of, QpWorkspace, Rows};
 use crate::optim::dense::{back_substitute, cholesky, dot, forward_substitute, norm};
 
 /// The QP solved as an equality-constrained one on the hinted active set `A` (the
@@ -122,20 +122,14 @@ pub(super) fn solve_on_active_set(
     for (&j, &zj) in free.iter().zip(z.iter()) {
         x[j] = zj;
     }
-    // every other row satisfied, as closely as the dual method's stop asks; a finite slack
-    // >= 0 passes whatever the row's size, which is worked out only below zero
-    for i in meq..mg {
-        if !ws.in_active[i] {
-            let row = &rows.c[i * n..(i + 1) * n];
-            let slack = dot(row, x) - rows.b[i];
-            if (0.0..f64::INFINITY).contains(&slack) {
-                continue;
-            }
-            let scaled = slack / (1.0 + rows.b[i].abs() + norm(row));
-            if !at_least(scaled, -1e-14) {
-                return false;
-            }
-        }
+    let in_active = &ws.in_active;
+    let others_met = for_length!(
+        n,
+        |N| others_met::<N>(rows, meq, in_active, x),
+        others_met::<0>(rows, meq, in_active, x)
+    );
+    if !others_met {
+        return false;
     }
     if !rows.lower.is_empty() {
         for &j in free {
@@ -165,6 +159,29 @@ pub(super) fn solve_on_active_set(
     }
     for (&i, &ui) in general.iter().zip(u.iter()) {
         lambda[i] = ui;
+    }
+    true
+}
+
+/// Whether every general inequality not in `in_active` is satisfied at `x`, as closely as
+/// the dual method's stop asks; a finite slack `>= 0` passes whatever the row's size,
+/// which is worked out only below zero. Rows of `N` entries ([`dot_of`]).
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // `i` indexes the rows, `b` and `in_active`
+fn others_met<const N: usize>(rows: &Rows, meq: usize, in_active: &[bool], x: &[f64]) -> bool {
+    let n = rows.n;
+    for i in meq..rows.mg {
+        if !in_active[i] {
+            let row = &rows.c[i * n..(i + 1) * n];
+            let slack = dot_of::<N>(row, x) - rows.b[i];
+            if (0.0..f64::INFINITY).contains(&slack) {
+                continue;
+            }
+            let scaled = slack / (1.0 + rows.b[i].abs() + norm(row));
+            if !at_least(scaled, -1e-14) {
+                return false;
+            }
+        }
     }
     true
 }

@@ -223,3 +223,36 @@ fn rejects_an_indefinite_hessian() {
     let st = solve(&problem, &mut x, &mut l, &mut ws);
     assert_eq!(st, QpStatus::NotConvex);
 }
+
+#[test]
+fn the_rows_of_a_known_length_give_the_same_choice_to_the_bit() {
+    // the most violated row and its scaled slack, over rows walked as arrays of the length
+    // the compiler knows, against the loop over a length known at run time
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(43);
+    for n in 1..=14 {
+        for _ in 0..50 {
+            let mg = rng.random_range(1..30);
+            let meq = rng.random_range(0..=mg.min(3));
+            let c: Vec<f64> = (0..mg * n).map(|_| rng.random_range(-1e3..1e3)).collect();
+            let b: Vec<f64> = (0..mg).map(|_| rng.random_range(-1e3..1e3)).collect();
+            let x: Vec<f64> = (0..n).map(|_| rng.random_range(-2.0..2.0)).collect();
+            let in_active: Vec<bool> = (0..mg).map(|_| rng.random_bool(0.2)).collect();
+            let rows = Rows {
+                c: &c,
+                b: &b,
+                n,
+                mg,
+                lower: &[],
+                upper: &[],
+            };
+            let (mut known, mut any) = (vec![f64::NAN; mg], vec![f64::NAN; mg]);
+            let (p, worst) = rows.most_violated(meq, &x, &in_active, &mut known);
+            let (q, least) = rows.most_violated_of::<0>(meq, &x, &in_active, &mut any);
+            assert_eq!((p, worst.to_bits()), (q, least.to_bits()), "n {n}");
+            assert_eq!(
+                known.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                any.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+            );
+        }
+    }
+}

@@ -27,11 +27,13 @@
 //! [`CAP`] there, continuously, as no pair is nearer than that, and the study's search
 //! looks only at the pieces whose bounding circles and boxes come within it.
 
+use std::cell::RefCell;
 use std::sync::OnceLock;
 
 use super::{across, band, rules::fillet, PartSettings, Quarter, P};
 use crate::model::bridge::{Geometry, Layout};
 use crate::model::clearance::{clearance_below, reach, Feature, Reach, Solid, ANY_ORDER, IN_ORDER};
+use crate::model::hinge::{HingeKind, MAX_HINGE_DIMENSIONS};
 use crate::model::part_rules::{PartRule, Witness};
 use crate::model::scalar::{max, min, Scalar};
 
@@ -489,9 +491,74 @@ struct Nearest {
 /// What gives each clearance rule's margin at a design, found on the real parts once: the
 /// nearest pair of each rule of [`rows`], and the link width's two [`Reach`]es. The margins'
 /// values and, over dual numbers, their gradients follow from it ([`Selection::margins`]).
+#[derive(Clone, Copy)]
 pub struct Selection {
     nearest: [Option<Nearest>; MAX_RULES],
     link: [Reach; 2],
+}
+
+/// Everything a search's outcome depends on, to the bit: the part's settings, the hinge
+/// kinds, and the design's hinges, lengths and angles.
+#[derive(Clone, Copy, PartialEq)]
+struct SearchKey {
+    kinds: [HingeKind; 4],
+    bits: [u64; KEY_BITS],
+    actuator: [bool; 2],
+    enforce: bool,
+}
+
+/// The settings' seven lengths and the actuator's two, each hinge's dimensions, and the
+/// link's length and three angles.
+const KEY_BITS: usize = 9 + 2 * MAX_HINGE_DIMENSIONS + 4;
+
+impl SearchKey {
+    fn new(s: &PartSettings, layout: &Layout, g: &Geometry<f64>) -> Self {
+        // every setting named, so that a setting added to the part is added here too
+        let PartSettings {
+            link_thickness,
+            fillet_radius,
+            input_block_width,
+            input_block_height,
+            output_block_width,
+            output_block_height,
+            min_slot,
+            actuator_length,
+            actuator_height,
+            enforce,
+        } = *s;
+        let mut bits = [0; KEY_BITS];
+        let values = [
+            link_thickness,
+            fillet_radius,
+            input_block_width,
+            input_block_height,
+            output_block_width,
+            output_block_height,
+            min_slot,
+            actuator_length.unwrap_or(0.0),
+            actuator_height.unwrap_or(0.0),
+        ]
+        .into_iter()
+        .chain(g.b.dims)
+        .chain(g.d.dims)
+        .chain([g.delta2, g.l3, g.delta3, g.delta4]);
+        for (b, v) in bits.iter_mut().zip(values) {
+            *b = v.to_bits();
+        }
+        SearchKey {
+            kinds: [layout.hinge_b, layout.hinge_d, g.b.kind, g.d.kind],
+            bits,
+            actuator: [actuator_length.is_some(), actuator_height.is_some()],
+            enforce,
+        }
+    }
+}
+
+/// The last search on this thread: its key, its selection and its margins.
+type LastSearch = (SearchKey, Selection, [f64; MAX_RULES]);
+
+thread_local! {
+    static LAST_SEARCH: RefCell<Option<LastSearch>> = const { RefCell::new(None) };
 }
 
 /// A piece's bounding box: its least and largest `x`, then `y`.
@@ -615,7 +682,43 @@ impl Selection {
     /// the order of [`rules`], with what gives each. A rule's terms share the search's
     /// bound: a term's pairs are looked at only below the least margin of the terms before
     /// it, which leaves the least, and the first term that has it, as they were.
+    ///
+    /// The last search on the thread is kept with what it was found from, and a search at
+    /// the same design with the same settings, to the bit, is answered by it: a search is
+    /// a function of those alone. An SQP's line search evaluates the values at the point it
+    /// accepts, and the solver then the values and gradients at the same point: in the
+    /// second stages, every accepted step searched twice.
     pub fn find(s: &PartSettings, layout: &Layout, g: &Geometry<f64>, out: &mut [f64]) -> Self {
+        Self::find_with(s, layout, g, out, |selection| *selection)
+    }
+
+    /// [`Selection::find`], the selection lent to `keep` (a selection is some kilobytes,
+    /// and the values alone need none of it); `keep` must not search again.
+    pub(super) fn find_with<R>(
+        s: &PartSettings,
+        layout: &Layout,
+        g: &Geometry<f64>,
+        out: &mut [f64],
+        keep: impl FnOnce(&Selection) -> R,
+    ) -> R {
+        let key = SearchKey::new(s, layout, g);
+        let n = count(s);
+        LAST_SEARCH.with_borrow_mut(|last| match last {
+            Some((k, selection, margins)) if *k == key => {
+                out[..n].copy_from_slice(&margins[..n]);
+                keep(selection)
+            }
+            _ => {
+                let (_, selection, margins) =
+                    last.insert((key, Self::search(s, layout, g, out), [0.0; MAX_RULES]));
+                margins[..n].copy_from_slice(&out[..n]);
+                keep(selection)
+            }
+        })
+    }
+
+    /// [`Selection::find`] without the last search.
+    fn search(s: &PartSettings, layout: &Layout, g: &Geometry<f64>, out: &mut [f64]) -> Self {
         let real = pieces(s, layout, g);
         let circles = real.each_ref().map(circle);
         let boxes = real.each_ref().map(bounds);
@@ -706,7 +809,7 @@ impl Selection {
 /// Each clearance rule's margin (m) at the design `g`, in the order of [`rules`], into
 /// `out` ([`count`] of them).
 pub fn margins(s: &PartSettings, layout: &Layout, g: &Geometry<f64>, out: &mut [f64]) {
-    Selection::find(s, layout, g, out);
+    Selection::find_with(s, layout, g, out, |_| ());
 }
 
 #[cfg(test)]
@@ -745,6 +848,52 @@ mod tests {
             .filter(|t| (BAND_B..=BAND_D_START).contains(&t.a) || t.a >= BAND_B_END)
             .count();
         assert!(bands >= 15, "{bands}");
+    }
+
+    #[test]
+    fn a_search_answered_by_the_last_one_is_the_search_itself() {
+        use rand::{Rng, SeedableRng};
+        let mm = 1e-3;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(43);
+        let with_actuator = PartSettings {
+            actuator_length: Some(20.0 * mm),
+            actuator_height: Some(4.0 * mm),
+            ..PartSettings::default()
+        };
+        let narrow = PartSettings {
+            min_slot: 0.3 * mm,
+            ..with_actuator.clone()
+        };
+        let settings = [PartSettings::default(), with_actuator, narrow];
+        let mut answered = 0;
+        for &kind in HingeKind::ALL {
+            let layout = Layout::new(kind, kind);
+            for _ in 0..20 {
+                let x: Vec<f64> = layout
+                    .parameters()
+                    .iter()
+                    .map(|p| match p.dimension {
+                        crate::model::Dimension::Angle => rng.random_range(-0.6..0.6),
+                        _ => rng.random_range(0.1..12.0) * mm,
+                    })
+                    .collect();
+                let g = layout.geometry(&x);
+                // each design searched twice in a row under each setting, then under the
+                // first again: the second of each pair is the last search's, the others not
+                for s in settings.iter().flat_map(|s| [s, s]).chain([&settings[0]]) {
+                    let n = count(s);
+                    let (mut kept, mut fresh) = (vec![f64::NAN; n], vec![f64::NAN; n]);
+                    let last = LAST_SEARCH.with_borrow(|l| l.map(|(k, ..)| k));
+                    answered += usize::from(last == Some(SearchKey::new(s, &layout, &g)));
+                    let a = Selection::find(s, &layout, &g, &mut kept);
+                    let b = Selection::search(s, &layout, &g, &mut fresh);
+                    let bits = |v: &[f64]| v.iter().map(|m| m.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&kept), bits(&fresh), "{kind:?} {x:?} {s:?}");
+                    assert_eq!((a.nearest, a.link), (b.nearest, b.link));
+                }
+            }
+        }
+        assert_eq!(answered, HingeKind::ALL.len() * 20 * settings.len());
     }
 
     #[test]

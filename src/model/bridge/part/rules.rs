@@ -137,8 +137,9 @@ pub fn margins_seeded<D: Scalar>(
     size_margins(s, layout, g, out);
     let first = first_rules(s);
     if out.len() > first {
-        let selection = clearances::Selection::find(s, layout, real, &mut values[first..]);
-        selection.margins(s, layout, g, &mut out[first..]);
+        clearances::Selection::find_with(s, layout, real, &mut values[first..], |selection| {
+            selection.margins(s, layout, g, &mut out[first..])
+        });
     }
 }
 
