@@ -5,7 +5,8 @@
 //! the iterates (starts at the best, iterations, evaluations). A second argument sets the
 //! threads (2); a third, `enforced` or `free`, runs that study alone, not screened, once per
 //! round (for `valgrind --tool=callgrind`, whose counts the machine's load does not move); a
-//! fourth, a part of a file's name (`wei2017.toml`), runs that file's studies alone.
+//! fourth, a part of a file's name (`wei2017.toml`), runs that file's studies alone, or a
+//! problem file's path (`problems/wei2017_network.toml`) that file's.
 use std::path::Path;
 use std::time::Instant;
 
@@ -17,12 +18,24 @@ fn main() {
     let threads: usize = std::env::args().nth(2).map_or(2, |s| s.parse().unwrap());
     let only = std::env::args().nth(3);
     let file_filter = std::env::args().nth(4).unwrap_or_default();
-    for file in ["problems/wei2017.toml", "problems/wei2017_min_stress.toml"] {
+    // a file's path as the fourth argument times that file (a network's, say) instead
+    let given = [file_filter.as_str()];
+    let files: &[&str] = if file_filter.ends_with(".toml") && Path::new(&file_filter).exists() {
+        &given
+    } else {
+        &["problems/wei2017.toml", "problems/wei2017_min_stress.toml"]
+    };
+    for &file in files {
         if !file.contains(&file_filter) {
             continue;
         }
         let text = std::fs::read_to_string(file).unwrap();
-        let free = text.replace("[search]", "[part]\nenforce = false\n\n[search]");
+        // into the file's own `[part]` where it has one (a table may not be given twice)
+        let free = if text.contains("\n[part]\n") {
+            text.replacen("\n[part]\n", "\n[part]\nenforce = false\n", 1)
+        } else {
+            text.replace("[search]", "[part]\nenforce = false\n\n[search]")
+        };
         let mut times = [vec![], vec![], vec![], vec![]];
         let mut summary = [String::new(), String::new(), String::new(), String::new()];
         let configs = [(&text, true), (&free, true), (&text, false), (&free, false)];
