@@ -114,7 +114,7 @@ impl Step {
 }
 
 impl Plan {
-    fn new(inputs: usize, ops: &[Op], outputs: &[u32]) -> Self {
+    fn new(inputs: usize, ops: &[Op], outputs: &[u32], registers: usize) -> Self {
         let mut constants = Vec::new();
         // each operation's register, and the operation that fills each register
         let mut filled_by = vec![usize::MAX; inputs];
@@ -167,8 +167,9 @@ impl Plan {
             }
         }
         // what `run_in` reads unchecked: every operand a register filled before its step, each
-        // step's registers within the tape's
-        let registers = filled_by.len();
+        // step's registers within the tape's (`registers`, the count `run_in` asserts its
+        // buffer has: the compiler's, which must be the one the operations fill)
+        assert_eq!(filled_by.len(), registers);
         for op in &steps {
             let width = if op.run == Run::SinCos { 2 } else { 1 };
             assert!(op.r as usize + width <= registers);
@@ -354,7 +355,7 @@ impl Tape {
                 c.register(v)
             })
             .collect();
-        let plan = Plan::new(inputs, &c.ops, &outputs);
+        let plan = Plan::new(inputs, &c.ops, &outputs, c.registers as usize);
         Tape {
             inputs,
             ops: c.ops,
@@ -433,7 +434,7 @@ impl Tape {
                 }
             })
             .collect();
-        let plan = Plan::new(self.inputs, &ops, &outputs);
+        let plan = Plan::new(self.inputs, &ops, &outputs, registers as usize);
         Tape {
             inputs: self.inputs,
             ops,
