@@ -1,7 +1,7 @@
 //! A QP solved directly on a hinted active set, as an equality-constrained problem.
 
 use super::{dot_of, QpWorkspace, Rows};
-use crate::optim::dense::{back_substitute, cholesky, dot, forward_substitute, norm};
+use crate::optim::dense::{back_substitute, cholesky, dot, forward_substitute};
 
 /// The QP solved as an equality-constrained one on the hinted active set `A` (the
 /// equalities and the hinted inequalities): its bound rows fix their variables, and on the
@@ -177,7 +177,7 @@ fn others_met<const N: usize>(rows: &Rows, meq: usize, in_active: &[bool], x: &[
             if (0.0..f64::INFINITY).contains(&slack) {
                 continue;
             }
-            let scaled = slack / (1.0 + rows.b[i].abs() + norm(row));
+            let scaled = slack / rows.size(i);
             if !at_least(scaled, -1e-14) {
                 return false;
             }

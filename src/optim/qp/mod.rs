@@ -29,51 +29,14 @@
 /// variables, a minimized maximum's bound among them), `fallback` otherwise.
 macro_rules! for_length {
     ($n:expr, |$N:ident| $body:expr, $fallback:expr) => {
+        for_length!(@each $n, $N, $body, $fallback, 2 3 4 5 6 7 8 9 10 11 12)
+    };
+    (@each $n:expr, $N:ident, $body:expr, $fallback:expr, $($k:literal)*) => {
         match $n {
-            2 => {
-                const $N: usize = 2;
+            $($k => {
+                const $N: usize = $k;
                 $body
-            }
-            3 => {
-                const $N: usize = 3;
-                $body
-            }
-            4 => {
-                const $N: usize = 4;
-                $body
-            }
-            5 => {
-                const $N: usize = 5;
-                $body
-            }
-            6 => {
-                const $N: usize = 6;
-                $body
-            }
-            7 => {
-                const $N: usize = 7;
-                $body
-            }
-            8 => {
-                const $N: usize = 8;
-                $body
-            }
-            9 => {
-                const $N: usize = 9;
-                $body
-            }
-            10 => {
-                const $N: usize = 10;
-                $body
-            }
-            11 => {
-                const $N: usize = 11;
-                $body
-            }
-            12 => {
-                const $N: usize = 12;
-                $body
-            }
+            })*
             _ => $fallback,
         }
     };
@@ -489,12 +452,18 @@ impl Rows<'_> {
         }
     }
 
-    /// The reciprocal of general row `i`'s size, `1 / (1 + |b_i| + |c_i|)`, worked out where
+    /// General row `i`'s size, `1 + |b_i| + |c_i|`: the rows' violations are compared as
+    /// their slacks over their sizes.
+    pub(super) fn size(&self, i: usize) -> f64 {
+        1.0 + self.b[i].abs() + norm(&self.c[i * self.n..(i + 1) * self.n])
+    }
+
+    /// The reciprocal of general row `i`'s [size](Rows::size), worked out where
     /// `inv_scale[i]` does not hold it yet (NaN).
     fn inv_scale(&self, i: usize, inv_scale: &mut [f64]) -> f64 {
         let mut inv = inv_scale[i];
         if inv.is_nan() {
-            inv = 1.0 / (1.0 + self.b[i].abs() + norm(&self.c[i * self.n..(i + 1) * self.n]));
+            inv = 1.0 / self.size(i);
             inv_scale[i] = inv;
         }
         inv
