@@ -224,7 +224,7 @@ impl Problem {
     #[staticmethod]
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
         let inner = py.detach(|| Inner::load(&path)).map_err(Error::from)?;
-        let text = std::fs::read_to_string(&path).unwrap_or_default();
+        let text = flexopt::problem::read_problem_text(&path).unwrap_or_default();
         Ok(Self::wrap(inner, text))
     }
 
@@ -463,7 +463,7 @@ impl Problem {
         design: &Bound<'py, PyAny>,
         samples: usize,
         seed: Option<u64>,
-        threads: Option<usize>,
+        threads: Option<i64>,
     ) -> PyResult<Py<PyAny>> {
         let x = self.design(py, design)?;
         let report = py.detach(|| commands::tolerance(self, &x, samples, seed, threads))?;

@@ -122,6 +122,8 @@ impl Expression {
             at: 0,
             names,
             nodes: Vec::new(),
+            depths: Vec::new(),
+            nesting: 0,
         };
         if p.tokens.is_empty() {
             return Err(ParseError {
@@ -393,18 +395,67 @@ fn tokenize(text: &str) -> Result<Vec<Spanned>, ParseError> {
     Ok(tokens)
 }
 
+/// How deep an expression may nest: each operator, sign, parenthesis, call and power a
+/// level. The parser, the tree's evaluation and the tape's compiler recurse once a level, on
+/// a thread's stack, and a second-order dual number of 16 parameters is 2 kB a value; a
+/// coordinate written by hand nests a dozen levels.
+pub const MAX_DEPTH: usize = 100;
+
 struct Parser<'a> {
     text: &'a str,
     tokens: Vec<Spanned>,
     at: usize,
     names: &'a [&'a str],
     nodes: Vec<Node>,
+    /// Each node's depth: 1 for a leaf.
+    depths: Vec<usize>,
+    /// How many parentheses, calls, signs and exponents the parser is inside.
+    nesting: usize,
 }
 
 impl Parser<'_> {
-    fn push(&mut self, kind: Kind, span: (usize, usize)) -> usize {
+    fn push(&mut self, kind: Kind, span: (usize, usize)) -> Result<usize, ParseError> {
+        let below = match kind {
+            Kind::Constant(_) | Kind::Name(_) => 0,
+            Kind::Neg(a) | Kind::Powi(a, _) | Kind::Powf(a, _) | Kind::Call(_, a, None) => {
+                self.depths[a]
+            }
+            Kind::Add(a, b)
+            | Kind::Sub(a, b)
+            | Kind::Mul(a, b)
+            | Kind::Div(a, b)
+            | Kind::Call(_, a, Some(b)) => self.depths[a].max(self.depths[b]),
+        };
+        if below + 1 > MAX_DEPTH {
+            return Err(self.too_deep(span.0));
+        }
         self.nodes.push(Node { kind, span });
-        self.nodes.len() - 1
+        self.depths.push(below + 1);
+        Ok(self.nodes.len() - 1)
+    }
+
+    fn too_deep(&self, position: usize) -> ParseError {
+        ParseError {
+            position,
+            message: format!(
+                "the expression nests too deep: at most {MAX_DEPTH} levels, each operator, \
+                 sign, parenthesis and call one (a sum of more than {MAX_DEPTH} terms too)"
+            ),
+        }
+    }
+
+    /// `f` one level deeper among the parentheses, calls, signs and exponents.
+    fn nested<T>(
+        &mut self,
+        f: impl FnOnce(&mut Self) -> Result<T, ParseError>,
+    ) -> Result<T, ParseError> {
+        if self.nesting >= MAX_DEPTH {
+            return Err(self.too_deep(self.here()));
+        }
+        self.nesting += 1;
+        let r = f(self);
+        self.nesting -= 1;
+        r
     }
 
     fn span(&self, node: usize) -> (usize, usize) {
@@ -461,7 +512,7 @@ impl Parser<'_> {
                 '*' => Kind::Mul(left, right),
                 _ => Kind::Div(left, right),
             };
-            left = self.push(kind, span);
+            left = self.push(kind, span)?;
         }
         Ok(left)
     }
@@ -471,12 +522,12 @@ impl Parser<'_> {
             Some(sign @ ('+' | '-')) => {
                 let start = self.here();
                 self.at += 1;
-                let operand = self.signed()?;
+                let operand = self.nested(Self::signed)?;
                 if sign == '+' {
                     return Ok(operand);
                 }
                 let span = (start, self.span(operand).1);
-                Ok(self.push(Kind::Neg(operand), span))
+                self.push(Kind::Neg(operand), span)
             }
             _ => self.power(),
         }
@@ -488,7 +539,7 @@ impl Parser<'_> {
             return Ok(base);
         }
         self.at += 1;
-        let exponent = self.signed()?;
+        let exponent = self.nested(Self::signed)?;
         let span = (self.span(base).0, self.span(exponent).1);
         // the exponent must be a number: fold it
         let Some(y) = self.constant(exponent) else {
@@ -506,7 +557,7 @@ impl Parser<'_> {
         } else {
             Kind::Powf(base, y)
         };
-        Ok(self.push(kind, span))
+        self.push(kind, span)
     }
 
     /// The value of a sub-expression of numbers alone.
@@ -533,11 +584,11 @@ impl Parser<'_> {
         match t.token {
             Token::Number(v) => {
                 self.at += 1;
-                Ok(self.push(Kind::Constant(v), (t.start, t.end)))
+                self.push(Kind::Constant(v), (t.start, t.end))
             }
             Token::Symbol('(') => {
                 self.at += 1;
-                let inner = self.sum()?;
+                let inner = self.nested(Self::sum)?;
                 if self.peek_symbol() != Some(')') {
                     return Err(self.expected("`)`"));
                 }
@@ -551,13 +602,13 @@ impl Parser<'_> {
                 self.at += 1;
                 let word = &self.text[t.start..t.end];
                 if self.peek_symbol() == Some('(') {
-                    return self.call(word, t.start);
+                    return self.nested(|p| p.call(word, t.start));
                 }
                 if word == "pi" {
-                    return Ok(self.push(Kind::Constant(PI), (t.start, t.end)));
+                    return self.push(Kind::Constant(PI), (t.start, t.end));
                 }
                 match self.names.iter().position(|n| *n == word) {
-                    Some(k) => Ok(self.push(Kind::Name(k), (t.start, t.end))),
+                    Some(k) => self.push(Kind::Name(k), (t.start, t.end)),
                     None => Err(ParseError {
                         position: t.start,
                         message: if FUNCTIONS.iter().any(|(n, ..)| *n == word) {
@@ -606,10 +657,10 @@ impl Parser<'_> {
                 ),
             });
         }
-        Ok(self.push(
+        self.push(
             Kind::Call(function, args[0], args.get(1).copied()),
             (start, end),
-        ))
+        )
     }
 }
 
