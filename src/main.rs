@@ -167,10 +167,7 @@ fn run(command: Command) -> Result<(), Failure> {
                             text,
                         })
                         .map_err(|e| {
-                            Failure::bad_input(format!(
-                                "{}: key `--problem`: {e}",
-                                p.display()
-                            ))
+                            Failure::bad_input(format!("{}: key `--problem`: {e}", p.display()))
                         })
                 })
                 .transpose()?;

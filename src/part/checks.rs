@@ -120,7 +120,12 @@ fn short_mm(v: f64) -> String {
 /// A polygon's bounding box, `[min x, min y, max x, max y]`; an empty one's spans nothing.
 fn bounds(p: &Polygon<f64>) -> [f64; 4] {
     p.exterior().coords().fold(
-        [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY],
+        [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ],
         |[x0, y0, x1, y1], c| [x0.min(c.x), y0.min(c.y), x1.max(c.x), y1.max(c.y)],
     )
 }

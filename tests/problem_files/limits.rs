@@ -77,8 +77,7 @@ fn a_study_of_a_long_chain_runs() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(o.status.code(), Some(0), "{stderr}");
     let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("optimum.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(out.join("optimum.json")).unwrap()).unwrap();
     assert_eq!(json["feasible"], true, "{json}");
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -167,7 +166,10 @@ fn every_threads_option_has_one_range() {
     for command in ["tolerance", "run"] {
         let mut args = vec![command, "problems/wei2017.toml", "--threads", "1025"];
         if command == "tolerance" {
-            args.extend(["--design", "l2=2,delta2=4,t2=0.4,l3=8,delta3=4,l4=2,delta4=4,t4=0.4"]);
+            args.extend([
+                "--design",
+                "l2=2,delta2=4,t2=0.4,l3=8,delta3=4,l4=2,delta4=4,t4=0.4",
+            ]);
         }
         let o = flexopt(&args);
         let stderr = String::from_utf8_lossy(&o.stderr);
@@ -222,8 +224,9 @@ fn deep_expressions_are_refused_with_their_key() {
         format!("{}l", "2*".repeat(n / 2)),
     ];
     for (i, text) in texts.iter().enumerate() {
-        let measure =
-            format!("[[network.measures]]\nname = \"m\"\ndimension = \"length\"\nvalue = \"{text}\"");
+        let measure = format!(
+            "[[network.measures]]\nname = \"m\"\ndimension = \"length\"\nvalue = \"{text}\""
+        );
         let file = chain(&dir, 2, &measure);
         let o = flexopt(&["outputs", file.to_str().unwrap()]);
         let stderr = String::from_utf8_lossy(&o.stderr);
@@ -237,9 +240,17 @@ fn deep_expressions_are_refused_with_their_key() {
     }
     // within the limit: read, and its value the sum's
     let sum = vec!["l"; 90].join(" + ");
-    let measure = format!("[[network.measures]]\nname = \"m\"\ndimension = \"length\"\nvalue = \"{sum}\"");
+    let measure =
+        format!("[[network.measures]]\nname = \"m\"\ndimension = \"length\"\nvalue = \"{sum}\"");
     let file = chain(&dir, 2, &measure);
-    let o = flexopt(&["eval", file.to_str().unwrap(), "--design", "l=2,t=0.5", "--format", "json"]);
+    let o = flexopt(&[
+        "eval",
+        file.to_str().unwrap(),
+        "--design",
+        "l=2,t=0.5",
+        "--format",
+        "json",
+    ]);
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
