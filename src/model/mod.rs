@@ -365,10 +365,18 @@ pub(crate) fn check_parameters(
         return Some(format!("{} = {v} is not finite", info[i].name));
     }
     if let Some(&i) = positive.iter().find(|&&i| x[i] <= 0.0) {
-        return Some(format!("{} = {} must be positive", info[i].name, x[i]));
+        return Some(format!(
+            "{} = {} must be positive",
+            info[i].name,
+            crate::vocab::units::short(x[i])
+        ));
     }
     if let Some(&i) = non_negative.iter().find(|&&i| x[i] < 0.0) {
-        return Some(format!("{} = {} must not be negative", info[i].name, x[i]));
+        return Some(format!(
+            "{} = {} must not be negative",
+            info[i].name,
+            crate::vocab::units::short(x[i])
+        ));
     }
     None
 }

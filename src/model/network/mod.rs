@@ -5,6 +5,7 @@
 //! ([`file`]) and the model of its outputs ([`model`]); its part and the finite-element
 //! check through its ports ([`part`]), for a file with a `[part]` section.
 
+mod checks;
 pub mod file;
 pub mod model;
 pub mod modes;
