@@ -8,7 +8,7 @@
 //! The plain evaluation passes no modulus, so it pays nothing for this one.
 
 use super::model::NetworkModel;
-use crate::model::jet2::Jet2;
+use crate::model::jet2::{seeded_with_modulus, unseed2, Jet2};
 use crate::model::mechanism::ModulusScaling;
 use crate::model::scalar::{with_count, Jet};
 use crate::model::unseed;
@@ -46,9 +46,7 @@ impl NetworkModel {
         jacobian: &mut [f64],
         hessian: &mut [f64],
     ) {
-        let seeded: Vec<Jet2<N>> = (0..N)
-            .map(|i| Jet2::variable(if i + 1 < N { x[i] } else { 1.0 }, i))
-            .collect();
+        let seeded = seeded_with_modulus::<N>(x);
         let mut y = vec![Jet2::<N>::from(0.0); wanted.len()];
         let (x, m) = seeded.split_at(N - 1);
         if self
@@ -60,11 +58,7 @@ impl NetworkModel {
             hessian.fill(f64::NAN);
             return;
         }
-        for (i, yi) in y.iter().enumerate() {
-            out[i] = yi.re;
-            jacobian[i * N..(i + 1) * N].copy_from_slice(&yi.grad);
-            yi.hessian(&mut hessian[i * N * N..(i + 1) * N * N]);
-        }
+        unseed2(&y, out, jacobian, hessian);
     }
 }
 
