@@ -326,7 +326,9 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         stress_max: model.output_index("stress_max"),
         f1: model.output_index("f1"),
     };
-    let mut mechanism = Mechanism::physics_only(std::sync::Arc::new(model));
+    let model = std::sync::Arc::new(model);
+    let mut mechanism = Mechanism::physics_only(model.clone()).with_modulus_scaling(model.clone());
+    mechanism.depiction = Some(model);
     if let Some((settings, description)) = drawn {
         mechanism.part_maker = Some(std::sync::Arc::new(NetworkPart::new(
             description,

@@ -1005,6 +1005,29 @@ impl NetworkModel {
         Ok(())
     }
 
+    /// The described part at the design `x` (SI) for its pictures; `None` where an
+    /// expression fails there.
+    pub(super) fn picture(&self, x: &[f64]) -> Option<super::depiction::Picture> {
+        let mut work = Work::default();
+        self.at(x, None, true, &mut work).ok()?;
+        let e = &work.evaluated;
+        let d = &self.description;
+        let thickness = |h: usize| match d.hinges.get(h) {
+            Some(hinge) => hinge.kind.least_thickness(&e.dims[h]),
+            None => e.dims[h][1],
+        };
+        Some(super::depiction::Picture {
+            bodies: e
+                .offsets
+                .windows(2)
+                .map(|o| e.points[o[0]..o[1]].to_vec())
+                .collect(),
+            flexures: (e.network.flexures.iter().enumerate())
+                .map(|(h, f)| (f.start, f.end, thickness(h)))
+                .collect(),
+        })
+    }
+
     /// What the `wanted` outputs need.
     fn needs(&self, wanted: &[usize]) -> Needs {
         let mut n = wanted
