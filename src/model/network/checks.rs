@@ -4,6 +4,7 @@
 
 use std::fmt;
 
+use geo::{Coord, Intersects, Line};
 use serde::de::{self, Deserializer, IgnoredAny, SeqAccess, Visitor};
 use serde::Deserialize;
 
@@ -204,27 +205,11 @@ pub fn crossing(points: &[[f64; 2]]) -> Option<(usize, usize)> {
     None
 }
 
+/// Whether two segments cross or touch (geo's exact predicates: a vertex on the other edge
+/// counts, as does a collinear overlap).
 fn segments_meet((a, b): ([f64; 2], [f64; 2]), (c, d): ([f64; 2], [f64; 2])) -> bool {
-    let cross = |o: [f64; 2], p: [f64; 2], q: [f64; 2]| {
-        (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0])
-    };
-    let within = |o: [f64; 2], p: [f64; 2], q: [f64; 2]| {
-        q[0] >= o[0].min(p[0])
-            && q[0] <= o[0].max(p[0])
-            && q[1] >= o[1].min(p[1])
-            && q[1] <= o[1].max(p[1])
-    };
-    let (d1, d2) = (cross(c, d, a), cross(c, d, b));
-    let (d3, d4) = (cross(a, b, c), cross(a, b, d));
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
-        return true;
-    }
-    (d1 == 0.0 && within(c, d, a))
-        || (d2 == 0.0 && within(c, d, b))
-        || (d3 == 0.0 && within(a, b, c))
-        || (d4 == 0.0 && within(a, b, d))
+    let line = |p: [f64; 2], q: [f64; 2]| Line::new(Coord::from(p), Coord::from(q));
+    line(a, b).intersects(&line(c, d))
 }
 
 #[cfg(test)]

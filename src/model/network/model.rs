@@ -1610,23 +1610,20 @@ fn not_positive(name: &str, key: &str, size: &str, value: f64) -> String {
 /// The first outline, a body's or the ground's, that crosses itself at the evaluated
 /// design: no solid has it.
 fn outline_crossing(d: &Description, e: &Evaluated<f64>) -> Option<String> {
-    let plain = |points: &[[f64; 2]]| points.to_vec();
     let bodies = d.bodies.iter().enumerate().filter_map(|(b, body)| {
         let points = &e.points[e.offsets[b]..e.offsets[b + 1]];
         (body.link_width.is_none()).then(|| {
-            (
-                format!("body \"{}\" ({}.outline)", body.name, body.key),
-                plain(points),
-            )
+            let what = format!("body \"{}\" ({}.outline)", body.name, body.key);
+            (what, points)
         })
     });
     let ground_at = e.offsets[d.bodies.len()];
     let ground = std::iter::once((
         "the ground's outline".to_string(),
-        plain(&e.points[ground_at..ground_at + d.ground.len()]),
+        &e.points[ground_at..ground_at + d.ground.len()],
     ));
     bodies.chain(ground).find_map(|(what, points)| {
-        let (i, j) = super::checks::crossing(&points)?;
+        let (i, j) = super::checks::crossing(points)?;
         Some(format!(
             "{what} crosses itself at this design (its edges from points {i} and {j}): list \
              its points in order around it"

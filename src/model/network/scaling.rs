@@ -49,16 +49,13 @@ impl NetworkModel {
         let seeded = seeded_with_modulus::<N>(x);
         let mut y = vec![Jet2::<N>::from(0.0); wanted.len()];
         let (x, m) = seeded.split_at(N - 1);
-        if self
-            .evaluate_generic(x, Some(m[0]), wanted, &mut y)
-            .is_err()
-        {
+        if self.evaluate_generic(x, Some(m[0]), wanted, &mut y).is_ok() {
+            unseed2(&y, out, jacobian, hessian);
+        } else {
             out.fill(f64::NAN);
             jacobian.fill(f64::NAN);
             hessian.fill(f64::NAN);
-            return;
         }
-        unseed2(&y, out, jacobian, hessian);
     }
 }
 
