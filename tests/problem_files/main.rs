@@ -12,6 +12,7 @@ mod init_choices;
 mod limits;
 mod messages;
 mod network_errors;
+mod network_refused;
 mod optimum_report;
 mod problem_errors;
 mod problem_fuzz;
