@@ -242,13 +242,7 @@ pub fn fingerprint(text: &str) -> u64 {
 /// The text of the problem file at `path`, at most [`MAX_FILE_BYTES`] of it: the error a
 /// sentence without the path.
 pub fn read_problem_text(path: &Path) -> Result<String, String> {
-    crate::vocab::input::read_text(path, MAX_FILE_BYTES, "a problem file").map_err(|e| {
-        if e.contains("at most") {
-            format!("{e} (1 MiB)")
-        } else {
-            e
-        }
-    })
+    crate::vocab::input::read_text(path, MAX_FILE_BYTES, "a problem file")
 }
 
 impl Problem {

@@ -15,8 +15,13 @@ pub const MAX_SET_FILE_BYTES: u64 = 64 << 20;
 /// refusal of a larger one ("a problem file"). The error is a sentence without the path,
 /// for the caller to place.
 pub fn read_bytes(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>, String> {
+    let mib = if limit % (1 << 20) == 0 {
+        format!(" ({} MiB)", limit >> 20)
+    } else {
+        String::new()
+    };
     let too_large =
-        |size: String| format!("the file has {size} bytes; {what} may have at most {limit}");
+        |size: String| format!("the file has {size} bytes; {what} may have at most {limit}{mib}");
     let file = std::fs::File::open(path).map_err(|e| format!("cannot read the file: {e}"))?;
     let meta = file
         .metadata()

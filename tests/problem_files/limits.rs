@@ -6,6 +6,10 @@ use std::path::{Path, PathBuf};
 
 use crate::common::{flexopt, flexopt_on_full_disk};
 
+#[path = "../../benches/support/chain.rs"]
+mod chain_file;
+use chain_file::chain_problem;
+
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("flexopt-limits-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -13,49 +17,10 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// A network of `n` bodies in a row, each on a strip hinge from the one before (the first
-/// from the ground), pushed and read at the last; `extra` appended.
+/// The chain of [`chain_problem`] written into `dir` as `chain{n}.toml`.
 fn chain(dir: &Path, n: usize, extra: &str) -> PathBuf {
-    let mut o = String::from(
-        "model = \"network\"\nname = \"chain\"\n[material]\npreset = \"al7075-t6\"\n\
-         [network]\nwidth = \"10 mm\"\nunit = \"mm\"\n\
-         parameters = [[\"l\", \"length\"], [\"t\", \"length\"]]\n",
-    );
-    for i in 0..n {
-        let x = 10 * i;
-        o += &format!(
-            "[[network.bodies]]\nname = \"b{i}\"\n\
-             link = {{ from = [\"{x} + l\", \"0\"], to = [\"{}\", \"0\"], width = \"3\" }}\n",
-            x + 8
-        );
-    }
-    for i in 0..n {
-        let from = if i == 0 {
-            "ground".to_string()
-        } else {
-            format!("b{}", i - 1)
-        };
-        o += &format!(
-            "[[network.hinges]]\nname = \"h{i}\"\nkind = \"strip\"\nfrom = \"{from}\"\n\
-             to = \"b{i}\"\nstart = [\"{}\", \"0\"]\nangle = \"0\"\nl = \"l\"\nt = \"t\"\n",
-            10 * i
-        );
-    }
-    let last = n - 1;
-    o += &format!(
-        "[network.input]\nbody = \"b{last}\"\nat = [\"{}\", \"0\"]\ndirection = [\"0\", \"1\"]\n\
-         [[network.outputs]]\nname = \"tip\"\nbody = \"b{last}\"\nat = [\"{}\", \"0\"]\n\
-         direction = [\"0\", \"1\"]\n\
-         [actuator]\nnominal_stroke = \"0.01 um\"\npreload = \"0.01 N\"\n\
-         [[variables]]\nname = \"l\"\nunit = \"mm\"\nlower = 1.5\nupper = 2\n\
-         [[variables]]\nname = \"t\"\nunit = \"mm\"\nlower = 0.3\nupper = 0.6\n\
-         [objective]\nmaximize = \"k_in\"\n\
-         [[constraints]]\noutput = \"stress_max\"\nunit = \"yield\"\nupper = 0.5\n{extra}\n",
-        10 * last + 5,
-        10 * last + 8
-    );
     let file = dir.join(format!("chain{n}.toml"));
-    std::fs::write(&file, o).unwrap();
+    std::fs::write(&file, chain_problem(n, extra)).unwrap();
     file
 }
 
@@ -79,6 +44,38 @@ fn a_study_of_a_long_chain_runs() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("optimum.json")).unwrap()).unwrap();
     assert_eq!(json["feasible"], true, "{json}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Case 19: the part of a chain of 200 bodies is exported, one piece with every hinge (the
+/// checks before the union pair only solids whose boxes meet; the time is measured by
+/// `cargo bench --bench network`).
+#[test]
+fn the_part_of_a_long_chain_is_exported() {
+    let dir = scratch("export");
+    let file = chain(&dir, 200, "[part]");
+    let out = dir.join("out");
+    let o = flexopt(&[
+        "export",
+        file.to_str().unwrap(),
+        "--design",
+        "l=2,t=0.5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let part: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("part.json")).unwrap()).unwrap();
+    assert_eq!(part["loops"].as_array().unwrap().len(), 1);
+    assert_eq!(part["hinges"].as_array().unwrap().len(), 200);
+    // the last link's end, 10 mm a body from the first hinge's start
+    let right = part["bounding_box"][2].as_f64().unwrap();
+    assert!((right - 1999.5).abs() < 1e-9, "{right}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -208,53 +205,64 @@ fn a_file_size_limit_is_a_write_error_not_a_signal() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Case 5: expressions long or deep enough to overflow a recursion's stack (a sum of
-/// 50,000 terms, 100,000 parentheses or signs, a tower of powers, calls within calls): each
-/// refused with its key and the limit, not an abort.
+/// Case 5: expressions deep enough to overflow a recursion's stack (100,000 parentheses or
+/// signs, a tower of powers, calls within calls) are refused with their key and the limit, not
+/// an abort; long ones (a sum of 100,000 terms, a product of 50,000 factors) are read and
+/// evaluated whatever their length, as the evaluation walks the tree without recursion.
 #[test]
 fn deep_expressions_are_refused_with_their_key() {
     let dir = scratch("deep");
     let n = 100_000;
-    let texts = [
-        vec!["l"; 50_000].join(" + "),
+    let deep = [
         format!("{}l{}", "(".repeat(n), ")".repeat(n)),
         format!("{}l", "-".repeat(n)),
         format!("l{}", "^1".repeat(n / 2)),
         format!("{}l{}", "sin(".repeat(n / 5), ")".repeat(n / 5)),
-        format!("{}l", "2*".repeat(n / 2)),
+        format!("{}l{}", "(".repeat(101), ")".repeat(101)),
     ];
-    for (i, text) in texts.iter().enumerate() {
-        let measure = format!(
-            "[[network.measures]]\nname = \"m\"\ndimension = \"length\"\nvalue = \"{text}\""
-        );
-        let file = chain(&dir, 2, &measure);
+    let measure = |text: &str| {
+        format!("[[network.measures]]\nname = \"m\"\ndimension = \"length\"\nvalue = \"{text}\"")
+    };
+    for (i, text) in deep.iter().enumerate() {
+        let file = chain(&dir, 2, &measure(text));
         let o = flexopt(&["outputs", file.to_str().unwrap()]);
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{i}: {stderr}");
         assert!(
             stderr.contains("chain2.toml")
                 && stderr.contains("network.measures[0].value")
-                && stderr.contains("at most 100 levels"),
+                && stderr.contains("at most 100 parentheses"),
             "{i}: {stderr}"
         );
     }
-    // within the limit: read, and its value the sum's
-    let sum = vec!["l"; 90].join(" + ");
-    let measure =
-        format!("[[network.measures]]\nname = \"m\"\ndimension = \"length\"\nvalue = \"{sum}\"");
-    let file = chain(&dir, 2, &measure);
-    let o = flexopt(&[
-        "eval",
-        file.to_str().unwrap(),
-        "--design",
-        "l=2,t=0.5",
-        "--format",
-        "json",
-    ]);
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
-    let m = json["outputs"]["m"].as_f64().unwrap();
-    assert!((m - 0.18).abs() < 1e-15, "{m}");
+    // at the limit, and long: read, and each value the sum's or the product's
+    let long = [
+        (format!("{}l{}", "(".repeat(100), ")".repeat(100)), 2e-3),
+        (vec!["l"; n].join(" + "), 2e-3 * n as f64),
+        (vec!["l"; n].join(" - ") + " + l", 2e-3 * (3.0 - n as f64)),
+        (
+            format!("{}l", "1.0001*".repeat(n / 2)),
+            2e-3 * 1.0001f64.powi(n as i32 / 2),
+        ),
+    ];
+    for (text, expected) in long {
+        let file = chain(&dir, 2, &measure(&text));
+        let o = flexopt(&[
+            "eval",
+            file.to_str().unwrap(),
+            "--design",
+            "l=2,t=0.5",
+            "--format",
+            "json",
+        ]);
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        let m = json["outputs"]["m"].as_f64().unwrap();
+        assert!(
+            ((m - expected) / expected).abs() < 1e-9,
+            "{m} against {expected}"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
