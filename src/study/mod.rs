@@ -130,7 +130,11 @@ impl Origin {
 
 impl std::fmt::Display for Origin {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "model {}, problem hash {:016x}", self.model, self.fingerprint)
+        write!(
+            f,
+            "model {}, problem hash {:016x}",
+            self.model, self.fingerprint
+        )
     }
 }
 

@@ -10,6 +10,7 @@ mod cli;
 mod designer;
 mod init_choices;
 mod messages;
+mod names;
 mod network_errors;
 mod network_refused;
 mod optimum_report;

@@ -163,6 +163,22 @@ pub fn differing(dir: &Path, files: &[Entry]) -> Option<String> {
     })
 }
 
+/// Refuses, before anything is written, file names a set of `dir` cannot hold: a name that
+/// is not a plain file name (a path, a leading `.`, the manifest's) or one given twice. The
+/// commands whose file names come from a problem file's names (a histogram per output) call
+/// it first.
+pub fn check_names(dir: &Path, names: &[&str]) -> Result<(), WriteError> {
+    for (i, name) in names.iter().enumerate() {
+        if !plain(name) || names[..i].contains(name) {
+            return Err(fail(
+                &dir.join(crate::vocab::error::printable(name)),
+                &"not a name a set of files can hold once; nothing was written",
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The entries of the files `names` as written in `dir`, as a manifest would list them: what
 /// a file of the set that describes the others (the report) lists before the manifest exists.
 pub fn entries_of(dir: &Path, names: &[&str]) -> Result<Vec<Entry>, WriteError> {
@@ -222,7 +238,15 @@ impl OutputSet {
 
     /// Where the file (or folder) `name` of the set is written.
     pub fn path(&self, name: &str) -> PathBuf {
-        self.staging.join(name)
+        // a name that is no plain file name (a path, `..`) writes inside the staging folder
+        // under a name of its own, which the commit then refuses: no name leads out; the
+        // empty name is the staging folder itself
+        if name.is_empty() || plain(name) {
+            self.staging.join(name)
+        } else {
+            self.staging
+                .join(format!("refused-{:016x}", fnv1a64(name.as_bytes())))
+        }
     }
 
     /// Runs `stage`, which writes the set's files through [`OutputSet::path`]; an error of

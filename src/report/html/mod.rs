@@ -7,6 +7,7 @@
 
 mod sections;
 mod shape;
+pub use shape::check_optimum;
 
 use std::path::{Path, PathBuf};
 

@@ -54,7 +54,7 @@ struct Constraint {
 }
 
 /// Where `text` (`optimum.json`) is not of the shape flexopt writes: the key and what is wrong.
-pub(super) fn check_optimum(text: &str) -> Result<(), String> {
+pub fn check_optimum(text: &str) -> Result<(), String> {
     let mut de = serde_json::Deserializer::from_str(text);
     serde_path_to_error::deserialize::<_, Optimum>(&mut de)
         .map(drop)
