@@ -6,7 +6,7 @@ import pickle
 import pytest
 
 import flexopt
-from conftest import ROOT
+from conftest import ROOT, WEI2017
 
 
 def test_run_finds_the_optimum_and_the_zones_of_flexopt_run(study, cli, tmp_path):
@@ -59,6 +59,30 @@ def test_shards_that_do_not_make_one_study_raise(wei2017):
     other = wei2017.run(starts=6, seed=1, start_range=(3, 6))
     with pytest.raises(flexopt.FlexoptError, match="the shards are of different studies"):
         flexopt.merge(wei2017, [a, other])
+
+
+def test_shards_of_other_problems_do_not_merge(wei2017, tmp_path):
+    """Shards carry their problem's content hash and model: a shard of another file (same
+    model, another objective), of a network, or shards merged into another problem raise;
+    a copy of the same file elsewhere is the same problem."""
+    root = WEI2017.parent
+    min_stress = flexopt.Problem.load(root / "wei2017_min_stress.toml")
+    network = flexopt.Problem.load(root / "wei2017_network.toml")
+    a = wei2017.run(starts=6, start_range=(0, 3))
+    b = wei2017.run(starts=6, start_range=(3, 6))
+    for problem, shards, other in [
+        (wei2017, [a, min_stress.run(starts=6, start_range=(3, 6))], "model bridge"),
+        (wei2017, [a, network.run(starts=6, start_range=(3, 6))], "model network"),
+        (min_stress, [a, b], "model bridge"),
+    ]:
+        with pytest.raises(flexopt.FlexoptError) as e:
+            flexopt.merge(problem, shards)
+        assert e.value.key == "shards"
+        assert "is of another problem (" + other in str(e.value)
+    copy = tmp_path / "copy.toml"
+    copy.write_text(WEI2017.read_text())
+    merged = flexopt.merge(flexopt.Problem.load(copy), [b, a])
+    assert merged.objective.hex() == flexopt.merge(wei2017, [a, b]).objective.hex()
 
 
 def test_run_releases_the_gil(wei2017):

@@ -15,6 +15,7 @@ pub fn write_sweep(dir: &Path, sweep: &Sweep) -> Result<Vec<PathBuf>, WriteError
         format!("{}.json", sweep.variable),
         format!("{}.png", sweep.variable),
     ];
+    super::folder::check_names(dir, &[&names[0], &names[1]])?;
     let set = OutputSet::begin(dir)?;
     set.write(|set| {
         write_json(&set.path(&names[0]), sweep)?;

@@ -316,6 +316,8 @@ pub fn write_tolerance_set(
             .iter()
             .map(|&j| histogram_name(&report.outputs[j].name)),
     );
+    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    super::folder::check_names(dir, &refs)?;
     let set = OutputSet::begin(dir)?;
     set.write(|set| {
         write_json(&set.path(&names[0]), report)?;
@@ -338,7 +340,6 @@ pub fn write_tolerance_set(
         }
         Ok(())
     })?;
-    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
     set.commit(&refs)
 }
 

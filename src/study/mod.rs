@@ -107,6 +107,35 @@ pub struct Study {
     /// The starts solved: all of them (`0..options.starts`), or a shard's range
     /// ([`run_range`]) until [`merge`] joins the shards.
     pub range: Range<usize>,
+    /// The problem the study solved: [`merge`] joins only shards of the problem it is given.
+    pub origin: Origin,
+}
+
+/// The problem a study (or shard) solved: its file's content hash and its model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Origin {
+    /// [`Problem::fingerprint`].
+    pub fingerprint: u64,
+    pub model: &'static str,
+}
+
+impl Origin {
+    pub fn of(problem: &Problem) -> Self {
+        Origin {
+            fingerprint: problem.fingerprint,
+            model: problem.model().name(),
+        }
+    }
+}
+
+impl std::fmt::Display for Origin {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "model {}, problem hash {:016x}",
+            self.model, self.fingerprint
+        )
+    }
 }
 
 /// How the local solves of a study ended, by status.
@@ -451,5 +480,6 @@ pub fn from_runs(
         elapsed: Duration::ZERO,
         options: options.clone(),
         range,
+        origin: Origin::of(problem),
     }
 }

@@ -6,7 +6,7 @@
 use std::ops::Range;
 use std::time::{Duration, Instant};
 
-use super::{from_runs, solve_range, Run, Study, StudyOptions};
+use super::{from_runs, solve_range, Origin, Run, Study, StudyOptions};
 use crate::problem::{Problem, Solver, SOLVERS};
 
 fn solver_name(solver: Solver) -> &'static str {
@@ -55,14 +55,22 @@ impl std::error::Error for ShardError {}
 
 /// The study of `problem` from its shards ([`run_range`]), in any order: their runs joined
 /// and clustered, zoned and judged as [`super::run`] does with them, so that the result is the
-/// whole study's. The shards must be of one study (starts, seed, solver) and their ranges
-/// must cover its starts once each.
+/// whole study's. The shards must be of one study of `problem` (its file's content and model;
+/// starts, seed, solver) and their ranges must cover its starts once each.
 pub fn merge(problem: &Problem, mut shards: Vec<Study>) -> Result<Study, ShardError> {
     let begin = Instant::now();
     let Some(first) = shards.first() else {
         return Err(ShardError("no shards to merge".into()));
     };
     let options = first.options.clone();
+    let origin = Origin::of(problem);
+    if let Some(other) = shards.iter().find(|s| s.origin != origin) {
+        return Err(ShardError(format!(
+            "the shard of starts {}..{} is of another problem ({}) than the one merged into \
+             ({origin}): merge the shards of one problem file into that problem",
+            other.range.start, other.range.end, other.origin
+        )));
+    }
     let same = |o: &StudyOptions| {
         o.starts == options.starts && o.seed == options.seed && o.solver == options.solver
     };

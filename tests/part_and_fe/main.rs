@@ -25,5 +25,6 @@ mod part;
 mod part_rules;
 mod refine;
 mod report_html;
+mod report_integrity;
 mod sets;
 mod step;

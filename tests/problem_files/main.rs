@@ -11,6 +11,7 @@ mod designer;
 mod init_choices;
 mod limits;
 mod messages;
+mod names;
 mod network_errors;
 mod network_refused;
 mod optimum_report;

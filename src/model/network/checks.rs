@@ -68,6 +68,48 @@ pub fn parameter_name_error(name: &str) -> Option<String> {
     ))
 }
 
+/// The key and message of the first name of a body, hinge, beam, port or measure that is no
+/// name: its outputs' names (`stress_NAME`, `amplification_NAME`, a measure's own) become
+/// file names (a histogram's) and are printed in tables, so a name is a letter or `_`
+/// followed by letters, digits or `_`, at most 64 of them — no path, space or control
+/// character.
+pub fn name_error(d: &Description) -> Option<(Vec<Segment>, String)> {
+    let tables = [
+        (
+            "bodies",
+            d.bodies.iter().map(|b| b.name.as_str()).collect::<Vec<_>>(),
+        ),
+        ("hinges", d.hinges.iter().map(|h| h.name.as_str()).collect()),
+        ("beams", d.beams.iter().map(|b| b.name.as_str()).collect()),
+        (
+            "outputs",
+            d.outputs.iter().map(|p| p.name.as_str()).collect(),
+        ),
+        (
+            "measures",
+            d.measures.iter().map(|m| m.name.as_str()).collect(),
+        ),
+    ];
+    let fine = |name: &str| {
+        let mut chars = name.chars();
+        chars.next().is_some_and(|c| c.is_alphabetic() || c == '_')
+            && chars.all(|c| c.is_alphanumeric() || c == '_')
+            && name.chars().count() <= 64
+    };
+    tables.iter().find_map(|(table, names)| {
+        let i = names.iter().position(|n| !fine(n))?;
+        Some((
+            vec![k("network"), k(table), Segment::Index(i), k("name")],
+            format!(
+                "\"{}\" cannot name it: a name is a letter or `_` followed by letters, digits \
+                 or `_`, at most 64 in all (it names outputs, files and table rows); choose \
+                 another name",
+                names[i]
+            ),
+        ))
+    })
+}
+
 /// The key and message of a size written as a constant that is not positive (a link's
 /// width, a beam's thickness, a hinge's length dimension): refused at reading, where a size
 /// that depends on the design is checked at each design.

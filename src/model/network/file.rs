@@ -316,7 +316,9 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
     let drawn = part.map(|settings| (settings, description.clone()));
     let model = NetworkModel::new(description, material, actuator);
     let names: Vec<&str> = model.outputs().iter().map(|o| o.name.as_ref()).collect();
-    if let Some((path, why)) = checks::output_clash(&names, model.description()) {
+    if let Some((path, why)) = checks::name_error(model.description())
+        .or_else(|| checks::output_clash(&names, model.description()))
+    {
         return Err(s.err(&path, why));
     }
     let counterparts = Counterparts {

@@ -58,7 +58,7 @@ struct Manifest {
 }
 
 /// A file or folder of a set, as its manifest lists it.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Entry {
     pub name: String,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -139,6 +139,47 @@ pub fn listed(dir: &Path) -> Option<Vec<Entry>> {
     read_manifest(&dir.join(MANIFEST)).map(|m| m.files)
 }
 
+/// Where a file that `files` (a manifest of `dir`) lists differs from what the manifest says
+/// of it, the file and what differs: a file edited, replaced or removed since it was written.
+pub fn differing(dir: &Path, files: &[Entry]) -> Option<String> {
+    files.iter().filter(|e| !e.folder).find_map(|e| {
+        let path = dir.join(&e.name);
+        let listed = format!(
+            "{} bytes, hash {}",
+            e.bytes.map_or("?".into(), |b| b.to_string()),
+            e.fnv1a64.as_deref().unwrap_or("?")
+        );
+        let found = match std::fs::read(&path) {
+            Ok(bytes) => format!("{} bytes, hash {:016x}", bytes.len(), fnv1a64(&bytes)),
+            Err(err) => return Some(format!("{}: cannot be read ({err})", path.display())),
+        };
+        (found != listed).then(|| {
+            format!(
+                "{}: not the file {} lists ({listed}; the file has {found}): it was changed \
+                 after flexopt wrote it",
+                path.display(),
+                dir.join(MANIFEST).display()
+            )
+        })
+    })
+}
+
+/// Refuses, before anything is written, file names a set of `dir` cannot hold: a name that
+/// is not a plain file name (a path, a leading `.`, the manifest's) or one given twice. The
+/// commands whose file names come from a problem file's names (a histogram per output) call
+/// it first.
+pub fn check_names(dir: &Path, names: &[&str]) -> Result<(), WriteError> {
+    for (i, name) in names.iter().enumerate() {
+        if !plain(name) || names[..i].contains(name) {
+            return Err(fail(
+                &dir.join(crate::vocab::error::printable(name)),
+                &"not a name a set of files can hold once; nothing was written",
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The entries of the files `names` as written in `dir`, as a manifest would list them: what
 /// a file of the set that describes the others (the report) lists before the manifest exists.
 pub fn entries_of(dir: &Path, names: &[&str]) -> Result<Vec<Entry>, WriteError> {
@@ -198,7 +239,15 @@ impl OutputSet {
 
     /// Where the file (or folder) `name` of the set is written.
     pub fn path(&self, name: &str) -> PathBuf {
-        self.staging.join(name)
+        // a name that is no plain file name (a path, `..`) writes inside the staging folder
+        // under a name of its own, which the commit then refuses: no name leads out; the
+        // empty name is the staging folder itself
+        if name.is_empty() || plain(name) {
+            self.staging.join(name)
+        } else {
+            self.staging
+                .join(format!("refused-{:016x}", fnv1a64(name.as_bytes())))
+        }
     }
 
     /// Runs `stage`, which writes the set's files through [`OutputSet::path`]; an error of
@@ -237,22 +286,49 @@ impl OutputSet {
     /// move leaves the folder as it was, and so does one during the move (a full disk, a
     /// folder where a file goes), which puts the earlier set back.
     pub fn commit(self, names: &[&str]) -> Result<Vec<PathBuf>, WriteError> {
-        self.move_into_place(names, false)
+        self.move_into_place(names, false, None)
     }
 
     /// [`OutputSet::commit`], keeping the earlier set's entries that `names` does not replace
     /// (and that are still there) in the set: the manifest lists both.
     pub fn commit_added(self, names: &[&str]) -> Result<Vec<PathBuf>, WriteError> {
-        self.move_into_place(names, true)
+        self.move_into_place(names, true, None)
+    }
+
+    /// [`OutputSet::commit_added`] of files made of the set `made_of` (a report of the files
+    /// a manifest listed), only while the folder still holds that set: a command that
+    /// replaced it meanwhile made another set, which the files must not join.
+    pub fn commit_added_to(
+        self,
+        names: &[&str],
+        made_of: &[Entry],
+    ) -> Result<Vec<PathBuf>, WriteError> {
+        self.move_into_place(names, true, Some(made_of))
     }
 
     fn move_into_place(
         &self,
         names: &[&str],
         keep_earlier: bool,
+        made_of: Option<&[Entry]>,
     ) -> Result<Vec<PathBuf>, WriteError> {
         let staged = entries(&self.staging, names)?;
         let lock = Lock::take(&self.dir)?;
+        if let Some(made_of) = made_of {
+            let now: Vec<Entry> = listed(&self.dir)
+                .unwrap_or_default()
+                .into_iter()
+                .filter(|e| !names.contains(&e.name.as_str()))
+                .collect();
+            if now != made_of {
+                return Err(fail(
+                    &self.dir.join(names.first().copied().unwrap_or(MANIFEST)),
+                    &"another command replaced the folder's set while these files were made \
+                      of it; they belong to the set that is gone and were not added (make them \
+                      again of the set there now)",
+                ));
+            }
+        }
         journal_move(&self.dir, &self.staging, &staged, keep_earlier)?;
         let placed = moves::finish(&self.staging, &self.dir);
         drop(lock);

@@ -6,6 +6,8 @@
 //! bytes.
 
 mod sections;
+mod shape;
+pub use shape::check_optimum;
 
 use std::path::{Path, PathBuf};
 
@@ -112,6 +114,12 @@ impl Set {
         let path = dir.join("optimum.json");
         let text = read_text(&path)?;
         let optimum = parse(&path, &text)?;
+        shape::check_optimum(&text).map_err(|e| {
+            format!(
+                "{}: not the optimum.json flexopt writes: {e}",
+                path.display()
+            )
+        })?;
         let order: Order = parse(&path, &text)?;
         let mut set = Set {
             order,
@@ -141,6 +149,9 @@ impl Set {
                     }
                 }
                 let own = folder::listed(&check).unwrap_or_default();
+                if let Some(why) = folder::differing(&check, &own) {
+                    return Err(why);
+                }
                 set.verify = Some((v, own));
             } else {
                 set.verify_skipped = Some(format!(
@@ -155,6 +166,9 @@ impl Set {
             let v = read_json(&check.join("tolerance.json"))?;
             if v.get("design") == set.optimum.get("design") {
                 let own = folder::listed(&check).unwrap_or_default();
+                if let Some(why) = folder::differing(&check, &own) {
+                    return Err(why);
+                }
                 set.tolerance = Some((v, own));
             } else {
                 set.tolerance_skipped = Some(format!(
@@ -271,7 +285,10 @@ pub fn write_report(dir: &Path, problem: Option<&ProblemText>) -> Result<PathBuf
     };
     // an earlier report is not part of what this one describes
     let files: Vec<Entry> = files.into_iter().filter(|e| e.name != REPORT).collect();
-    let set = Set::read(dir, files).map_err(bad)?;
+    if let Some(why) = folder::differing(dir, &files) {
+        return Err(bad(why));
+    }
+    let set = Set::read(dir, files.clone()).map_err(bad)?;
     if let Some(p) = problem {
         let recorded = set.optimum.get("problem_fnv1a64").and_then(Value::as_str);
         let hash = format!("{:016x}", crate::problem::fingerprint(&p.text));
@@ -289,7 +306,7 @@ pub fn write_report(dir: &Path, problem: Option<&ProblemText>) -> Result<PathBuf
     let out = OutputSet::begin(dir).map_err(ReportError::Write)?;
     out.write(|out| super::write_atomic(&out.path(REPORT), page.as_bytes()))
         .map_err(ReportError::Write)?;
-    out.commit_added(&[REPORT])
+    out.commit_added_to(&[REPORT], &files)
         .map_err(ReportError::Write)
         .map(|placed| {
             placed
