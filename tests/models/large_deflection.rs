@@ -12,10 +12,11 @@ use flexopt::model::large::solve::{arc_length, continuation, Options};
 use flexopt::model::large::{Dof, LargeError, Section, Spring, Structure};
 
 const L: f64 = 0.02;
-/// A steel strip 10 mm wide and 0.1 mm thick: `E I` and `E A`, so that the axial strain at
-/// the loads below is a few 1e-6 (the tabulated answers are for an inextensible beam).
+/// A steel strip 10 mm wide and 0.1 mm thick: its `E I`; and an axial stiffness `E A` a
+/// hundred times its own, so that the axial strain at the loads below is below 1e-7 (the
+/// tabulated answers and Euler's loads are for an inextensible beam).
 const EI: f64 = 200e9 * 0.01 * 1e-12 / 12.0;
-const EA: f64 = 200e9 * 0.01 * 1e-4;
+const EA: f64 = 100.0 * 200e9 * 0.01 * 1e-4;
 
 fn strip(_: f64) -> Section {
     Section { ea: EA, ei: EI }
@@ -137,9 +138,9 @@ fn bisshopp_drucker_cantilever_to_1e_4_and_its_convergence() {
             );
             errors.push(error);
         }
-        // second order in the element length
+        // falling at least as the square of the element length until the round-off
         for pair in errors.windows(2) {
-            assert!(pair[1] < pair[0] / 3.0, "{errors:?}");
+            assert!(pair[1] < pair[0] / 3.0 || pair[1] < 1e-8, "{errors:?}");
         }
         let (wn, un) = cantilever(32, alpha);
         assert!(
@@ -206,7 +207,9 @@ fn euler_loads_from_the_critical_load_factor() {
             relative(fine, exact) <= 1e-4,
             "{held:?}: {fine} against {exact}"
         );
-        assert!(relative(fine, exact) < relative(coarse, exact) / 8.0);
+        assert!(
+            relative(fine, exact) < relative(coarse, exact) / 8.0 || relative(fine, exact) < 1e-7
+        );
     }
 }
 
