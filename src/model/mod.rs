@@ -15,6 +15,7 @@ pub mod expression;
 pub mod fit;
 pub mod hinge;
 pub mod jet2;
+pub mod large;
 pub mod material;
 pub mod mechanism;
 pub mod network;

@@ -13,6 +13,7 @@ mod bridge_dynamics;
 mod bridge_model;
 mod fit_ranges;
 mod hinges;
+mod large_deflection;
 mod layout;
 mod model_stability;
 mod network_beams;

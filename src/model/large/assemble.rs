@@ -1,0 +1,275 @@
+//! The residual, tangent stiffness and load vector of a structure on its free degrees of
+//! freedom. Slave nodes follow their master rigidly (`x_p = x_b + R(theta_b) (X_p - X_b)`,
+//! `theta_p = theta_b`); their forces reach the master through the transpose of that map's
+//! Jacobian, and the map's curvature adds `-(d . f_p)` to the master's rotational stiffness
+//! (`d` the current offset, `f_p` the slave's net force), which keeps the tangent exact for
+//! loads and springs on rigid bodies.
+
+use faer::Mat;
+
+use super::element::{beam, spring};
+use super::{LargeError, Structure};
+
+/// A validated structure with its degrees of freedom sorted: the free ones (solved for)
+/// and the held ones (prescribed).
+#[derive(Debug, Clone)]
+pub struct System<'a> {
+    pub structure: &'a Structure,
+    /// The master of each node, if it is a slave.
+    pub master: Vec<Option<usize>>,
+    /// The indices into the full `3 * nodes` vector of the free degrees of freedom.
+    pub free: Vec<usize>,
+    /// The held degrees of freedom and their values at load factor 1.
+    pub held: Vec<(usize, f64)>,
+}
+
+/// The residual `r = g(u, lambda) - lambda f`, the tangent `dr/du` and the load vector
+/// `q = -dr/dlambda` (prescribed displacements moving with `lambda` included), all on the
+/// free degrees of freedom.
+pub struct Assembled {
+    pub residual: Vec<f64>,
+    pub tangent: Mat<f64>,
+    pub load: Vec<f64>,
+}
+
+fn check(ok: bool, what: impl FnOnce() -> String) -> Result<(), LargeError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(LargeError::Invalid(what()))
+    }
+}
+
+impl<'a> System<'a> {
+    /// Checks `structure` and sorts its degrees of freedom.
+    pub fn new(structure: &'a Structure) -> Result<Self, LargeError> {
+        let n = structure.nodes.len();
+        check(n > 0, || "no nodes".into())?;
+        check(
+            structure.nodes.iter().flatten().all(|v| v.is_finite()),
+            || "a node position is not finite".into(),
+        )?;
+        let node_ok = |i: usize| i < n;
+        for (e, b) in structure.beams.iter().enumerate() {
+            check(node_ok(b.a) && node_ok(b.b), || {
+                format!("beam {e}: node out of range")
+            })?;
+            let (xa, xb) = (structure.nodes[b.a], structure.nodes[b.b]);
+            check((xb[0] - xa[0]).hypot(xb[1] - xa[1]) > 0.0, || {
+                format!("beam {e}: zero length")
+            })?;
+            let s = b.section;
+            check(
+                s.ea > 0.0 && s.ei > 0.0 && s.ea.is_finite() && s.ei.is_finite(),
+                || {
+                    format!(
+                        "beam {e}: section EA = {}, EI = {} not positive",
+                        s.ea, s.ei
+                    )
+                },
+            )?;
+        }
+        for (e, s) in structure.springs.iter().enumerate() {
+            check(node_ok(s.a) && node_ok(s.b), || {
+                format!("spring {e}: node out of range")
+            })?;
+            let (xa, xb) = (structure.nodes[s.a], structure.nodes[s.b]);
+            check((xb[0] - xa[0]).hypot(xb[1] - xa[1]) > 0.0, || {
+                format!("spring {e}: zero length")
+            })?;
+            let finite = [s.stiffness, s.free_stroke, s.preload]
+                .iter()
+                .all(|v| v.is_finite());
+            check(finite && s.stiffness > 0.0, || {
+                format!("spring {e}: stiffness {} not positive", s.stiffness)
+            })?;
+        }
+        let mut master = vec![None; n];
+        for s in &structure.slaves {
+            check(
+                node_ok(s.node) && node_ok(s.master) && s.node != s.master,
+                || format!("slave {} of {}: bad node", s.node, s.master),
+            )?;
+            check(master[s.node].is_none(), || {
+                format!("node {} has two masters", s.node)
+            })?;
+            master[s.node] = Some(s.master);
+        }
+        for s in &structure.slaves {
+            check(master[s.master].is_none(), || {
+                format!(
+                    "node {} is the master of {} but itself a slave",
+                    s.master, s.node
+                )
+            })?;
+        }
+        let mut held = Vec::new();
+        for &(node, dof, value) in &structure.held {
+            check(node_ok(node) && value.is_finite(), || {
+                format!("held node {node}")
+            })?;
+            check(master[node].is_none(), || {
+                format!("node {node} is a slave: hold its master instead")
+            })?;
+            let i = 3 * node + dof as usize;
+            check(held.iter().all(|&(j, _)| j != i), || {
+                format!("node {node}: {dof:?} held twice")
+            })?;
+            held.push((i, value));
+        }
+        for &(node, force) in &structure.loads {
+            check(node_ok(node) && force.iter().all(|f| f.is_finite()), || {
+                format!("load at node {node}")
+            })?;
+        }
+        let free = (0..3 * n)
+            .filter(|&i| master[i / 3].is_none() && held.iter().all(|&(j, _)| j != i))
+            .collect();
+        Ok(System {
+            structure,
+            master,
+            free,
+            held,
+        })
+    }
+
+    /// The full displacement vector from the free values and the load factor.
+    pub fn expand(&self, free: &[f64], lambda: f64) -> Vec<f64> {
+        let mut u = vec![0.0; 3 * self.structure.nodes.len()];
+        for (&i, &v) in self.free.iter().zip(free) {
+            u[i] = v;
+        }
+        for &(i, value) in &self.held {
+            u[i] = lambda * value;
+        }
+        self.place_slaves(&mut u);
+        u
+    }
+
+    fn offset(&self, node: usize, master: usize, theta: f64) -> ([f64; 2], [f64; 2]) {
+        let (xp, xb) = (self.structure.nodes[node], self.structure.nodes[master]);
+        let r0 = [xp[0] - xb[0], xp[1] - xb[1]];
+        let (s, c) = theta.sin_cos();
+        (r0, [c * r0[0] - s * r0[1], s * r0[0] + c * r0[1]])
+    }
+
+    fn place_slaves(&self, u: &mut [f64]) {
+        for (p, m) in self.master.iter().enumerate() {
+            if let Some(b) = *m {
+                let (r0, d) = self.offset(p, b, u[3 * b + 2]);
+                u[3 * p] = u[3 * b] + d[0] - r0[0];
+                u[3 * p + 1] = u[3 * b + 1] + d[1] - r0[1];
+                u[3 * p + 2] = u[3 * b + 2];
+            }
+        }
+    }
+
+    /// Residual, tangent and load vector at the full displacement `u` (from [`Self::expand`]).
+    pub fn assemble(&self, u: &[f64], lambda: f64) -> Assembled {
+        let st = self.structure;
+        let m = u.len();
+        let mut k = vec![0.0; m * m];
+        let mut r = vec![0.0; m];
+        // -dr/dlambda before the prescribed displacements' share
+        let mut q = vec![0.0; m];
+        for b in &st.beams {
+            let idx = [0, 1, 2].map(|j| 3 * b.a + j);
+            let idx = [idx[0], idx[1], idx[2], 3 * b.b, 3 * b.b + 1, 3 * b.b + 2];
+            let d = idx.map(|i| u[i]);
+            let c = beam(st.nodes[b.a], st.nodes[b.b], b.section, &d);
+            for (x, &i) in idx.iter().enumerate() {
+                r[i] += c.force[x];
+                for (y, &j) in idx.iter().enumerate() {
+                    k[i * m + j] += c.stiffness[x][y];
+                }
+            }
+        }
+        for s in &st.springs {
+            let idx = [3 * s.a, 3 * s.a + 1, 3 * s.b, 3 * s.b + 1];
+            let d = idx.map(|i| u[i]);
+            let per_lambda = s.free_stroke + s.preload / s.stiffness;
+            let (c, by_extension) = spring(
+                st.nodes[s.a],
+                st.nodes[s.b],
+                s.stiffness,
+                lambda * per_lambda,
+                &d,
+            );
+            for (x, &i) in idx.iter().enumerate() {
+                r[i] += c.force[x];
+                q[i] -= by_extension[x] * per_lambda;
+                for (y, &j) in idx.iter().enumerate() {
+                    k[i * m + j] += c.stiffness[x][y];
+                }
+            }
+        }
+        for &(node, force) in &st.loads {
+            for j in 0..3 {
+                r[3 * node + j] -= lambda * force[j];
+                q[3 * node + j] += force[j];
+            }
+        }
+        self.condense(u, &mut k, &mut r, &mut q);
+        self.select(&k, &r, &q)
+    }
+
+    /// Moves the slaves' rows and columns onto their masters (`T^T K T` and `T^T r`).
+    fn condense(&self, u: &[f64], k: &mut [f64], r: &mut [f64], q: &mut [f64]) {
+        let m = u.len();
+        let slaves: Vec<(usize, usize, [f64; 2])> = (0..self.master.len())
+            .filter_map(|p| {
+                let b = self.master[p]?;
+                Some((p, b, self.offset(p, b, u[3 * b + 2]).1))
+            })
+            .collect();
+        let map = |d: [f64; 2], v: [f64; 3]| [v[0], v[1], v[2] - d[1] * v[0] + d[0] * v[1]];
+        for &(p, b, d) in &slaves {
+            for row in 0..m {
+                let v = [0, 1, 2].map(|j| k[row * m + 3 * p + j]);
+                let t = map(d, v);
+                for j in 0..3 {
+                    k[row * m + 3 * b + j] += t[j];
+                }
+            }
+        }
+        for &(p, b, d) in &slaves {
+            for col in 0..m {
+                let v = [0, 1, 2].map(|j| k[(3 * p + j) * m + col]);
+                let t = map(d, v);
+                for j in 0..3 {
+                    k[(3 * b + j) * m + col] += t[j];
+                }
+            }
+            let rp = [0, 1, 2].map(|j| r[3 * p + j]);
+            k[(3 * b + 2) * m + 3 * b + 2] -= d[0] * rp[0] + d[1] * rp[1];
+            for vector in [&mut *r, &mut *q] {
+                let t = map(d, [0, 1, 2].map(|j| vector[3 * p + j]));
+                for j in 0..3 {
+                    vector[3 * b + j] += t[j];
+                }
+            }
+        }
+    }
+
+    fn select(&self, k: &[f64], r: &[f64], q: &[f64]) -> Assembled {
+        let m = r.len();
+        let f = &self.free;
+        let tangent = Mat::from_fn(f.len(), f.len(), |i, j| k[f[i] * m + f[j]]);
+        let residual = f.iter().map(|&i| r[i]).collect();
+        let load = f
+            .iter()
+            .map(|&i| {
+                q[i] - self
+                    .held
+                    .iter()
+                    .map(|&(j, v)| k[i * m + j] * v)
+                    .sum::<f64>()
+            })
+            .collect();
+        Assembled {
+            residual,
+            tangent,
+            load,
+        }
+    }
+}

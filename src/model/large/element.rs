@@ -1,0 +1,138 @@
+//! The corotational beam element and the spring, each giving its internal force and
+//! tangent stiffness in the global degrees of freedom of its two nodes,
+//! `(u_a, v_a, theta_a, u_b, v_b, theta_b)`.
+//!
+//! The beam follows Crisfield's co-rotational planar beam (see the end of this paragraph):
+//! the chord's current length `l` and angle `beta` give the local axial
+//! displacement `u_l = l - l0` and the local end rotations `theta_i - (beta - beta0)`;
+//! the local forces are the Euler-Bernoulli beam's with the shallow-arch axial strain
+//! (Crisfield's local law, [`local_law`], which gives the straight beam the consistent
+//! cubic geometric stiffness and so Euler's load converging as the fourth power of the
+//! element length); the global internal force is `B^T (N, M_a, M_b)` with `B` the derivative of the local
+//! displacements, and the tangent stiffness
+//! `K_t = B^T D B + (N / l) z z^T + (M_a + M_b) / l^2 (r z^T + z r^T)`
+//! with `r = (-c, -s, 0, c, s, 0)` and `z = (s, -c, 0, -s, c, 0)`, `c, s` the cosine and
+//! sine of `beta` (Crisfield 1991, vol. 1, ch. 7, the co-rotational planar beam, in this
+//! notation; Battini and Pacoste, Comput. Methods Appl. Mech. Engrg. 191 (2002) 1755-1789,
+//! write the same element in three dimensions).
+
+use super::Section;
+
+/// The internal force and tangent stiffness of an element.
+pub struct Contribution<const N: usize> {
+    pub force: [f64; N],
+    pub stiffness: [[f64; N]; N],
+}
+
+/// The beam from reference positions `xa, xb` under displacements `d` (6 values).
+pub fn beam(xa: [f64; 2], xb: [f64; 2], section: Section, d: &[f64; 6]) -> Contribution<6> {
+    let chord0 = [xb[0] - xa[0], xb[1] - xa[1]];
+    let l0 = chord0[0].hypot(chord0[1]);
+    // the chord's change apart from the chord, so that a small stretch keeps its digits
+    let change = [d[3] - d[0], d[4] - d[1]];
+    let chord = [chord0[0] + change[0], chord0[1] + change[1]];
+    let l = chord[0].hypot(chord[1]);
+    let (c, s) = (chord[0] / l, chord[1] / l);
+    let turn = (chord0[0] * change[1] - chord0[1] * change[0])
+        .atan2(l0 * l0 + chord0[0] * change[0] + chord0[1] * change[1]);
+    // l - l0 as (l^2 - l0^2) / (l + l0)
+    let stretch = (change[0] * (2.0 * chord0[0] + change[0])
+        + change[1] * (2.0 * chord0[1] + change[1]))
+        / (l + l0);
+    let (ta, tb) = (d[2] - turn, d[5] - turn);
+    let (local, dmat) = local_law(section, l0, stretch, ta, tb);
+    let r = [-c, -s, 0.0, c, s, 0.0];
+    let z = [s, -c, 0.0, -s, c, 0.0];
+    let mut rows = [r, [0.0; 6], [0.0; 6]];
+    for j in 0..6 {
+        rows[1][j] = -z[j] / l;
+        rows[2][j] = -z[j] / l;
+    }
+    rows[1][2] += 1.0;
+    rows[2][5] += 1.0;
+    let [n, ma, mb] = local;
+    let mut force = [0.0; 6];
+    let mut stiffness = [[0.0; 6]; 6];
+    for i in 0..6 {
+        force[i] = (0..3).map(|p| rows[p][i] * local[p]).sum();
+        for j in 0..6 {
+            let mut kij = 0.0;
+            for p in 0..3 {
+                for q in 0..3 {
+                    kij += rows[p][i] * dmat[p][q] * rows[q][j];
+                }
+            }
+            kij += n / l * z[i] * z[j] + (ma + mb) / (l * l) * (r[i] * z[j] + z[i] * r[j]);
+            stiffness[i][j] = kij;
+        }
+    }
+    Contribution { force, stiffness }
+}
+
+/// The local forces `(N, M_a, M_b)` and their derivatives by `(u_l, theta_a, theta_b)` from
+/// the energy `EA l0 eps^2 / 2 + EI / l0 (2 ta^2 + 2 ta tb + 2 tb^2)` with the shallow-arch
+/// strain `eps = u_l / l0 + (2 ta^2 - ta tb + 2 tb^2) / 30` (Crisfield 1991, ch. 7).
+fn local_law(
+    section: Section,
+    l0: f64,
+    stretch: f64,
+    ta: f64,
+    tb: f64,
+) -> ([f64; 3], [[f64; 3]; 3]) {
+    let eps = stretch / l0 + (2.0 * ta * ta - ta * tb + 2.0 * tb * tb) / 30.0;
+    let n = section.ea * eps;
+    let g = [1.0 / l0, (4.0 * ta - tb) / 30.0, (4.0 * tb - ta) / 30.0];
+    let k = section.ei / l0;
+    let ma = k * (4.0 * ta + 2.0 * tb) + n * l0 * g[1];
+    let mb = k * (2.0 * ta + 4.0 * tb) + n * l0 * g[2];
+    let bend = [[0.0; 3], [0.0, 4.0 * k, 2.0 * k], [0.0, 2.0 * k, 4.0 * k]];
+    let arch = [[0.0; 3], [0.0, 4.0, -1.0], [0.0, -1.0, 4.0]];
+    let mut dmat = [[0.0; 3]; 3];
+    for p in 0..3 {
+        for q in 0..3 {
+            dmat[p][q] = section.ea * l0 * g[p] * g[q] + bend[p][q] + n * l0 / 30.0 * arch[p][q];
+        }
+    }
+    ([n, ma, mb], dmat)
+}
+
+/// The spring between reference positions `xa, xb` under translations `d`
+/// `(u_a, v_a, u_b, v_b)`, its natural length `l0 + extension`: internal force, tangent
+/// stiffness, and the derivative of the internal force by `extension`.
+pub fn spring(
+    xa: [f64; 2],
+    xb: [f64; 2],
+    stiffness: f64,
+    extension: f64,
+    d: &[f64; 4],
+) -> (Contribution<4>, [f64; 4]) {
+    let l0 = (xb[0] - xa[0]).hypot(xb[1] - xa[1]);
+    let chord = [xb[0] - xa[0] + d[2] - d[0], xb[1] - xa[1] + d[3] - d[1]];
+    let l = chord[0].hypot(chord[1]);
+    let e = [chord[0] / l, chord[1] / l];
+    let tension = stiffness * (l - l0 - extension);
+    let g = [-e[0], -e[1], e[0], e[1]];
+    let mut k2 = [[0.0; 2]; 2];
+    for i in 0..2 {
+        for j in 0..2 {
+            let delta = if i == j { 1.0 } else { 0.0 };
+            k2[i][j] = stiffness * e[i] * e[j] + tension / l * (delta - e[i] * e[j]);
+        }
+    }
+    let mut k = [[0.0; 4]; 4];
+    for i in 0..4 {
+        for j in 0..4 {
+            let sign = if (i < 2) == (j < 2) { 1.0 } else { -1.0 };
+            k[i][j] = sign * k2[i % 2][j % 2];
+        }
+    }
+    let force = g.map(|gi| tension * gi);
+    let by_extension = g.map(|gi| -stiffness * gi);
+    (
+        Contribution {
+            force,
+            stiffness: k,
+        },
+        by_extension,
+    )
+}
