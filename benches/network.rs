@@ -6,7 +6,8 @@
 //! rounds in one run (the machine is shared) and the medians compared; the figures go to
 //! results/bench/network.json and network.txt. Then each shipped network's evaluation with
 //! exact gradients against central differences of the same code, and the two-stage
-//! amplifier's 300-start study against wei2017's network's.
+//! amplifier's 300-start study against wei2017's network's; and the export of a chain of 50,
+//! 100 and 200 bodies, whole process, whose ratios tell how the part's checks grow.
 
 use std::hint::black_box;
 use std::path::Path;
@@ -14,6 +15,9 @@ use std::time::Instant;
 
 use flexopt::model::Model;
 use flexopt::problem::Problem;
+
+#[path = "support/chain.rs"]
+mod chain;
 
 const ROUNDS: usize = 31;
 const CALLS: usize = 2000;
@@ -123,6 +127,7 @@ fn main() {
     }
     shipped(&mut text, &mut json);
     studies(&mut text, &mut json);
+    chain_exports(&mut text, &mut json);
     print!("{text}");
     std::fs::create_dir_all("results/bench").unwrap();
     std::fs::write("results/bench/network.txt", &text).unwrap();
@@ -228,4 +233,41 @@ fn studies(text: &mut String, json: &mut Vec<serde_json::Value>) {
         "case": "300-start study", "bridge_lever_ms": a * 1e3, "wei2017_network_ms": b * 1e3,
         "ratio": a / b, "rounds": 5,
     }));
+}
+
+/// `flexopt export` of a chain of n bodies with its part, whole process as a user runs it
+/// (medians of 5): the time at 200 bodies (issue 50 asks at most 2 s) and its ratio to 50
+/// bodies' (4 where the part's checks grow linearly, 64 where cubically).
+fn chain_exports(text: &mut String, json: &mut Vec<serde_json::Value>) {
+    let dir = std::env::temp_dir().join(format!("flexopt-bench-chain-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut times = Vec::new();
+    for n in [50, 100, 200] {
+        let file = dir.join(format!("chain{n}.toml"));
+        std::fs::write(&file, chain::chain_problem(n, "[part]")).unwrap();
+        let once = || {
+            let start = Instant::now();
+            let o = std::process::Command::new(env!("CARGO_BIN_EXE_flexopt"))
+                .args([
+                    "export",
+                    file.to_str().unwrap(),
+                    "--design",
+                    "l=2,t=0.5",
+                    "--out",
+                ])
+                .arg(dir.join(format!("out{n}")))
+                .output()
+                .unwrap();
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            start.elapsed().as_secs_f64()
+        };
+        times.push((n, median((0..5).map(|_| once()).collect())));
+    }
+    *text += "export of a chain of n bodies with its part, whole process, median of 5\n";
+    let first = times[0].1;
+    for &(n, t) in &times {
+        *text += &format!("{n:>5} bodies: {t:6.3} s, {:5.2} x 50 bodies'\n", t / first);
+        json.push(serde_json::json!({"case": format!("export of a {n}-body chain"), "seconds": t, "ratio_to_50": t / first}));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -32,6 +32,13 @@ use flexopt::report::{check_writable, DesignReport};
 use flexopt::sweep::{sweep, SweepSpec};
 
 fn main() -> ExitCode {
+    // past `ulimit -f` a write fails with EFBIG, which each writer reports naming its file
+    // (exit 1), rather than the signal's silent death
+    // SAFETY: at start-up, before any thread; SIG_IGN installs no handler
+    #[cfg(unix)]
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
     match run(Cli::parse().command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
@@ -154,16 +161,13 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Report { dir, problem } => {
             let text = problem
                 .map(|p| {
-                    std::fs::read_to_string(&p)
+                    flexopt::problem::read_problem_text(&p)
                         .map(|text| ProblemText {
                             path: p.display().to_string(),
                             text,
                         })
                         .map_err(|e| {
-                            Failure::bad_input(format!(
-                                "{}: key `--problem`: cannot read it: {e}",
-                                p.display()
-                            ))
+                            Failure::bad_input(format!("{}: key `--problem`: {e}", p.display()))
                         })
                 })
                 .transpose()?;
@@ -218,7 +222,7 @@ fn run(command: Command) -> Result<(), Failure> {
 /// read once: then the report names the file only), where it is still the content the run
 /// read.
 fn problem_text(problem: &Problem) -> Option<ProblemText> {
-    let text = std::fs::read_to_string(&problem.file).ok()?;
+    let text = flexopt::problem::read_problem_text(&problem.file).ok()?;
     (flexopt::problem::fingerprint(&text) == problem.fingerprint).then(|| ProblemText {
         path: problem.file.display().to_string(),
         text,

@@ -11,6 +11,7 @@ use flexopt::report::tolerance::FeReport;
 use flexopt::report::tolerance::{
     write_robust, write_tolerance_set, RobustTable, ToleranceReport, ToleranceTable,
 };
+use flexopt::study::checked_threads;
 use flexopt::study::{Study, StudyOptions};
 use flexopt::tolerance::{analyze, monte_carlo::Settings};
 
@@ -35,6 +36,12 @@ pub fn settings(
     if let Some(e) = problem.stand_in_error("a tolerance analysis") {
         return Err(Failure::bad_input(e));
     }
+    let threads = checked_threads(threads.map(|t| t as i128)).map_err(|what| {
+        Failure::bad_input(format!(
+            "{}: key `--threads`: {what}",
+            problem.file.display()
+        ))
+    })?;
     Ok(Settings {
         samples,
         seed: seed.unwrap_or(problem.search.seed),

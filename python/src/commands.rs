@@ -10,6 +10,7 @@ use flexopt::report::refine::RefinedReport;
 use flexopt::report::tolerance::ToleranceReport;
 use flexopt::report::verify::VerifyReport;
 use flexopt::report::{check_writable, DesignReport};
+use flexopt::study::checked_threads;
 use flexopt::tolerance::{analyze, monte_carlo::Settings};
 
 use crate::error::Error;
@@ -40,12 +41,14 @@ pub fn tolerance(
     x: &[f64],
     samples: usize,
     seed: Option<u64>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> Result<ToleranceReport, Error> {
     let problem = &p.inner;
     if let Some(e) = problem.stand_in_error("a tolerance analysis") {
         return Err(e.into());
     }
+    let threads = checked_threads(threads.map(i128::from))
+        .map_err(|e| Error::bad_input(p.file(), "threads", e))?;
     let settings = Settings {
         samples,
         seed: seed.unwrap_or(problem.search.seed),

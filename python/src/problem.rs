@@ -268,7 +268,7 @@ impl Problem {
     #[staticmethod]
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
         let inner = py.detach(|| Inner::load(&path)).map_err(Error::from)?;
-        let text = std::fs::read_to_string(&path).unwrap_or_default();
+        let text = flexopt::problem::read_problem_text(&path).unwrap_or_default();
         Ok(Self::wrap(inner, text))
     }
 
@@ -529,7 +529,7 @@ impl Problem {
         design: &Bound<'py, PyAny>,
         samples: i64,
         seed: Option<u64>,
-        threads: Option<usize>,
+        threads: Option<i64>,
     ) -> PyResult<Py<PyAny>> {
         let samples = commands::samples(self, samples)?;
         let x = self.design(py, design)?;

@@ -134,6 +134,8 @@ impl Expression {
             at: 0,
             names,
             nodes: Vec::new(),
+            constants: Vec::new(),
+            nesting: 0,
         };
         if p.tokens.is_empty() {
             return Err(ParseError {
@@ -151,10 +153,11 @@ impl Expression {
                 ),
             });
         }
+        let nodes = post_order(p.nodes, root);
         Ok(Expression {
             source: text.to_string(),
-            nodes: p.nodes,
-            root,
+            root: nodes.len() - 1,
+            nodes,
         })
     }
 
@@ -180,7 +183,14 @@ impl Expression {
     /// Its value with the names bound to `values` (indexed as the names it was parsed
     /// against).
     pub fn eval<D: Scalar>(&self, values: &[D]) -> Result<D, EvalError> {
-        let v = self.node(self.root, values)?;
+        // the nodes are in post-order: each node's operands are the last values computed, so
+        // one pass with a stack evaluates the tree at any depth without recursion
+        let mut stack: Vec<D> = Vec::new();
+        for i in 0..self.nodes.len() {
+            let v = self.node(i, values, &mut stack)?;
+            stack.push(v);
+        }
+        let v = stack.pop().expect("an expression has a root");
         if v.re().is_finite() {
             Ok(v)
         } else {
@@ -199,31 +209,34 @@ impl Expression {
         }
     }
 
-    fn node<D: Scalar>(&self, i: usize, values: &[D]) -> Result<D, EvalError> {
-        let value = |j| self.node(j, values);
-        Ok(match self.nodes[i].kind {
+    /// Node `i`'s value, its operands popped from `stack` (the second on top).
+    fn node<D: Scalar>(&self, i: usize, values: &[D], stack: &mut Vec<D>) -> Result<D, EvalError> {
+        let kind = self.nodes[i].kind;
+        let (first, second) = operands(kind);
+        let y = second.map_or(D::from(0.0), |_| pop(stack));
+        let x = first.map_or(D::from(0.0), |_| pop(stack));
+        Ok(match kind {
             Kind::Constant(c) => D::from(c),
             Kind::Name(k) => values[k],
-            Kind::Neg(a) => -value(a)?,
-            Kind::Add(a, b) => value(a)? + value(b)?,
-            Kind::Sub(a, b) => value(a)? - value(b)?,
-            Kind::Mul(a, b) => value(a)? * value(b)?,
-            Kind::Div(a, b) => {
-                let d = value(b)?;
-                if d.re() == 0.0 {
+            Kind::Neg(_) => -x,
+            Kind::Add(..) => x + y,
+            Kind::Sub(..) => x - y,
+            Kind::Mul(..) => x * y,
+            Kind::Div(_, b) => {
+                if y.re() == 0.0 {
                     return Err(self.error(b, "is zero, a division by zero,"));
                 }
-                value(a)? / d
+                x / y
             }
             Kind::Powi(a, n) => {
-                let base = value(a)?;
+                let base = x;
                 if n < 0 && base.re() == 0.0 {
                     return Err(self.error(a, "is zero under a negative power"));
                 }
                 base.powi(n)
             }
             Kind::Powf(a, y) => {
-                let base = value(a)?;
+                let base = x;
                 if base.re() < 0.0 || (base.re() == 0.0 && y < 1.0) {
                     return Err(self.error(
                         a,
@@ -235,9 +248,8 @@ impl Expression {
                 }
                 base.powf(y)
             }
-            Kind::Call(f, a, b) => {
-                let x = value(a)?;
-                let second = || value(b.expect("two-argument functions have two"));
+            Kind::Call(f, a, _) => {
+                let second = y;
                 match f {
                     Function::Sin => x.sin(),
                     Function::Cos => x.cos(),
@@ -263,8 +275,7 @@ impl Expression {
                     }
                     Function::Atan => x.atan(),
                     Function::Atan2 => {
-                        let y = x;
-                        let x = second()?;
+                        let (y, x) = (x, second);
                         if x.re() == 0.0 && y.re() == 0.0 {
                             return Err(self.error(i, "has both arguments zero"));
                         }
@@ -281,15 +292,15 @@ impl Expression {
                     }
                     Function::Abs => x.abs(),
                     Function::Hypot => {
-                        let y = second()?;
+                        let y = second;
                         if x.re() == 0.0 && y.re() == 0.0 {
                             return Err(self
                                 .error(i, "has both arguments zero, where it has no derivative,"));
                         }
                         (x * x + y * y).sqrt()
                     }
-                    Function::Min => scalar::min(x, second()?),
-                    Function::Max => scalar::max(x, second()?),
+                    Function::Min => scalar::min(x, second),
+                    Function::Max => scalar::max(x, second),
                 }
             }
         })
@@ -298,6 +309,59 @@ impl Expression {
 
 /// `asin x` or `acos x` (`f`), `|x| < 1`: asin x = atan(x / sqrt(1 - x^2)), acos x =
 /// pi/2 - asin x.
+/// The operand on top of the evaluation's stack: the post-order puts it there.
+fn pop<D>(stack: &mut Vec<D>) -> D {
+    stack
+        .pop()
+        .expect("a node's operands precede it in post-order")
+}
+
+/// The nodes the root reaches, renumbered in post-order (each node after its operands, the
+/// first operand's nodes before the second's, the root last): the order the parser pushed
+/// them in, without the exponents' nodes that were folded into constants. Found in one
+/// descending pass, as an operand always precedes its node, so no depth recurses.
+fn post_order(nodes: Vec<Node>, root: usize) -> Vec<Node> {
+    let mut live = vec![false; nodes.len()];
+    live[root] = true;
+    for i in (0..=root).rev() {
+        if live[i] {
+            let (a, b) = operands(nodes[i].kind);
+            for j in a.into_iter().chain(b) {
+                live[j] = true;
+            }
+        }
+    }
+    let mut renamed = vec![usize::MAX; nodes.len()];
+    let mut kept = Vec::with_capacity(nodes.len());
+    for (i, mut node) in nodes.into_iter().enumerate().filter(|(i, _)| live[*i]) {
+        let r = |j: usize| renamed[j];
+        node.kind = match node.kind {
+            Kind::Neg(a) => Kind::Neg(r(a)),
+            Kind::Add(a, b) => Kind::Add(r(a), r(b)),
+            Kind::Sub(a, b) => Kind::Sub(r(a), r(b)),
+            Kind::Mul(a, b) => Kind::Mul(r(a), r(b)),
+            Kind::Div(a, b) => Kind::Div(r(a), r(b)),
+            Kind::Powi(a, n) => Kind::Powi(r(a), n),
+            Kind::Powf(a, y) => Kind::Powf(r(a), y),
+            Kind::Call(f, a, b) => Kind::Call(f, r(a), b.map(r)),
+            leaf => leaf,
+        };
+        renamed[i] = kept.len();
+        kept.push(node);
+    }
+    kept
+}
+
+/// A node's operands, the first and the second.
+fn operands(kind: Kind) -> (Option<usize>, Option<usize>) {
+    match kind {
+        Kind::Constant(_) | Kind::Name(_) => (None, None),
+        Kind::Neg(a) | Kind::Powi(a, _) | Kind::Powf(a, _) => (Some(a), None),
+        Kind::Add(a, b) | Kind::Sub(a, b) | Kind::Mul(a, b) | Kind::Div(a, b) => (Some(a), Some(b)),
+        Kind::Call(_, a, b) => (Some(a), b),
+    }
+}
+
 fn asin_or_acos<D: Scalar>(x: D, f: Function) -> D {
     let asin = (x / (-(x * x) + 1.0).sqrt()).atan();
     if f == Function::Asin {
@@ -405,18 +469,65 @@ fn tokenize(text: &str) -> Result<Vec<Spanned>, ParseError> {
     Ok(tokens)
 }
 
+/// How many parentheses, calls, signs and exponents may stand one inside another: the
+/// parser recurses once for each, on the reading thread's stack; a coordinate written by hand
+/// nests a dozen. A long sum or product is read by a loop and evaluated by one pass over the
+/// tree in post-order, so its length has no limit but the file's size.
+pub const MAX_NESTING: usize = 100;
+
 struct Parser<'a> {
     text: &'a str,
     tokens: Vec<Spanned>,
     at: usize,
     names: &'a [&'a str],
     nodes: Vec<Node>,
+    /// Each node's value where it is made of numbers alone (finite), for an exponent.
+    constants: Vec<Option<f64>>,
+    /// How many parentheses, calls, signs and exponents the parser is inside.
+    nesting: usize,
 }
 
 impl Parser<'_> {
     fn push(&mut self, kind: Kind, span: (usize, usize)) -> usize {
+        let c = |n: usize| self.constants[n];
+        let constant = match kind {
+            Kind::Constant(v) => Some(v),
+            Kind::Name(_) | Kind::Call(..) => None,
+            Kind::Neg(a) => c(a).map(|x| -x),
+            Kind::Add(a, b) => c(a).zip(c(b)).map(|(x, y)| x + y),
+            Kind::Sub(a, b) => c(a).zip(c(b)).map(|(x, y)| x - y),
+            Kind::Mul(a, b) => c(a).zip(c(b)).map(|(x, y)| x * y),
+            Kind::Div(a, b) => c(a).zip(c(b)).map(|(x, y)| x / y),
+            Kind::Powi(a, n) => c(a).map(|x| x.powi(n)),
+            Kind::Powf(a, y) => c(a).map(|x| x.powf(y)),
+        };
+        self.constants.push(constant.filter(|v| v.is_finite()));
         self.nodes.push(Node { kind, span });
         self.nodes.len() - 1
+    }
+
+    fn too_deep(&self, position: usize) -> ParseError {
+        ParseError {
+            position,
+            message: format!(
+                "the expression nests too deep: at most {MAX_NESTING} parentheses, calls, \
+                 signs and exponents one inside another"
+            ),
+        }
+    }
+
+    /// `f` one level deeper among the parentheses, calls, signs and exponents.
+    fn nested<T>(
+        &mut self,
+        f: impl FnOnce(&mut Self) -> Result<T, ParseError>,
+    ) -> Result<T, ParseError> {
+        if self.nesting >= MAX_NESTING {
+            return Err(self.too_deep(self.here()));
+        }
+        self.nesting += 1;
+        let r = f(self);
+        self.nesting -= 1;
+        r
     }
 
     fn span(&self, node: usize) -> (usize, usize) {
@@ -483,7 +594,7 @@ impl Parser<'_> {
             Some(sign @ ('+' | '-')) => {
                 let start = self.here();
                 self.at += 1;
-                let operand = self.signed()?;
+                let operand = self.nested(Self::signed)?;
                 if sign == '+' {
                     return Ok(operand);
                 }
@@ -500,7 +611,7 @@ impl Parser<'_> {
             return Ok(base);
         }
         self.at += 1;
-        let exponent = self.signed()?;
+        let exponent = self.nested(Self::signed)?;
         let span = (self.span(base).0, self.span(exponent).1);
         // the exponent must be a number: fold it
         let Some(y) = self.constant(exponent) else {
@@ -523,19 +634,7 @@ impl Parser<'_> {
 
     /// The value of a sub-expression of numbers alone.
     fn constant(&self, node: usize) -> Option<f64> {
-        let c = |n| self.constant(n);
-        Some(match self.nodes[node].kind {
-            Kind::Constant(v) => v,
-            Kind::Name(_) | Kind::Call(..) => return None,
-            Kind::Neg(a) => -c(a)?,
-            Kind::Add(a, b) => c(a)? + c(b)?,
-            Kind::Sub(a, b) => c(a)? - c(b)?,
-            Kind::Mul(a, b) => c(a)? * c(b)?,
-            Kind::Div(a, b) => c(a)? / c(b)?,
-            Kind::Powi(a, n) => c(a)?.powi(n),
-            Kind::Powf(a, y) => c(a)?.powf(y),
-        })
-        .filter(|v| v.is_finite())
+        self.constants[node]
     }
 
     fn primary(&mut self) -> Result<usize, ParseError> {
@@ -549,7 +648,7 @@ impl Parser<'_> {
             }
             Token::Symbol('(') => {
                 self.at += 1;
-                let inner = self.sum()?;
+                let inner = self.nested(Self::sum)?;
                 if self.peek_symbol() != Some(')') {
                     return Err(self.expected("`)`"));
                 }
@@ -563,7 +662,7 @@ impl Parser<'_> {
                 self.at += 1;
                 let word = &self.text[t.start..t.end];
                 if self.peek_symbol() == Some('(') {
-                    return self.call(word, t.start);
+                    return self.nested(|p| p.call(word, t.start));
                 }
                 if word == "pi" {
                     return Ok(self.push(Kind::Constant(PI), (t.start, t.end)));

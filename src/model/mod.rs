@@ -391,8 +391,5 @@ pub(crate) fn unseed<const N: usize>(y: &[Jet<N>], out: &mut [f64], jacobian: &m
     }
 }
 
-/// Largest number of outputs one evaluation may ask for.
-pub const MAX_WANTED: usize = 128;
-
 /// Largest number of parameters a model may have.
 pub const MAX_PARAMETERS: usize = 16;

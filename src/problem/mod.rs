@@ -239,6 +239,12 @@ pub fn fingerprint(text: &str) -> u64 {
     h.finish()
 }
 
+/// The text of the problem file at `path`, at most [`MAX_FILE_BYTES`] of it: the error a
+/// sentence without the path.
+pub fn read_problem_text(path: &Path) -> Result<String, String> {
+    crate::vocab::input::read_text(path, MAX_FILE_BYTES, "a problem file")
+}
+
 impl Problem {
     /// Reads and validates a problem file.
     pub fn load(path: &Path) -> Result<Problem, ProblemError> {
@@ -248,19 +254,9 @@ impl Problem {
             position: None,
             message,
         };
-        // refused before it is read: a problem file is a few kilobytes, and parsing a huge
+        // refused before it is parsed: a problem file is a few kilobytes, and parsing a huge
         // one takes seconds and gigabytes before its first error
-        let size = std::fs::metadata(path)
-            .map_err(|e| fail(format!("cannot read the file: {e}")))?
-            .len();
-        if size > MAX_FILE_BYTES {
-            return Err(fail(format!(
-                "the file has {size} bytes; a problem file may have at most {MAX_FILE_BYTES} \
-                 (1 MiB)"
-            )));
-        }
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| fail(format!("cannot read the file: {e}")))?;
+        let text = read_problem_text(path).map_err(fail)?;
         Self::parse(path, &text)
     }
 

@@ -35,7 +35,7 @@ use super::{Problem as DesignProblem, Sense};
 use crate::model::fit::FitLimit;
 use crate::model::mechanism::{ModulusScaling, PartMaker};
 use crate::model::scalar::Jet;
-use crate::model::{Model, MAX_PARAMETERS, MAX_WANTED};
+use crate::model::{Model, MAX_PARAMETERS};
 use crate::optim::Problem;
 
 /// Relative violation up to which a constraint counts as met: a constraint's value here is
@@ -255,11 +255,7 @@ impl<'p> DesignNlp<'p> {
             .iter()
             .flat_map(|r| range.iter().map(move |rj| r.sign * rj / r.scale))
             .collect();
-        let spread_count = if spreads.is_some() { wanted.len() } else { 0 };
-        assert!(
-            wanted.len() + fits.len() + rules + spread_count <= MAX_WANTED,
-            "a problem names at most {MAX_WANTED} outputs, ranges of fit and part rules"
-        );
+        // bounded where the file is read (a network's `parameters`, a model's own count)
         assert!(problem.variables.len() <= MAX_PARAMETERS);
         let free_index: Vec<usize> = free.iter().map(|v| v.parameter).collect();
         DesignNlp {

@@ -26,8 +26,12 @@ pub fn design_from_optimum(problem: &Problem, path: &Path) -> Result<ParsedDesig
         position: None,
         message,
     };
-    let text =
-        std::fs::read_to_string(path).map_err(|e| err("", format!("cannot read it: {e}")))?;
+    let text = crate::vocab::input::read_text(
+        path,
+        crate::vocab::input::MAX_SET_FILE_BYTES,
+        "a report's file",
+    )
+    .map_err(|e| err("", e))?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
     let mut de = serde_json::Deserializer::from_str(text);
     let json = OnceEach {

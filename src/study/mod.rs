@@ -23,7 +23,7 @@ pub mod least_violating;
 mod overrides;
 mod shards;
 pub use least_violating::LeastViolating;
-pub use overrides::{OverrideError, Overrides};
+pub use overrides::{checked_threads, OverrideError, Overrides};
 pub use shards::{merge, run_range, ShardError};
 
 /// What a study runs with; the problem file's `[search]` gives the defaults.

@@ -60,7 +60,8 @@ impl StudyOptions {
             _ => Ok(value.map(|v| v as u64)),
         };
         let starts = range("starts", overrides.starts, STARTS)?;
-        let threads = range("threads", overrides.threads, THREADS)?;
+        let threads = checked_threads(overrides.threads)
+            .map_err(|what| refuse(&format!("{prefix}threads"), what))?;
         // the file's seed is a TOML integer: one range for both
         let seed = range("seed", overrides.seed, (0, i64::MAX))?;
         let mut options = StudyOptions::from_problem(problem);
@@ -72,8 +73,22 @@ impl StudyOptions {
             })?;
         }
         options.starts = starts.map_or(options.starts, |s| s as usize);
-        options.threads = threads.map_or(options.threads, |t| t as usize);
+        options.threads = threads.unwrap_or(options.threads);
         options.seed = seed.unwrap_or(options.seed);
         Ok(options)
+    }
+}
+
+/// A thread count a command (or the Python package) gives, in the range `search.threads`
+/// takes: the one check of every `--threads`, as a thread each is started whether or not
+/// there is work for it. `None` where none is given (the file's); the error says what is
+/// wrong, for the caller to name the file and the key.
+pub fn checked_threads(threads: Option<i128>) -> Result<Option<usize>, String> {
+    let (lo, hi) = THREADS;
+    match threads {
+        Some(t) if !(i128::from(lo)..=i128::from(hi)).contains(&t) => {
+            Err(format!("must lie between {lo} and {hi}, got {t}"))
+        }
+        _ => Ok(threads.map(|t| t as usize)),
     }
 }

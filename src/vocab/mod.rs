@@ -8,6 +8,7 @@
 
 pub mod dimension;
 pub mod error;
+pub mod input;
 pub mod reader;
 pub mod schema;
 pub mod sections;

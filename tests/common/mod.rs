@@ -145,13 +145,15 @@ pub fn printed(x: f64, digits: i32) -> f64 {
 }
 
 /// Runs the `flexopt` binary with `args` on a disk that holds no file longer than `blocks`
-/// blocks of 512 bytes (the shell's `ulimit -f`, SIGXFSZ ignored): a write past it fails with
-/// EFBIG, as on a full disk, without root.
-pub fn flexopt_on_full_disk(blocks: u32, args: &[&str]) -> std::process::Output {
+/// blocks of 512 bytes (the shell's `ulimit -f`): a write past it fails with EFBIG, as on a
+/// full disk, without root. SIGXFSZ is ignored where `ignored`, else at its default (the
+/// process's death, unless flexopt ignores it itself).
+pub fn flexopt_on_full_disk(blocks: u32, ignored: bool, args: &[&str]) -> std::process::Output {
+    let trap = if ignored { "''" } else { "-" };
     std::process::Command::new("sh")
         .arg("-c")
         .arg(format!(
-            "trap '' XFSZ; ulimit -f {blocks}; exec \"$0\" \"$@\""
+            "trap {trap} XFSZ; ulimit -f {blocks}; exec \"$0\" \"$@\""
         ))
         .arg(env!("CARGO_BIN_EXE_flexopt"))
         .args(args)

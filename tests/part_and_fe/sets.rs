@@ -132,7 +132,7 @@ fn a_write_that_fails_leaves_the_earlier_set_whole() {
         };
         flexopt_ok(&args(TABLE1));
         let before = snapshot(&out);
-        let o = flexopt_on_full_disk(FULL_DISK, &args(OTHER));
+        let o = flexopt_on_full_disk(FULL_DISK, true, &args(OTHER));
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(code(&o), Some(1), "{what}: {stderr}");
         // told of the file in place, not of the staging folder

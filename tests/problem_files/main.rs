@@ -9,6 +9,7 @@ mod common;
 mod cli;
 mod designer;
 mod init_choices;
+mod limits;
 mod messages;
 mod network_errors;
 mod network_refused;

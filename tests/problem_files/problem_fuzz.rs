@@ -282,11 +282,9 @@ fn expression() -> impl Strategy<Value = String> {
     })
 }
 
-/// An expression nested deep (parentheses, signs, calls) or long (sums, products, powers),
-/// to the sizes the parser takes on a test's thread (2 MiB of stack) today: 5,000 nested
-/// parentheses there, and 20,000 in `flexopt eval`, abort by stack overflow (issue 50, case
-/// 5, whose parser without recursion on the input's depth lifts these bounds to the 1 MiB a
-/// file may have).
+/// An expression nested deep (parentheses, signs, calls, powers: refused past 100 levels,
+/// [`flexopt::model::expression::MAX_NESTING`]) or long (sums, products: any length, the
+/// evaluation walks the tree without recursion; `problem_files::limits` reads 100,000 terms).
 fn deep_or_long() -> impl Strategy<Value = String> {
     prop_oneof![
         (1usize..2000).prop_map(|d| format!("{}arm{}", "(".repeat(d), ")".repeat(d))),

@@ -48,7 +48,7 @@ fn sweeps_into_one_folder_are_one_set_and_a_failed_one_leaves_it_whole() {
         ["l2.json", "l2.png", "l3.json", "l3.png"]
     );
     let before = snapshot(&out);
-    let o = flexopt_on_full_disk(FULL_DISK_SWEEP, &args(&sweep("l2", "4")));
+    let o = flexopt_on_full_disk(FULL_DISK_SWEEP, true, &args(&sweep("l2", "4")));
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{stderr}");
     assert!(
@@ -99,7 +99,7 @@ fn a_front_joins_the_runs_set_and_a_failed_one_leaves_it_whole() {
     let before = snapshot(&out);
     let mut other = pareto;
     other[9] = "5";
-    let o = flexopt_on_full_disk(FULL_DISK, &other);
+    let o = flexopt_on_full_disk(FULL_DISK, true, &other);
     assert_eq!(o.status.code(), Some(1), "{o:?}");
     assert_eq!(snapshot(&out), before);
     // a run replaces the folder's set: the front of the earlier one goes with it

@@ -13,7 +13,7 @@
 
 use std::collections::HashMap;
 
-use super::{asin_or_acos, atan2, Expression, Function, Kind};
+use super::{asin_or_acos, atan2, operands, pop, Expression, Function, Kind};
 use crate::model::scalar::{self, Scalar};
 
 /// Expressions compiled together: registers `0..inputs` hold the names' values, each
@@ -271,21 +271,37 @@ impl Compiler {
         }
     }
 
-    fn node(&mut self, e: &Expression, i: usize) -> Value {
+    /// The expression's value: its nodes compiled in post-order, each operand's value taken
+    /// from a stack, so the tree's depth never recurses.
+    fn expression(&mut self, e: &Expression) -> Value {
+        let mut stack = Vec::new();
+        for node in &e.nodes {
+            let (first, second) = operands(node.kind);
+            // an operand the node lacks is never read
+            let y = second.map_or(Value::Constant(0.0), |_| pop(&mut stack));
+            let x = first.map_or(Value::Constant(0.0), |_| pop(&mut stack));
+            let v = self.node(node.kind, x, y);
+            stack.push(v);
+        }
+        pop(&mut stack)
+    }
+
+    /// A node of `kind` whose operands' values are `x` and `y`.
+    fn node(&mut self, kind: Kind, x: Value, y: Value) -> Value {
         use Value::{Constant as C, Register as R};
-        let (code, a, b, c) = match e.nodes[i].kind {
+        let (code, a, b, c) = match kind {
             Kind::Constant(c) => return C(c),
             Kind::Name(k) => return R(k as u32),
-            Kind::Neg(a) => match self.node(e, a) {
+            Kind::Neg(_) => match x {
                 C(x) => return C(-x),
                 R(a) => (Code::Neg, a, 0, 0.0),
             },
-            Kind::Add(a, b) => match (self.node(e, a), self.node(e, b)) {
+            Kind::Add(..) => match (x, y) {
                 (C(x), C(y)) => return C(x + y),
                 (R(a), C(y)) | (C(y), R(a)) => (Code::AddC, a, 0, y),
                 (R(a), R(b)) => (Code::Add, a, b, 0.0),
             },
-            Kind::Sub(a, b) => match (self.node(e, a), self.node(e, b)) {
+            Kind::Sub(..) => match (x, y) {
                 (C(x), C(y)) => return C(x - y),
                 (R(a), C(y)) => (Code::SubC, a, 0, y),
                 (C(x), R(b)) => (Code::SubFrom, b, 0, x),
@@ -294,36 +310,26 @@ impl Compiler {
                     (Code::Sub, a, b, 0.0)
                 }
             },
-            Kind::Mul(a, b) => match (self.node(e, a), self.node(e, b)) {
+            Kind::Mul(..) => match (x, y) {
                 (C(x), C(y)) => return C(x * y),
                 (R(a), C(y)) | (C(y), R(a)) => (Code::MulC, a, 0, y),
                 (R(a), R(b)) => (Code::Mul, a, b, 0.0),
             },
             // a quotient of constants is left to the scalar: a dual number divides by
             // multiplying with the reciprocal, which `f64` division does not round alike
-            Kind::Div(a, b) => match (self.node(e, a), self.node(e, b)) {
+            Kind::Div(..) => match (x, y) {
                 (R(a), C(y)) if y != 0.0 => (Code::DivC, a, 0, y),
                 (x, y) => {
                     let (a, b) = (self.register(x), self.register(y));
                     (Code::Div, a, b, 0.0)
                 }
             },
-            Kind::Powi(a, n) => {
-                let a = self.node(e, a);
-                (Code::Powi, self.register(a), n as u32, 0.0)
-            }
-            Kind::Powf(a, y) => {
-                let a = self.node(e, a);
-                (Code::Powf, self.register(a), 0, y)
-            }
-            Kind::Call(f, a, b) => {
-                let x = self.node(e, a);
+            Kind::Powi(_, n) => (Code::Powi, self.register(x), n as u32, 0.0),
+            Kind::Powf(_, y) => (Code::Powf, self.register(x), 0, y),
+            Kind::Call(f, _, b) => {
                 let x = self.register(x);
                 let y = match b {
-                    Some(b) => {
-                        let y = self.node(e, b);
-                        self.register(y)
-                    }
+                    Some(_) => self.register(y),
                     None => 0,
                 };
                 match f {
@@ -351,7 +357,7 @@ impl Tape {
         let outputs: Vec<u32> = expressions
             .into_iter()
             .map(|e| {
-                let v = c.node(e, e.root);
+                let v = c.expression(e);
                 c.register(v)
             })
             .collect();

@@ -191,7 +191,16 @@ pub(super) fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
     let unit = Unit::parse(unit_name, Dimension::Length)
         .map_err(|e| s.err(&net(&[k("unit")]), e))?
         .to_si(1.0);
-    // the parameters, each with its dimension
+    // the parameters, each with its dimension; their count bounded, as a design's
+    // gradients are dual numbers of a derivative per parameter, compiled for each count
+    let most = crate::model::MAX_PARAMETERS;
+    if n.parameters.len() > most {
+        let what = format!(
+            "{} parameters; a network has at most {most}",
+            n.parameters.len()
+        );
+        return Err(s.err(&net(&[k("parameters")]), what));
+    }
     let mut parameters = Vec::new();
     for (i, Two([name, dim])) in n.parameters.iter().enumerate() {
         let path = net(&[k("parameters"), Segment::Index(i)]);

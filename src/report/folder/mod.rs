@@ -106,7 +106,8 @@ fn plain(name: &str) -> bool {
 
 /// The manifest at `path`, if there is one that reads as a manifest.
 fn read_manifest(path: &Path) -> Option<Manifest> {
-    serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()
+    let limit = crate::vocab::input::MAX_SET_FILE_BYTES;
+    serde_json::from_str(&crate::vocab::input::read_text(path, limit, "a manifest").ok()?).ok()
 }
 
 /// Whether `path` is still the entry a set listed there: a regular file for a file; for a

@@ -18,6 +18,7 @@ use serde_json::Value;
 
 use super::folder::{self, Entry, OutputSet};
 use super::WriteError;
+use crate::vocab::input::MAX_SET_FILE_BYTES;
 
 /// The report's file name in a set.
 pub const REPORT: &str = "report.html";
@@ -78,7 +79,8 @@ struct FeOrder {
 }
 
 fn read_text(path: &Path) -> Result<String, String> {
-    std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))
+    crate::vocab::input::read_text(path, MAX_SET_FILE_BYTES, "a file of a set")
+        .map_err(|e| format!("{}: {e}", path.display()))
 }
 
 fn parse<T: serde::de::DeserializeOwned>(path: &Path, text: &str) -> Result<T, String> {
@@ -185,7 +187,9 @@ impl Set {
             }
             _ => self.files.iter().any(|e| e.name == name),
         };
-        let bytes = std::fs::read(path).ok().filter(|_| in_set)?;
+        let bytes = crate::vocab::input::read_bytes(&path, MAX_SET_FILE_BYTES, "a picture")
+            .ok()
+            .filter(|_| in_set)?;
         Some(format!(
             "data:image/png;base64,{}",
             base64::engine::general_purpose::STANDARD.encode(bytes)
