@@ -8,6 +8,7 @@
 //! drawing data, its part and the finite-element check the part states. The rest of flexopt
 //! reaches a model only through a [`Mechanism`] and the [`registry`].
 
+pub mod actuator;
 pub mod bridge;
 pub mod clearance;
 pub mod entry;

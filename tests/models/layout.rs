@@ -7,12 +7,12 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 /// A `.rs` file of `src/`: its path relative to the package root and its text.
-struct Source {
-    path: String,
-    text: String,
+pub(crate) struct Source {
+    pub(crate) path: String,
+    pub(crate) text: String,
 }
 
-fn sources() -> Vec<Source> {
+pub(crate) fn sources() -> Vec<Source> {
     fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
         for entry in fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
@@ -41,14 +41,14 @@ fn sources() -> Vec<Source> {
 }
 
 /// A string literal's content and the line it starts on.
-struct Literal {
-    line: usize,
-    content: String,
+pub(crate) struct Literal {
+    pub(crate) line: usize,
+    pub(crate) content: String,
 }
 
 /// The code with comments and the contents of string and character literals blanked (lines
 /// kept), and the string literals apart.
-fn lex(text: &str) -> (String, Vec<Literal>) {
+pub(crate) fn lex(text: &str) -> (String, Vec<Literal>) {
     let c: Vec<char> = text.chars().collect();
     let mut code = String::with_capacity(text.len());
     let mut literals = Vec::new();
@@ -163,7 +163,7 @@ fn lex(text: &str) -> (String, Vec<Literal>) {
 
 /// The tokens of blanked code that matter to paths: identifiers (with `$crate`), `::`, and
 /// single punctuation characters; each with its line.
-fn tokens(code: &str) -> Vec<(String, usize)> {
+pub(crate) fn tokens(code: &str) -> Vec<(String, usize)> {
     let c: Vec<char> = code.chars().collect();
     let mut out = Vec::new();
     let (mut i, mut line) = (0, 1);
@@ -196,7 +196,7 @@ fn tokens(code: &str) -> Vec<(String, usize)> {
 }
 
 /// The first identifier of each item of the `{...}` group opening at `tokens[open]`.
-fn group_heads(tokens: &[(String, usize)], open: usize) -> Vec<(String, usize)> {
+pub(crate) fn group_heads(tokens: &[(String, usize)], open: usize) -> Vec<(String, usize)> {
     let mut heads = Vec::new();
     let mut depth = 0;
     let mut expect_head = true;
@@ -241,6 +241,18 @@ fn path_heads(tokens: &[(String, usize)], at: usize) -> Vec<(String, usize)> {
         }
         _ => Vec::new(),
     }
+}
+
+/// How many `super::` open the path at `tokens[at]`, and where the path goes on after them.
+pub(crate) fn supers(tokens: &[(String, usize)], at: usize) -> (usize, usize) {
+    let (mut n, mut j) = (0, at);
+    while tokens.get(j).is_some_and(|x| x.0 == "super")
+        && tokens.get(j + 1).is_some_and(|x| x.0 == "::")
+    {
+        n += 1;
+        j += 2;
+    }
+    (n, j)
 }
 
 /// A reference from one top-level module to another, where it is written.
@@ -333,14 +345,7 @@ fn module_edges(sources: &[Source]) -> (BTreeSet<String>, Vec<Edge>) {
                     }
                 }
                 "super" if !after_path => {
-                    let mut n = 0;
-                    let mut j = i;
-                    while t.get(j).is_some_and(|x| x.0 == "super")
-                        && t.get(j + 1).is_some_and(|x| x.0 == "::")
-                    {
-                        n += 1;
-                        j += 2;
-                    }
+                    let (n, j) = supers(&t, i);
                     let here = path.len() + inline.len();
                     if n > 0 && n == here {
                         for (name, line) in path_heads(&t, j - 1) {
@@ -375,7 +380,7 @@ fn module_edges(sources: &[Source]) -> (BTreeSet<String>, Vec<Edge>) {
 }
 
 /// Every elementary cycle of the graph, each once, starting at its smallest node.
-fn cycles(
+pub(crate) fn cycles(
     nodes: &BTreeSet<String>,
     arrows: &BTreeMap<(String, String), Vec<String>>,
 ) -> Vec<Vec<String>> {

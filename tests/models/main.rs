@@ -25,5 +25,6 @@ mod paper001;
 mod paper004_tables;
 mod prr3;
 mod pss3;
+mod rooms;
 mod step_response;
 mod toy_model;

@@ -6,17 +6,15 @@ use serde_json::json;
 
 use super::dynamics::DynamicsSettings;
 use super::part::PartSettings;
-use super::{Actuator, Bridge, BridgeSettings};
+use super::{Bridge, BridgeSettings};
+use crate::model::actuator::{Actuator, RawActuator};
 use crate::model::entry::SectionSchema;
 use crate::model::hinge::HingeKind;
 use crate::model::material::{Material, RawMaterial};
 use crate::model::Mechanism;
 use crate::vocab::error::Segment;
 use crate::vocab::reader::{k, quoted, Res};
-use crate::vocab::schema::{
-    Measure, Measured, NonNegativeForce, NonNegativeLength, NonNegativeMass, PositiveLength,
-    PositiveStiffness,
-};
+use crate::vocab::schema::{Measure, Measured, NonNegativeLength, NonNegativeMass, PositiveLength};
 use crate::vocab::sections::Sections;
 use crate::vocab::values::{Number, Quantity};
 
@@ -50,17 +48,6 @@ struct RawHinges {
 struct RawOneHinge {
     #[schemars(extend("enum" = HingeKind::NAMES))]
     kind: String,
-}
-
-/// `[actuator]`, which the network reads too (one schema for the section of that name).
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub(crate) struct RawActuator {
-    pub(crate) nominal_stroke: Measured<PositiveLength>,
-    pub(crate) preload: Measured<NonNegativeForce>,
-    pub(crate) stiffness: Option<Measured<PositiveStiffness>>,
-    pub(crate) length: Option<Measured<PositiveLength>>,
-    pub(crate) height: Option<Measured<PositiveLength>>,
 }
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -182,7 +169,7 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         hinge_d,
         width: s.measured(&[k("hinge"), k("width")], &h.width)?,
         material,
-        actuator: actuator(s, &a)?,
+        actuator: Actuator::read(s, &a)?,
         dynamics: d
             .as_ref()
             .map(|d| dynamics(s, d, part.link_thickness))
@@ -202,18 +189,6 @@ fn hinge_kind(s: &Sections, path: &[Segment], kind: &str) -> Res<HingeKind> {
                 quoted(HingeKind::NAMES)
             ),
         )
-    })
-}
-
-fn actuator(s: &Sections, a: &RawActuator) -> Res<Actuator> {
-    let path = |key: &str| [k("actuator"), k(key)];
-    Ok(Actuator {
-        nominal_stroke: s.measured(&path("nominal_stroke"), &a.nominal_stroke)?,
-        preload: s.measured(&path("preload"), &a.preload)?,
-        stiffness: match &a.stiffness {
-            Some(q) => Some(s.measured(&path("stiffness"), q)?),
-            None => None,
-        },
     })
 }
 

@@ -57,16 +57,8 @@ pub const ENTRY: ModelEntry = ModelEntry {
     hinge_layout: Some(|kind| Layout::new(kind, kind).hinge_dimensions()),
 };
 
-/// The piezo actuator that drives the bridge (paper 004, Eq. 12-14).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Actuator {
-    /// Nominal stroke X_PZT^nl (m).
-    pub nominal_stroke: f64,
-    /// Preload F_preload (N).
-    pub preload: f64,
-    /// Stiffness k_pzt (N/m); `None` for an actuator much stiffer than the bridge.
-    pub stiffness: Option<f64>,
-}
+/// The actuator every mechanism shares, by the path the bridge's users name it.
+pub use crate::model::actuator::Actuator;
 
 /// Everything about a bridge that is not a design parameter.
 #[derive(Debug, Clone, PartialEq, Serialize)]

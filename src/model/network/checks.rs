@@ -8,7 +8,7 @@ use geo::{Coord, Intersects, Line};
 use serde::de::{self, Deserializer, IgnoredAny, SeqAccess, Visitor};
 use serde::Deserialize;
 
-use super::file::{Description, Keyed};
+use super::description::{Description, Keyed};
 use crate::model::expression;
 use crate::model::scalar::Jet;
 use crate::model::{Dimension, ParameterInfo};
@@ -54,7 +54,7 @@ impl<'de> Deserialize<'de> for Two {
 /// Why `name` cannot name a parameter of the expressions: `deg` and what the expression
 /// language reserves (`pi`, its functions), or a text that is no name.
 pub fn parameter_name_error(name: &str) -> Option<String> {
-    let why = if name == super::file::DEG {
+    let why = if name == super::description::DEG {
         "the expressions read `deg` as pi / 180"
     } else if let Some(why) = expression::reserved(name) {
         why

@@ -5,18 +5,9 @@
 //! its skeleton is broken between pieces by a node that is not a number, across which no
 //! member is drawn ([`Skeleton`]).
 
-use super::model::NetworkModel;
+use super::model::{NetworkModel, Picture};
 use crate::model::mechanism::Depiction;
 use crate::model::{Drawing, Skeleton};
-
-/// The described part at one design (m).
-#[derive(Debug, Clone, PartialEq)]
-pub(super) struct Picture {
-    /// Each body's points: its outline, or its link's two ends.
-    pub bodies: Vec<Vec<[f64; 2]>>,
-    /// Each flexure's start, end and least thickness: the hinges, then the beams.
-    pub flexures: Vec<([f64; 2], [f64; 2], f64)>,
-}
 
 /// What [`NetworkModel`]'s skeleton draws.
 const LEGEND: &str = "to scale, the described part: hinges and beams in colour at their least \

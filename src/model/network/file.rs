@@ -42,16 +42,17 @@ use indexmap::IndexMap;
 use serde::Deserialize;
 
 use super::checks::{self, Two};
-use super::model::{Actuator, NetworkModel};
-use super::part::{Counterparts, NetworkPart, PartSettings, RawNetworkPart};
-use crate::model::bridge::file::RawActuator;
+use super::description::{
+    Axis, BeamDescription, BodyDescription, Description, HingeDescription, Keyed,
+    MeasureDescription, Point, PortDescription, DEG, GROUND,
+};
+use super::part::RawNetworkPart;
+use crate::model::actuator::RawActuator;
 use crate::model::entry::SectionSchema;
 use crate::model::expression::Expression;
 use crate::model::hinge::HingeKind;
-use crate::model::material::{Material, RawMaterial};
-use crate::model::Model;
-use crate::model::{Dimension, Mechanism, ParameterInfo};
-use crate::part::Actuation;
+use crate::model::material::RawMaterial;
+use crate::model::{Dimension, ParameterInfo};
 use crate::vocab::error::Segment;
 use crate::vocab::reader::{k, quoted, Res};
 use crate::vocab::schema::{Measured, NonNegativeMass, PositiveLength};
@@ -61,15 +62,9 @@ use crate::vocab::units::{self, Unit};
 /// The sections the network reads.
 pub const SECTIONS: &[&str] = &["material", "network", "actuator", "part"];
 
-/// The name of the ground among the bodies.
-pub const GROUND: &str = "ground";
-
-/// The constant `deg` beside the parameters: pi / 180.
-pub const DEG: &str = "deg";
-
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-struct RawNetwork {
+pub(super) struct RawNetwork {
     width: Measured<PositiveLength>,
     unit: Option<String>,
     /// Each parameter as `[name, dimension]`: a list, as a table's keys come in no order.
@@ -161,119 +156,6 @@ struct RawNetworkMeasure {
     value: String,
 }
 
-/// A mirror axis: `X` the line y = 0, `Y` the line x = 0.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Axis {
-    X,
-    Y,
-}
-
-impl Axis {
-    /// As the file names it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Axis::X => "x",
-            Axis::Y => "y",
-        }
-    }
-}
-
-/// An expression and the key it was read from (for errors at a design).
-#[derive(Debug, Clone)]
-pub struct Keyed {
-    pub key: String,
-    pub expression: Expression,
-    /// Its place among the expressions compiled into one tape
-    /// ([`crate::model::expression::Tape`]), set by whoever compiles it: the model in its
-    /// description, the part's rules in their own copy of it.
-    pub slot: usize,
-}
-
-pub type Point = [Keyed; 2];
-
-/// A body: its name, its geometry's points (outline vertices, or a link's ends) and the
-/// axes it lies across.
-#[derive(Debug, Clone)]
-pub struct BodyDescription {
-    pub name: String,
-    /// Its key in the file (`network.bodies[2]`).
-    pub key: String,
-    pub points: Vec<Point>,
-    /// A link's width (its two points the segment's ends); `None` for an outline.
-    pub link_width: Option<Keyed>,
-    pub on_axis: Vec<Axis>,
-}
-
-/// A hinge: which bodies it joins (`None` the ground), where, and its dimensions in the
-/// kind's order.
-#[derive(Debug, Clone)]
-pub struct HingeDescription {
-    pub name: String,
-    /// Its key in the file (`network.hinges[0]`).
-    pub key: String,
-    pub kind: HingeKind,
-    pub from: Option<usize>,
-    pub to: Option<usize>,
-    pub start: Point,
-    pub angle: Keyed,
-    pub dimensions: Vec<Keyed>,
-    /// The parameter each dimension is, where it is one alone (for the ranges of fit).
-    pub parameter_of: Vec<Option<usize>>,
-}
-
-/// A flexible beam: which bodies it joins (`None` the ground), from its `start` on `from`
-/// to its `end` on `to`, and its in-plane thickness.
-#[derive(Debug, Clone)]
-pub struct BeamDescription {
-    pub name: String,
-    /// Its key in the file (`network.beams[0]`).
-    pub key: String,
-    pub from: Option<usize>,
-    pub to: Option<usize>,
-    pub start: Point,
-    pub end: Point,
-    pub thickness: Keyed,
-}
-
-/// A port: a point of a body and a direction, maybe across a mirror axis.
-#[derive(Debug, Clone)]
-pub struct PortDescription {
-    pub name: String,
-    pub body: usize,
-    pub at: Point,
-    pub direction: Point,
-    pub across: Option<Axis>,
-    /// The mass it carries (kg), at its point: an output's payload (zero if none).
-    pub payload: f64,
-}
-
-/// A named expression reported as an output.
-#[derive(Debug, Clone)]
-pub struct MeasureDescription {
-    pub name: String,
-    pub dimension: Dimension,
-    pub value: Keyed,
-}
-
-/// The whole description, its expressions parsed against the parameters and `deg`.
-#[derive(Debug, Clone)]
-pub struct Description {
-    pub parameters: Vec<ParameterInfo>,
-    /// Metres per unit of the expressions' lengths.
-    pub unit: f64,
-    pub width: f64,
-    pub mirror: Vec<Axis>,
-    /// The bodies other than the ground, in the file's order.
-    pub bodies: Vec<BodyDescription>,
-    /// The ground's outline points, for the extent.
-    pub ground: Vec<Point>,
-    pub hinges: Vec<HingeDescription>,
-    pub beams: Vec<BeamDescription>,
-    pub input: PortDescription,
-    pub outputs: Vec<PortDescription>,
-    pub measures: Vec<MeasureDescription>,
-}
-
 /// The JSON Schema of each of the network's sections.
 pub fn schema(g: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
     let one = SectionSchema::new;
@@ -286,60 +168,6 @@ pub fn schema(g: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
         one("actuator", g.subschema_for::<RawActuator>(), true),
         one("part", g.subschema_for::<RawNetworkPart>(), false),
     ]
-}
-
-/// Reads the network's sections and builds the model.
-pub fn build(s: &mut Sections) -> Res<Mechanism> {
-    let m: RawMaterial = s.required("material")?;
-    let n: RawNetwork = s.required("network")?;
-    let a: RawActuator = s.required("actuator")?;
-    let material = Material::from_section(s, &m)?;
-    let description = describe(s, &n)?;
-    let act = |key: &str| [k("actuator"), k(key)];
-    let actuator = Actuator {
-        nominal_stroke: s.measured(&act("nominal_stroke"), &a.nominal_stroke)?,
-        preload: s.measured(&act("preload"), &a.preload)?,
-        stiffness: a
-            .stiffness
-            .as_ref()
-            .map(|q| s.measured(&act("stiffness"), q))
-            .transpose()?,
-    };
-    let part: Option<RawNetworkPart> = s.optional("part")?;
-    let part = part.map(|p| PartSettings::read(s, &p)).transpose()?;
-    let actuation = Actuation {
-        nominal_stroke: actuator.nominal_stroke,
-        preload: actuator.preload,
-        stiffness: actuator.stiffness,
-        payload_mass: description.outputs[0].payload,
-    };
-    let drawn = part.map(|settings| (settings, description.clone()));
-    let model = NetworkModel::new(description, material, actuator);
-    let names: Vec<&str> = model.outputs().iter().map(|o| o.name.as_ref()).collect();
-    if let Some((path, why)) = checks::name_error(model.description())
-        .or_else(|| checks::output_clash(&names, model.description()))
-    {
-        return Err(s.err(&path, why));
-    }
-    let counterparts = Counterparts {
-        amplification: model.output_index("amplification"),
-        k_in: model.output_index("k_in"),
-        k_out: model.output_index("k_out"),
-        stress_max: model.output_index("stress_max"),
-        f1: model.output_index("f1"),
-    };
-    let model = std::sync::Arc::new(model);
-    let mut mechanism = Mechanism::physics_only(model.clone()).with_modulus_scaling(model.clone());
-    mechanism.depiction = Some(model);
-    if let Some((settings, description)) = drawn {
-        mechanism.part_maker = Some(std::sync::Arc::new(NetworkPart::new(
-            description,
-            settings,
-            actuation,
-            counterparts,
-        )));
-    }
-    Ok(mechanism)
 }
 
 fn net(rest: &[Segment]) -> Vec<Segment> {
@@ -357,7 +185,7 @@ fn written(path: &[Segment]) -> String {
     crate::vocab::error::format_path(path)
 }
 
-fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
+pub(super) fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
     let width = s.measured(&net(&[k("width")]), &n.width)?;
     let unit_name = n.unit.as_deref().unwrap_or("mm");
     let unit = Unit::parse(unit_name, Dimension::Length)

@@ -5,8 +5,10 @@
 //! ([`file`]) and the model of its outputs ([`model`]); its part and the finite-element
 //! check through its ports ([`part`]), for a file with a `[part]` section.
 
+mod assemble;
 mod checks;
 mod depiction;
+pub mod description;
 pub mod file;
 pub mod model;
 pub mod modes;
@@ -22,7 +24,7 @@ use super::entry::ModelEntry;
 pub const ENTRY: ModelEntry = ModelEntry {
     name: "network",
     sections: file::SECTIONS,
-    build: file::build,
+    build: assemble::build,
     schema: file::schema,
     template: include_str!("../templates/network.toml"),
     hinge_layout: None,

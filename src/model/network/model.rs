@@ -22,13 +22,14 @@ use std::borrow::Cow;
 use std::cell::RefCell;
 use std::convert::Infallible;
 
-use super::file::{Axis, Description, HingeDescription, Keyed, Point};
+use super::description::{Axis, Description, HingeDescription, Keyed, Point};
 use super::modes::{described_piece, Inertia, ModeError};
 use super::on_axis::flexure_on_mirror_axis;
 use super::structure::{beam_compliance, end_of};
 use super::structure::{
     Body, Case, Displacements, Dof, Flexure, Load, Network, NetworkError, SolveBuffers, Spring,
 };
+use crate::model::actuator::Actuator;
 use crate::model::expression::Tape;
 use crate::model::fit::FitLimit;
 use crate::model::hinge::{Compliance, HingeKind, HingeLoads, MAX_HINGE_DIMENSIONS};
@@ -36,12 +37,13 @@ use crate::model::material::Material;
 use crate::model::scalar::{max, with_count, Jet, Scalar};
 use crate::model::{unseed, Dimension, Model, OutputInfo, ParameterInfo};
 
-/// The actuator that drives the input (paper 004, Eq. 12-14), as the bridge's.
+/// The described part at one design (m), for its pictures ([`super::depiction`]).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Actuator {
-    pub nominal_stroke: f64,
-    pub preload: f64,
-    pub stiffness: Option<f64>,
+pub(super) struct Picture {
+    /// Each body's points: its outline, or its link's two ends.
+    pub bodies: Vec<Vec<[f64; 2]>>,
+    /// Each flexure's start, end and least thickness: the hinges, then the beams.
+    pub flexures: Vec<([f64; 2], [f64; 2], f64)>,
 }
 
 /// What an output is.
@@ -1007,7 +1009,7 @@ impl NetworkModel {
 
     /// The described part at the design `x` (SI) for its pictures; `None` where an
     /// expression fails there.
-    pub(super) fn picture(&self, x: &[f64]) -> Option<super::depiction::Picture> {
+    pub(super) fn picture(&self, x: &[f64]) -> Option<Picture> {
         let mut work = Work::default();
         self.at(x, None, true, &mut work).ok()?;
         let e = &work.evaluated;
@@ -1016,7 +1018,7 @@ impl NetworkModel {
             Some(hinge) => hinge.kind.least_thickness(&e.dims[h]),
             None => e.dims[h][1],
         };
-        Some(super::depiction::Picture {
+        Some(Picture {
             bodies: e
                 .offsets
                 .windows(2)

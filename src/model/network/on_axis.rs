@@ -9,7 +9,7 @@
 //! flexure can be declared cut by the axis (half its stiffness in the half, its loads
 //! doubled for its stress), such a description is refused with the flexure named.
 
-use super::file::{Axis, Description};
+use super::description::{Axis, Description};
 use super::structure::Flexure;
 
 /// How close to the axis, relative to the flexure's length, an end counts as on it: far

@@ -1,6 +1,6 @@
 //! The ports' faces on a network's part and the finite-element check stated through them.
 
-use super::super::file::Axis;
+use super::super::description::Axis;
 use super::images::Image;
 use super::plane::{add, covered, exit, same_face, scale, P};
 use crate::model::Dimension;
@@ -9,7 +9,14 @@ use crate::part::analysis::{
 };
 use crate::part::{Face, Solid};
 
-use super::FE_K_IN;
+use crate::part::analysis::FeOutputId;
+
+pub(super) const FE_K_IN: FeOutputId = FeOutputId(0);
+pub(super) const FE_AMPLIFICATION: FeOutputId = FeOutputId(1);
+pub(super) const FE_K_OUT: FeOutputId = FeOutputId(2);
+pub(super) const FE_STRESS_SECTION: FeOutputId = FeOutputId(3);
+/// After `fe_stress_max` ([`analysis`]), where the part has its modes checked.
+pub(super) const FE_F1: FeOutputId = FeOutputId(5);
 
 /// A port's face on the described part: its name, ends, the port's direction and axis.
 pub(super) struct PlacedPort<'a> {

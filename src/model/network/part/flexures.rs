@@ -11,7 +11,7 @@
 //! beside the hinges'. A beam drawn as a link would be none of these.
 
 use super::plane::{add, band, scale, P};
-use super::PartSettings;
+use super::settings::PartSettings;
 use crate::model::hinge::HingeKind;
 use crate::part::{HingeSite, Solid};
 

@@ -1,6 +1,6 @@
 //! The images of a network's described part about its mirror axes.
 
-use super::super::file::Axis;
+use super::super::description::Axis;
 use super::plane::P;
 use crate::model::scalar::Scalar;
 

@@ -46,97 +46,30 @@
 //! faces; with them on the right half, the lowest of the modes symmetric about the y axis
 //! (the stack a spring between the input faces) and antisymmetric about it.
 
-use serde::Deserialize;
-
-use super::file::{Axis, Description, Keyed, Point};
+use super::description::{Axis, Description};
 use crate::model::hinge::HingeKind;
 use crate::model::part_rules::{PartRule, Witness};
-use crate::model::scalar::Scalar;
 use crate::model::{Dimension, PartMaker};
 use crate::part::analysis::{
-    Analysis, FeCounterpart, FeOutput, FeOutputId, Modal, Quantity, Spring as FeSpring,
+    Analysis, FeCounterpart, FeOutput, Modal, Quantity, Spring as FeSpring,
 };
 use crate::part::{convex_hull, Actuation, Face, HingeSite, PartSpec, Solid};
-use crate::vocab::reader::{k, Res};
-use crate::vocab::schema::{Measured, NonNegativeLength, PositiveLength};
-use crate::vocab::sections::Sections;
 
 mod faces;
 mod flexures;
 mod images;
 mod plane;
 mod rules;
+mod settings;
+mod values;
 
 use faces::{port_face, ports_check, FaceProblem, PlacedPort};
+use faces::{FE_AMPLIFICATION, FE_F1, FE_K_IN, FE_K_OUT, FE_STRESS_SECTION};
 use flexures::{CutHinge, Named};
 use images::Image;
 use plane::{band, convex_pieces, exposed, scale, sub, P};
-
-/// `[part]` of a network: a file with this section has a part.
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct RawNetworkPart {
-    /// The radius of the fillets at a strip's roots (default 0.2 mm).
-    fillet_radius: Option<Measured<NonNegativeLength>>,
-    /// The narrowest slot the wire cuts (default 0.4 mm).
-    min_slot: Option<Measured<NonNegativeLength>>,
-    /// How deep each hinge's pad reaches into its body (default 2 mm).
-    pad: Option<Measured<PositiveLength>>,
-    /// How far a pad reaches beside the hinge's root and fillet (default 1 mm).
-    pad_margin: Option<Measured<PositiveLength>>,
-    /// The length of a port's face (default 2 mm).
-    face: Option<Measured<PositiveLength>>,
-    /// Whether the study keeps to the part's rules (default true): its slots and keep-out
-    /// bands as constraints; `false` checks the part after the study only.
-    enforce: Option<bool>,
-}
-
-/// `[part]` of a network (SI).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PartSettings {
-    pub fillet_radius: f64,
-    pub min_slot: f64,
-    pub pad: f64,
-    pub pad_margin: f64,
-    pub face: f64,
-    /// Whether the study keeps to the part's rules ([`rules`]): `[part] enforce`.
-    pub enforce: bool,
-}
-
-impl Default for PartSettings {
-    /// As the bridge's part: wire EDM with a 0.25 mm wire cuts inner corners of about 0.17
-    /// mm radius and slots of about 0.33 mm.
-    fn default() -> Self {
-        PartSettings {
-            fillet_radius: 0.2e-3,
-            min_slot: 0.4e-3,
-            pad: 2e-3,
-            pad_margin: 1e-3,
-            face: 2e-3,
-            enforce: true,
-        }
-    }
-}
-
-impl PartSettings {
-    /// `[part]`, each key with its default.
-    pub fn read(s: &Sections, p: &RawNetworkPart) -> Res<Self> {
-        let at = |key: &str| [k("part"), k(key)];
-        let d = PartSettings::default();
-        Ok(PartSettings {
-            fillet_radius: s.measured_or(
-                &at("fillet_radius"),
-                &p.fillet_radius,
-                d.fillet_radius,
-            )?,
-            min_slot: s.measured_or(&at("min_slot"), &p.min_slot, d.min_slot)?,
-            pad: s.measured_or(&at("pad"), &p.pad, d.pad)?,
-            pad_margin: s.measured_or(&at("pad_margin"), &p.pad_margin, d.pad_margin)?,
-            face: s.measured_or(&at("face"), &p.face, d.face)?,
-            enforce: p.enforce.unwrap_or(d.enforce),
-        })
-    }
-}
+pub use settings::{PartSettings, RawNetworkPart};
+use values::Values;
 
 /// The model's outputs the check measures, by their indices among the model's outputs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -183,13 +116,6 @@ impl NetworkPart {
         }
     }
 }
-
-const FE_K_IN: FeOutputId = FeOutputId(0);
-const FE_AMPLIFICATION: FeOutputId = FeOutputId(1);
-const FE_K_OUT: FeOutputId = FeOutputId(2);
-const FE_STRESS_SECTION: FeOutputId = FeOutputId(3);
-/// After `fe_stress_max` ([`faces::analysis`]), where the part has its modes checked.
-const FE_F1: FeOutputId = FeOutputId(5);
 
 impl PartMaker for NetworkPart {
     fn part(&self, x: &[f64]) -> Result<PartSpec, Vec<String>> {
@@ -295,46 +221,6 @@ fn modes_check(check: &mut Analysis, d: &Description, grounded: bool) -> Option<
         analytic: None,
     });
     Some(())
-}
-
-/// The description's expressions evaluated at `x` (SI), over `f64` for the spec and over
-/// dual numbers for the rules ([`rules`]).
-struct Values<'a, D = f64> {
-    d: &'a Description,
-    values: Vec<D>,
-}
-
-impl<'a, D: Scalar> Values<'a, D> {
-    fn new(d: &'a Description, x: &[D]) -> Self {
-        let mut values: Vec<D> = Vec::with_capacity(x.len() + 1);
-        values.extend(x.iter().zip(&d.parameters).map(|(&v, p)| {
-            if p.dimension == Dimension::Length {
-                v / d.unit
-            } else {
-                v
-            }
-        }));
-        values.push(D::from(std::f64::consts::PI / 180.0));
-        Values { d, values }
-    }
-
-    fn eval(&self, e: &Keyed) -> Result<D, String> {
-        e.expression
-            .eval(&self.values)
-            .map_err(|err| format!("{} = \"{}\": {err}", e.key, e.expression.source()))
-    }
-
-    fn length(&self, e: &Keyed) -> Result<D, String> {
-        Ok(self.eval(e)? * self.d.unit)
-    }
-
-    fn point(&self, p: &Point) -> Result<[D; 2], String> {
-        Ok([self.length(&p[0])?, self.length(&p[1])?])
-    }
-
-    fn points(&self, ps: &[Point]) -> Result<Vec<[D; 2]>, String> {
-        ps.iter().map(|p| self.point(p)).collect()
-    }
 }
 
 /// A physical body of the whole part: its slot (0 the ground) and which of its images.

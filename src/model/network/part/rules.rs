@@ -30,10 +30,11 @@
 //! functions of the design that change sign where the spec refuses, but searches along a
 //! line; the spec still refuses such a part after the study.
 
-use super::super::file::{Axis, Description, Keyed};
+use super::super::description::{Axis, Description, Keyed};
 use super::images::Image;
 use super::plane::{add, convex_piece_indices, scale};
-use super::{PartSettings, Values};
+use super::settings::PartSettings;
+use super::values::Values;
 use crate::model::clearance::{clearance, clearance_below, Feature, Pt, Solid};
 use crate::model::expression::Tape;
 use crate::model::hinge::{HingeKind, MAX_HINGE_DIMENSIONS};

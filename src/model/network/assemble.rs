@@ -1,0 +1,61 @@
+//! The network as a [`Mechanism`]: its sections read ([`super::file`]) into a
+//! [`super::description::Description`], and from it the model and, with a `[part]` section, the part. Apart from
+//! the parser so that reading a file and building from it import each other's types in one
+//! direction only.
+
+use super::checks;
+use super::file::{describe, RawNetwork};
+use super::model::NetworkModel;
+use super::part::{Counterparts, NetworkPart, PartSettings, RawNetworkPart};
+use crate::model::actuator::{Actuator, RawActuator};
+use crate::model::material::{Material, RawMaterial};
+use crate::model::Mechanism;
+use crate::model::Model;
+use crate::part::Actuation;
+use crate::vocab::reader::Res;
+use crate::vocab::sections::Sections;
+
+/// Reads the network's sections and builds the model.
+pub fn build(s: &mut Sections) -> Res<Mechanism> {
+    let m: RawMaterial = s.required("material")?;
+    let n: RawNetwork = s.required("network")?;
+    let a: RawActuator = s.required("actuator")?;
+    let material = Material::from_section(s, &m)?;
+    let description = describe(s, &n)?;
+    let actuator = Actuator::read(s, &a)?;
+    let part: Option<RawNetworkPart> = s.optional("part")?;
+    let part = part.map(|p| PartSettings::read(s, &p)).transpose()?;
+    let actuation = Actuation {
+        nominal_stroke: actuator.nominal_stroke,
+        preload: actuator.preload,
+        stiffness: actuator.stiffness,
+        payload_mass: description.outputs[0].payload,
+    };
+    let drawn = part.map(|settings| (settings, description.clone()));
+    let model = NetworkModel::new(description, material, actuator);
+    let names: Vec<&str> = model.outputs().iter().map(|o| o.name.as_ref()).collect();
+    if let Some((path, why)) = checks::name_error(model.description())
+        .or_else(|| checks::output_clash(&names, model.description()))
+    {
+        return Err(s.err(&path, why));
+    }
+    let counterparts = Counterparts {
+        amplification: model.output_index("amplification"),
+        k_in: model.output_index("k_in"),
+        k_out: model.output_index("k_out"),
+        stress_max: model.output_index("stress_max"),
+        f1: model.output_index("f1"),
+    };
+    let model = std::sync::Arc::new(model);
+    let mut mechanism = Mechanism::physics_only(model.clone()).with_modulus_scaling(model.clone());
+    mechanism.depiction = Some(model);
+    if let Some((settings, description)) = drawn {
+        mechanism.part_maker = Some(std::sync::Arc::new(NetworkPart::new(
+            description,
+            settings,
+            actuation,
+            counterparts,
+        )));
+    }
+    Ok(mechanism)
+}
