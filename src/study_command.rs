@@ -92,6 +92,9 @@ pub(crate) fn run_study(
             problem.file.display()
         )));
     }
+    if let Some(why) = unevaluated_optimum(problem, &study) {
+        return Err(Failure::no_feasible(why));
+    }
     let checks = fit::checks(problem, study.reported_design());
     for w in fit::warnings(problem, &checks) {
         eprintln!("warning: {}: {w}", problem.file.display());
@@ -246,6 +249,40 @@ pub(crate) fn run_study(
     } else {
         Err(Failure::no_feasible(infeasible_message(problem, &study)))
     }
+}
+
+/// Why the feasible starts' best design is no optimum: the model gives no value there for an
+/// output the report reads (the objective, a constraint), which the study's own outputs did
+/// not show. Said before anything is written, so that no set holds an optimum that "ended
+/// feasible" and reads infeasible.
+fn unevaluated_optimum(problem: &Problem, study: &Study) -> Option<String> {
+    if !study.any_feasible || study.interrupted {
+        return None;
+    }
+    let x = study.reported_design();
+    let report = flexopt::report::DesignReport::new(problem, x);
+    let mut missing: Vec<&str> = report
+        .constraints
+        .iter()
+        .filter(|c| c.value.is_none())
+        .map(|c| c.output.as_str())
+        .collect();
+    if report.objective.is_none() {
+        missing.insert(0, problem.objective.output.as_str());
+    }
+    if missing.is_empty() {
+        return None;
+    }
+    let why = problem
+        .model()
+        .domain_error(x)
+        .unwrap_or_else(|| "the model gives no finite number there".into());
+    Some(format!(
+        "{}: the starts ended feasible, but at their best design {} has no value: {why}; \
+         nothing was written",
+        problem.file.display(),
+        missing.join(", ")
+    ))
 }
 
 /// Why the optimum gets no finite-element step (`--verify`, `--refine fe`), if it gets none.

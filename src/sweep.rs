@@ -132,7 +132,9 @@ pub fn sweep(problem: &Problem, spec: &SweepSpec, base: &[f64]) -> Result<Sweep,
                 key,
                 format!(
                     "{} = {} {} lies outside the model's domain around this design: {why}",
-                    var.name, v, var.unit.name
+                    var.name,
+                    crate::vocab::units::short(v),
+                    var.unit.name
                 ),
             ));
         }

@@ -21,7 +21,9 @@ def optimize(problem_file=ROOT / "problems" / "wei2017.toml"):
     """The driver's optimum: the objective as the problem states it, and the design."""
     problem = flexopt.Problem.load(problem_file)
     model_outputs = [problem.objective] + [c[0] for c in problem.constraints]
-    prob = om.Problem()
+    # no reports: OpenMDAO would write them into a `<script>_out/` folder of the working
+    # directory (the repository's root when run as above); the driver writes nothing else
+    prob = om.Problem(reports=False)
     prob.model.add_subsystem("bridge", FlexoptComponent(problem=problem, outputs=model_outputs),
                              promotes=["*"])
     units = dict(problem.variable_units)

@@ -18,7 +18,23 @@ use crate::problem::Problem;
 /// The samples `flexopt tolerance --samples` takes.
 const SAMPLES: (usize, usize) = (2, 10_000_000);
 
-/// The report of `flexopt tolerance` (`tolerance.json`) at the design `x` (SI).
+/// The `samples` of `tolerance` checked against [`SAMPLES`] as a signed integer (a
+/// negative one raised `OverflowError` as a `usize`).
+pub fn samples(p: &Problem, samples: i64) -> Result<usize, Error> {
+    match usize::try_from(samples) {
+        Ok(n) if (SAMPLES.0..=SAMPLES.1).contains(&n) => Ok(n),
+        _ => {
+            let what = format!(
+                "must lie between {} and {}, got {samples}",
+                SAMPLES.0, SAMPLES.1
+            );
+            Err(Error::bad_input(p.file(), "samples", what))
+        }
+    }
+}
+
+/// The report of `flexopt tolerance` (`tolerance.json`) at the design `x` (SI), of
+/// `samples` checked by [`samples`].
 pub fn tolerance(
     p: &Problem,
     x: &[f64],
@@ -27,13 +43,6 @@ pub fn tolerance(
     threads: Option<usize>,
 ) -> Result<ToleranceReport, Error> {
     let problem = &p.inner;
-    if !(SAMPLES.0..=SAMPLES.1).contains(&samples) {
-        let what = format!(
-            "must lie between {} and {}, got {samples}",
-            SAMPLES.0, SAMPLES.1
-        );
-        return Err(Error::bad_input(p.file(), "samples", what));
-    }
     if let Some(e) = problem.stand_in_error("a tolerance analysis") {
         return Err(e.into());
     }

@@ -136,7 +136,7 @@ impl Problem {
                     Error::bad_input(
                         self.file(),
                         &format!("--design {name}"),
-                        format!("\"{v}\" is not a finite number"),
+                        format!("{} is not a finite number", shown(&v)),
                     )
                 })?;
                 // Rust's shortest decimal reads back as the same float
@@ -151,7 +151,7 @@ impl Problem {
             self.in_domain(&parsed.x, "--design")?;
             return Ok(parsed.x);
         }
-        let free = free_values(design)?;
+        let free = free_values(py, self.file(), design)?;
         Ok(self.design_of_free(&free, &|| "design".into())?)
     }
 
@@ -210,12 +210,56 @@ impl Problem {
     }
 }
 
-/// A sequence or 1-D array of numbers.
-fn free_values(design: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+/// A sequence or 1-D array of numbers, of any numeric type NumPy converts to `float64`.
+fn free_values(py: Python<'_>, file: &Path, design: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
     if let Ok(a) = design.extract::<PyReadonlyArray1<'_, f64>>() {
         return Ok(a.as_array().to_vec());
     }
-    design.extract::<Vec<f64>>()
+    let refuse = |what: String| Error::bad_input(file, "design", what);
+    if design.is_instance_of::<PyString>() {
+        return Err(refuse(
+            "a string is no design: give a dict of the variables, {\"l2\": 1.96, ...}, or the \
+             free variables' values in order (the command line's `l2=1.96,...` is not read here)"
+                .into(),
+        )
+        .into());
+    }
+    let a = float_array(py, design).map_err(|_| {
+        refuse(format!(
+            "{} is no design: give a dict of the variables or the free variables' values in \
+             order",
+            shown(design)
+        ))
+    })?;
+    let Ok(a) = a.extract::<PyReadonlyArray1<'_, f64>>() else {
+        let ndim: usize = a.getattr("ndim")?.extract()?;
+        return Err(refuse(format!(
+            "a {ndim}-D array: a design is one row of the free variables' values (several \
+             rows: `evaluate_many`)"
+        ))
+        .into());
+    };
+    Ok(a.as_array().to_vec())
+}
+
+/// `value` as a NumPy array of `float64` (ints, `float32` and sequences converted).
+fn float_array<'py>(py: Python<'py>, value: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    py.import("numpy")?
+        .getattr("asarray")?
+        .call1((value, "float64"))
+}
+
+/// A Python value for a message: its `repr`, cut short (an int of 400 digits is one).
+pub fn shown(value: &Bound<'_, PyAny>) -> String {
+    const MOST: usize = 40;
+    let text = value
+        .repr()
+        .map(|r| r.to_string())
+        .unwrap_or_else(|_| "the value".into());
+    match text.char_indices().nth(MOST) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text,
+    }
 }
 
 #[pymethods]
@@ -232,6 +276,14 @@ impl Problem {
     #[staticmethod]
     #[pyo3(signature = (text, path = "<string>"))]
     fn from_toml(text: String, path: &str) -> PyResult<Self> {
+        let most = flexopt::problem::MAX_FILE_BYTES;
+        if text.len() as u64 > most {
+            let what = format!(
+                "the text has {} bytes; a problem file may have at most {most} (1 MiB)",
+                text.len()
+            );
+            return Err(Error::bad_input(Path::new(path), "", what).into());
+        }
         Ok(Self::new(Path::new(path), text)?)
     }
 
@@ -388,8 +440,22 @@ impl Problem {
     fn evaluate_many<'py>(
         &self,
         py: Python<'py>,
-        designs: PyReadonlyArray2<'py, f64>,
+        designs: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let refuse = |what: String| Error::bad_input(self.file(), "designs", what);
+        let converted = float_array(py, designs).map_err(|_| {
+            refuse(format!(
+                "{} is no array of designs: give a 2-D array, one row a design",
+                shown(designs)
+            ))
+        })?;
+        let Ok(designs) = converted.extract::<PyReadonlyArray2<'py, f64>>() else {
+            let ndim: usize = converted.getattr("ndim")?.extract()?;
+            return Err(refuse(format!(
+                "a {ndim}-D array: give a 2-D array, one row a design (one design: `evaluate`)"
+            ))
+            .into());
+        };
         let a = designs.as_array();
         let m = self.analytic.len();
         let rows = a.nrows();
@@ -461,10 +527,11 @@ impl Problem {
         &self,
         py: Python<'py>,
         design: &Bound<'py, PyAny>,
-        samples: usize,
+        samples: i64,
         seed: Option<u64>,
         threads: Option<usize>,
     ) -> PyResult<Py<PyAny>> {
+        let samples = commands::samples(self, samples)?;
         let x = self.design(py, design)?;
         let report = py.detach(|| commands::tolerance(self, &x, samples, seed, threads))?;
         to_python(py, &report)

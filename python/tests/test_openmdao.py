@@ -14,7 +14,7 @@ DESIGN = dict(TABLE1, l4=2.5)
 
 
 def checked(wei2017):
-    prob = om.Problem()
+    prob = om.Problem(reports=False)  # no `<name>_out/` reports folder in the working directory
     prob.model.add_subsystem("bridge", FlexoptComponent(problem=wei2017), promotes=["*"])
     prob.setup()
     for name, value in DESIGN.items():

@@ -88,6 +88,18 @@ const FUNCTIONS: [(&str, Function, usize); 12] = [
     ("max", Function::Max, 2),
 ];
 
+/// Why `name` cannot name a quantity of the expressions, where the language keeps it for
+/// itself: a name beside `pi` or a function would be read as the constant, or shadow it.
+pub fn reserved(name: &str) -> Option<&'static str> {
+    if name == "pi" {
+        Some("the expressions read `pi` as the constant π")
+    } else if FUNCTIONS.iter().any(|(n, ..)| *n == name) {
+        Some("it is a function of the expressions")
+    } else {
+        None
+    }
+}
+
 /// What is wrong with an expression's text, and where (a byte offset into it).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParseError {

@@ -80,6 +80,28 @@ impl<const N: usize> From<f64> for Jet2<N> {
     }
 }
 
+/// The parameters `x` and the moduli's factor at one (the last of the `N`) as independent
+/// variables: the inputs of a model's Hessians for its spreads.
+pub(crate) fn seeded_with_modulus<const N: usize>(x: &[f64]) -> Vec<Jet2<N>> {
+    (0..N)
+        .map(|i| Jet2::variable(if i + 1 < N { x[i] } else { 1.0 }, i))
+        .collect()
+}
+
+/// Values, gradients and Hessians (row-major, `N * N` per output) of `y`.
+pub(crate) fn unseed2<const N: usize>(
+    y: &[Jet2<N>],
+    out: &mut [f64],
+    jacobian: &mut [f64],
+    hessian: &mut [f64],
+) {
+    for (i, yi) in y.iter().enumerate() {
+        out[i] = yi.re;
+        jacobian[i * N..(i + 1) * N].copy_from_slice(&yi.grad);
+        yi.hessian(&mut hessian[i * N * N..(i + 1) * N * N]);
+    }
+}
+
 impl<const N: usize> Add for Jet2<N> {
     type Output = Self;
     #[inline(always)]

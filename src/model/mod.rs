@@ -135,7 +135,8 @@ pub struct Drawing {
 /// configuration.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Skeleton {
-    /// The chain's nodes (mm).
+    /// The chain's nodes (mm); a node that is not a number breaks the chain (a network's
+    /// pieces), and neither member beside it is drawn.
     pub nodes_mm: Vec<(f64, f64)>,
     /// Whether each member (between nodes `i` and `i + 1`) is rigid; flexible members are
     /// drawn in the zone's colour, rigid ones in grey.
@@ -365,10 +366,18 @@ pub(crate) fn check_parameters(
         return Some(format!("{} = {v} is not finite", info[i].name));
     }
     if let Some(&i) = positive.iter().find(|&&i| x[i] <= 0.0) {
-        return Some(format!("{} = {} must be positive", info[i].name, x[i]));
+        return Some(format!(
+            "{} = {} must be positive",
+            info[i].name,
+            crate::vocab::units::short(x[i])
+        ));
     }
     if let Some(&i) = non_negative.iter().find(|&&i| x[i] < 0.0) {
-        return Some(format!("{} = {} must not be negative", info[i].name, x[i]));
+        return Some(format!(
+            "{} = {} must not be negative",
+            info[i].name,
+            crate::vocab::units::short(x[i])
+        ));
     }
     None
 }

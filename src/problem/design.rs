@@ -2,6 +2,7 @@
 
 pub use super::optimum_file::design_from_optimum;
 use super::{Problem, ProblemError};
+use crate::vocab::units::short;
 
 /// A full design (every model parameter, SI) read from `name=value` pairs, with a
 /// warning for each value outside its variable's bounds.
@@ -106,19 +107,19 @@ pub(super) fn parse_design_with(
                 format!(
                     "{} = {} {} differs from its fixed value {} {}",
                     var.name,
-                    u.from_si(value),
+                    short(u.from_si(value)),
                     u.name,
-                    u.from_si(var.lower),
+                    short(u.from_si(var.lower)),
                     u.name
                 )
             } else {
                 format!(
                     "{} = {} {} lies outside its bounds [{}, {}] {}",
                     var.name,
-                    u.from_si(value),
+                    short(u.from_si(value)),
                     u.name,
-                    u.from_si(var.lower),
-                    u.from_si(var.upper),
+                    short(u.from_si(var.lower)),
+                    short(u.from_si(var.upper)),
                     u.name
                 )
             });

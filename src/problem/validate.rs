@@ -482,7 +482,7 @@ impl Validator<'_, '_> {
                 if !(y > lo && y < hi) {
                     return Err(self.err(
                         &path("yield"),
-                        format!("must lie strictly between {lo} and {hi}, got {y}"),
+                        format!("must lie strictly between {lo} and {hi}, got {}", short(y)),
                     ));
                 }
                 if limits == 0 {
@@ -503,8 +503,9 @@ impl Validator<'_, '_> {
                     return Err(self.err(
                         &path("k_sigma"),
                         format!(
-                            "must be positive and at most {}, got {v}",
-                            schema::K_SIGMA_MAX
+                            "must be positive and at most {}, got {}",
+                            schema::K_SIGMA_MAX,
+                            short(v)
                         ),
                     ));
                 }

@@ -127,7 +127,9 @@ fn drawn(problem: &Problem, study: &Study) -> Vec<Drawn> {
                     .nodes_mm
                     .iter()
                     .zip(&skeleton.nodes_mm)
-                    .all(|(p, q)| (p.0 - q.0).hypot(p.1 - q.1) < 1e-3)
+                    .all(|(p, q)| {
+                        (p.0.is_nan() && q.0.is_nan()) || (p.0 - q.0).hypot(p.1 - q.1) < 1e-3
+                    })
         };
         if out.iter().any(same) {
             continue;
@@ -176,6 +178,8 @@ pub(super) fn configurations_png(
                 .zip(&s.rigid)
                 .zip(&s.thickness_mm)
                 .zip(&d.notches)
+                // a break in the chain ([`Skeleton::nodes_mm`])
+                .filter(|(((seg, _), _), _)| seg[0].0.is_finite() && seg[1].0.is_finite())
                 .map(move |(((seg, &rigid), &t), notch)| {
                     if rigid || t <= 0.0 {
                         (d.rank, vec![seg[0], seg[1]], false)

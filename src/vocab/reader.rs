@@ -60,11 +60,26 @@ pub(crate) fn deserialize<'de, S: DeserializeSeed<'de>>(
             format!("expected a number{written}")
         } else if message.contains("untagged enum Quantity") {
             "expected a quantity with its unit, e.g. \"10 mm\"".to_string()
+        } else if let Some((head, name)) = message.split_once("expected struct ") {
+            // the type's name is ours, not the file's: say what the key holds
+            format!("{head}expected {}", table_expected(name.trim()))
         } else {
             message
         };
         loc.error_at(key, inner.span(), message)
     })
+}
+
+/// What a key read into the struct `name` holds, as the file writes it.
+fn table_expected(name: &str) -> &'static str {
+    match name {
+        "RawTolerance" => {
+            "a table of the variable's spread, e.g. { plus_minus = 0.005 } or { sigma = 0.004, \
+             distribution = \"uniform\" }"
+        }
+        "RawRobust" => "a table, { yield = 0.99 } or { k_sigma = 3 }",
+        _ => "a table of keys (`flexopt schema` lists them)",
+    }
 }
 
 /// The key a syntax error at `offset` belongs to, read from the text: the last table

@@ -256,7 +256,9 @@ pub fn physical(v: f64, dimension: Dimension) -> Result<(), String> {
 pub fn short(v: f64) -> String {
     let a = v.abs();
     if a == 0.0 || (1e-4..1e7).contains(&a) {
-        return format!("{v}");
+        // seven significant digits: 0.0016, not 0.0015999999999999996
+        let rounded: f64 = format!("{v:.6e}").parse().unwrap_or(v);
+        return format!("{rounded}");
     }
     // seven significant digits, trailing zeros dropped: 1e-303, not 1.0000000000000001e-303
     let s = format!("{v:.6e}");

@@ -18,6 +18,7 @@ mod model_stability;
 mod network_beams;
 mod network_bridge;
 mod network_mirror_modes;
+mod network_modulus;
 mod network_shipped;
 mod paper001;
 mod paper004_tables;

@@ -8,6 +8,7 @@ mod common;
 
 mod hock_schittkowski;
 mod honest_results;
+mod network_tolerances;
 mod screening;
 mod shards;
 mod solver_robustness;

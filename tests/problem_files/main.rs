@@ -11,6 +11,7 @@ mod designer;
 mod init_choices;
 mod messages;
 mod network_errors;
+mod network_refused;
 mod optimum_report;
 mod problem_errors;
 mod problem_fuzz;

@@ -146,3 +146,75 @@ fn a_sweep_says_which_points_gave_no_output() {
     assert!(err.is_empty(), "{err}");
     std::fs::remove_dir_all(&out_dir).unwrap();
 }
+
+/// Issue 50, case 17: numbers at the limits of `f64` read in a short form in every message
+/// (a value of 1e308 was 309 digits), and a key read into one of our tables says what it
+/// holds, not the type's name.
+#[test]
+fn numbers_read_short_and_tables_say_what_they_hold() {
+    let tolerances = "[tolerances]\nt2 = { sigma = 0.001 }\n\n[search]";
+    let cases = [
+        ("robust = { yield = 1e-300 }", "got 1e-300"),
+        ("robust = { k_sigma = 1e300 }", "got 1e300"),
+        (
+            "robust = \"x\"",
+            "expected a table, { yield = 0.99 } or { k_sigma = 3 }",
+        ),
+    ];
+    for (i, (robust, word)) in cases.iter().enumerate() {
+        let file = edited(
+            &format!("robust{i}.toml"),
+            "[search]",
+            &format!("{tolerances}\n{robust}"),
+        );
+        let err = says(&["run", &file, "--starts", "4", "--quiet"], 2, &[word]);
+        assert!(err.len() < 300, "{err}");
+        assert!(!err.contains("Raw"), "{err}");
+        std::fs::remove_file(file).unwrap();
+    }
+    let file = edited(
+        "spread.toml",
+        "[search]",
+        "[tolerances]\nt2 = \"x\"\n\n[search]",
+    );
+    let err = says(
+        &["eval", &file, "--design", TABLE1],
+        2,
+        &[
+            "`tolerances.t2`",
+            "expected a table of the variable's spread, e.g. { plus_minus",
+        ],
+    );
+    assert!(!err.contains("RawTolerance"), "{err}");
+    std::fs::remove_file(file).unwrap();
+    // a huge spread: the sample outside the domain in short form
+    let file = edited(
+        "sigma.toml",
+        "[search]",
+        "[tolerances]\nt2 = { sigma = 1e300 }\n\n[search]",
+    );
+    let out = temp("sigma-out");
+    let err = says(
+        &[
+            "tolerance",
+            &file,
+            "--design",
+            TABLE1,
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        2,
+        &["leaves the model's domain: t2 = -7.270418e296 m is not positive"],
+    );
+    assert!(err.len() < 400, "{err}");
+    std::fs::remove_file(file).unwrap();
+    // a design value at either end of f64's range
+    for (t2, shown) in [
+        ("1e308", "t2 = 1e308 mm lies outside"),
+        ("1e-300", "t2 = 1e-300 mm lies outside"),
+    ] {
+        let design = TABLE1.replace("t2=0.4", &format!("t2={t2}"));
+        let err = says(&["eval", FILE, "--design", &design], 0, &[shown]);
+        assert!(err.lines().all(|l| l.len() < 300), "{err}");
+    }
+}

@@ -343,7 +343,7 @@ impl Layout {
                 return Some(format!(
                     "{} = {} deg is not strictly between -90 and 90 deg",
                     names[i],
-                    x[i].to_degrees()
+                    crate::vocab::units::short(x[i].to_degrees())
                 ));
             }
         }

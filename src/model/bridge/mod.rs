@@ -166,10 +166,8 @@ impl Bridge {
         jacobian: &mut [f64],
         hessian: &mut [f64],
     ) {
-        use super::jet2::Jet2;
-        let seeded: Vec<Jet2<N>> = (0..N)
-            .map(|i| Jet2::variable(if i + 1 < N { x[i] } else { 1.0 }, i))
-            .collect();
+        use super::jet2::{seeded_with_modulus, unseed2, Jet2};
+        let seeded = seeded_with_modulus::<N>(x);
         let mut y = vec![Jet2::<N>::from(0.0); wanted.len()];
         let modulus = seeded[N - 1];
         self.evaluate_with_modulus(
@@ -178,11 +176,7 @@ impl Bridge {
             wanted,
             &mut y,
         );
-        for (i, yi) in y.iter().enumerate() {
-            out[i] = yi.re;
-            jacobian[i * N..(i + 1) * N].copy_from_slice(&yi.grad);
-            yi.hessian(&mut hessian[i * N * N..(i + 1) * N * N]);
-        }
+        unseed2(&y, out, jacobian, hessian);
     }
 
     /// Values and gradients of the part's rules at `x`, with `N` = the number of

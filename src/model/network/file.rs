@@ -41,6 +41,7 @@
 use indexmap::IndexMap;
 use serde::Deserialize;
 
+use super::checks::{self, Two};
 use super::model::{Actuator, NetworkModel};
 use super::part::{Counterparts, NetworkPart, PartSettings, RawNetworkPart};
 use crate::model::bridge::file::RawActuator;
@@ -72,7 +73,8 @@ struct RawNetwork {
     width: Measured<PositiveLength>,
     unit: Option<String>,
     /// Each parameter as `[name, dimension]`: a list, as a table's keys come in no order.
-    parameters: Vec<[String; 2]>,
+    #[schemars(with = "Vec<[String; 2]>")]
+    parameters: Vec<Two>,
     mirror: Option<Vec<String>>,
     #[serde(default)]
     bodies: Vec<RawNetworkBody>,
@@ -90,7 +92,8 @@ struct RawNetwork {
 #[serde(deny_unknown_fields)]
 struct RawNetworkBody {
     name: String,
-    outline: Option<Vec<[String; 2]>>,
+    #[schemars(with = "Option<Vec<[String; 2]>>")]
+    outline: Option<Vec<Two>>,
     link: Option<RawNetworkLink>,
     on_axis: Option<Vec<String>>,
 }
@@ -98,8 +101,10 @@ struct RawNetworkBody {
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawNetworkLink {
-    from: [String; 2],
-    to: [String; 2],
+    #[schemars(with = "[String; 2]")]
+    from: Two,
+    #[schemars(with = "[String; 2]")]
+    to: Two,
     width: String,
 }
 
@@ -112,7 +117,8 @@ struct RawNetworkHinge {
     kind: String,
     from: String,
     to: String,
-    start: [String; 2],
+    #[schemars(with = "[String; 2]")]
+    start: Two,
     angle: String,
     #[serde(flatten)]
     #[schemars(with = "std::collections::BTreeMap<String, String>")]
@@ -125,8 +131,10 @@ struct RawNetworkBeam {
     name: String,
     from: String,
     to: String,
-    start: [String; 2],
-    end: [String; 2],
+    #[schemars(with = "[String; 2]")]
+    start: Two,
+    #[schemars(with = "[String; 2]")]
+    end: Two,
     thickness: String,
 }
 
@@ -136,8 +144,10 @@ struct RawNetworkPort {
     /// The output's name (outputs only).
     name: Option<String>,
     body: String,
-    at: [String; 2],
-    direction: [String; 2],
+    #[schemars(with = "[String; 2]")]
+    at: Two,
+    #[schemars(with = "[String; 2]")]
+    direction: Two,
     across: Option<String>,
     /// The mass the output carries (outputs only), for the natural frequencies.
     payload: Option<Measured<NonNegativeMass>>,
@@ -305,6 +315,10 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
     };
     let drawn = part.map(|settings| (settings, description.clone()));
     let model = NetworkModel::new(description, material, actuator);
+    let names: Vec<&str> = model.outputs().iter().map(|o| o.name.as_ref()).collect();
+    if let Some((path, why)) = checks::output_clash(&names, model.description()) {
+        return Err(s.err(&path, why));
+    }
     let counterparts = Counterparts {
         amplification: model.output_index("amplification"),
         k_in: model.output_index("k_in"),
@@ -312,7 +326,9 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         stress_max: model.output_index("stress_max"),
         f1: model.output_index("f1"),
     };
-    let mut mechanism = Mechanism::physics_only(std::sync::Arc::new(model));
+    let model = std::sync::Arc::new(model);
+    let mut mechanism = Mechanism::physics_only(model.clone()).with_modulus_scaling(model.clone());
+    mechanism.depiction = Some(model);
     if let Some((settings, description)) = drawn {
         mechanism.part_maker = Some(std::sync::Arc::new(NetworkPart::new(
             description,
@@ -347,7 +363,7 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
         .to_si(1.0);
     // the parameters, each with its dimension
     let mut parameters = Vec::new();
-    for (i, [name, dim]) in n.parameters.iter().enumerate() {
+    for (i, Two([name, dim])) in n.parameters.iter().enumerate() {
         let path = net(&[k("parameters"), Segment::Index(i)]);
         if parameters
             .iter()
@@ -364,11 +380,10 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
                     format!("unknown dimension \"{dim}\"; expected one of \"length\", \"angle\", \"ratio\""),
                 )
             })?;
-        if name == DEG || Expression::parse(name, &[name.as_str()]).is_err() {
-            return Err(s.err(
-                &path,
-                format!("\"{name}\" cannot name a parameter: a name is a letter or `_` followed by letters, digits or `_`, and not `deg`"),
-            ));
+        if let Some(why) = checks::parameter_name_error(name) {
+            let mut key = path.clone();
+            key.push(Segment::Index(0));
+            return Err(s.err(&key, why));
         }
         parameters.push(ParameterInfo {
             name: name.clone().into(),
@@ -388,11 +403,11 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
             })
             .map_err(|e| s.err(&path, format!("in \"{text}\" {e}")))
     };
-    let point = |path: Vec<Segment>, p: &[String; 2]| -> Res<Point> {
+    let point = |path: Vec<Segment>, p: &Two| -> Res<Point> {
         let one = |i: usize| {
             let mut q = path.clone();
             q.push(Segment::Index(i));
-            parse(q, &p[i])
+            parse(q, &p.0[i])
         };
         Ok([one(0)?, one(1)?])
     };
@@ -417,6 +432,7 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
     // the bodies
     let mut bodies: Vec<BodyDescription> = Vec::new();
     let mut ground = Vec::new();
+    let mut grounds = 0;
     for (i, b) in n.bodies.iter().enumerate() {
         let path = net(&at("bodies", i));
         let sub = |key: &str| {
@@ -424,7 +440,8 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
             p.push(k(key));
             p
         };
-        if bodies.iter().any(|o| o.name == b.name) {
+        grounds += usize::from(b.name == GROUND);
+        if bodies.iter().any(|o| o.name == b.name) || grounds > 1 && b.name == GROUND {
             return Err(s.err(&sub("name"), format!("body \"{}\" is named twice", b.name)));
         }
         let mut points = Vec::new();
@@ -434,6 +451,16 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
                 return Err(s.err(&sub("link"), "give an outline or a link, not both"))
             }
             (Some(outline), None) => {
+                if outline.len() < 3 {
+                    return Err(s.err(
+                        &sub("outline"),
+                        format!(
+                            "an outline is a polygon of at least three points, not {}: add its \
+                             other corners, or give the body a `link`",
+                            outline.len()
+                        ),
+                    ));
+                }
                 for (j, p) in outline.iter().enumerate() {
                     let mut q = sub("outline");
                     q.push(Segment::Index(j));
@@ -449,7 +476,11 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
                 points.push(point(q.clone(), &link.to)?);
                 q.pop();
                 q.push(k("width"));
-                link_width = Some(parse(q, &link.width)?);
+                let width = parse(q.clone(), &link.width)?;
+                if let Some(why) = checks::constant_size_error(&width, "the link's width") {
+                    return Err(s.err(&q, why));
+                }
+                link_width = Some(width);
             }
             (None, None) => {}
         }
@@ -488,6 +519,15 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
     let find_body = |path: &[Segment], name: &str| -> Res<Option<usize>> {
         if name == GROUND {
             return Ok(None);
+        }
+        if body_names.is_empty() {
+            return Err(s.err(
+                path,
+                format!(
+                    "unknown body \"{name}\": the network has no body but \"{GROUND}\"; \
+                     describe it under [[network.bodies]]"
+                ),
+            ));
         }
         body_names
             .iter()
@@ -565,6 +605,13 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
                 ));
             };
             let e = parse(sub(stem), text)?;
+            let info = kind.dimensions().iter().find(|d| d.stem == *stem);
+            if info.is_some_and(|d| d.dimension == Dimension::Length) {
+                if let Some(why) = checks::constant_size_error(&e, &format!("the hinge's `{stem}`"))
+                {
+                    return Err(s.err(&sub(stem), why));
+                }
+            }
             parameter_of.push(
                 names[..names.len() - 1]
                     .iter()
@@ -614,6 +661,10 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
                 ),
             ));
         }
+        let thickness = parse(sub("thickness"), &r.thickness)?;
+        if let Some(why) = checks::constant_size_error(&thickness, "the beam's thickness") {
+            return Err(s.err(&sub("thickness"), why));
+        }
         beams.push(BeamDescription {
             name: r.name.clone(),
             key: written(&path),
@@ -621,7 +672,7 @@ fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
             to,
             start: point(sub("start"), &r.start)?,
             end: point(sub("end"), &r.end)?,
-            thickness: parse(sub("thickness"), &r.thickness)?,
+            thickness,
         });
     }
     // every body is joined to something

@@ -5,12 +5,15 @@
 //! ([`file`]) and the model of its outputs ([`model`]); its part and the finite-element
 //! check through its ports ([`part`]), for a file with a `[part]` section.
 
+mod checks;
+mod depiction;
 pub mod file;
 pub mod model;
 pub mod modes;
 mod on_axis;
 pub mod part;
 pub mod ports;
+mod scaling;
 pub mod structure;
 
 use super::entry::ModelEntry;

@@ -252,6 +252,11 @@ fn give<D: 'static>(work: Box<Work<D>>) {
 }
 
 impl NetworkModel {
+    /// The description it was built from.
+    pub(super) fn description(&self) -> &Description {
+        &self.description
+    }
+
     pub fn new(mut description: Description, material: Material, actuator: Actuator) -> Self {
         let mut roles = Vec::new();
         let tape = {
@@ -277,7 +282,6 @@ impl NetworkModel {
             let mut skip = |e: &Keyed| unread[e.slot] = true;
             for body in &d.bodies {
                 body.points.iter().skip(1).flatten().for_each(&mut skip);
-                body.link_width.iter().for_each(&mut skip);
             }
             d.ground.iter().flatten().for_each(&mut skip);
             let ports = std::iter::once(&d.input).chain(&d.outputs);
@@ -618,14 +622,20 @@ impl NetworkModel {
             references.resize(d.bodies.len(), [D::from(0.0); 2]);
         }
         for (b, body) in d.bodies.iter().enumerate() {
+            // read by the statics too: a design that leaves a link no width has no value
+            let width = body
+                .link_width
+                .as_ref()
+                .map(|w| length(w).map_err(Message::message))
+                .transpose()?;
+            if let (Some(w), Some(keyed)) = (width, &body.link_width) {
+                if w.re() <= 0.0 || w.re().is_nan() {
+                    return Err(not_positive(&body.name, &keyed.key, "width", w.re()));
+                }
+            }
             if extent {
                 offsets.push(points.len());
-                link_widths.push(
-                    body.link_width
-                        .as_ref()
-                        .map(|w| length(w).map_err(Message::message))
-                        .transpose()?,
-                );
+                link_widths.push(width);
             }
             // the statics read a body's first point alone, its reference
             if let Some(p) = body.points.first() {
@@ -684,6 +694,9 @@ impl NetworkModel {
                 }
             };
             f.length = h.kind.length(dd);
+            if f.length.re() <= 0.0 || f.length.re().is_nan() {
+                return Err(not_positive(&h.name, &h.key, "length", f.length.re()));
+            }
             f.end = end_of(&f.start, &f.axis, f.length);
             hinge_compliance(h.kind, dd, d.width, &self.material, &mut f.compliance);
             join(
@@ -990,6 +1003,29 @@ impl NetworkModel {
             }
         }
         Ok(())
+    }
+
+    /// The described part at the design `x` (SI) for its pictures; `None` where an
+    /// expression fails there.
+    pub(super) fn picture(&self, x: &[f64]) -> Option<super::depiction::Picture> {
+        let mut work = Work::default();
+        self.at(x, None, true, &mut work).ok()?;
+        let e = &work.evaluated;
+        let d = &self.description;
+        let thickness = |h: usize| match d.hinges.get(h) {
+            Some(hinge) => hinge.kind.least_thickness(&e.dims[h]),
+            None => e.dims[h][1],
+        };
+        Some(super::depiction::Picture {
+            bodies: e
+                .offsets
+                .windows(2)
+                .map(|o| e.points[o[0]..o[1]].to_vec())
+                .collect(),
+            flexures: (e.network.flexures.iter().enumerate())
+                .map(|(h, f)| (f.start, f.end, thickness(h)))
+                .collect(),
+        })
     }
 
     /// What the `wanted` outputs need.
@@ -1561,6 +1597,40 @@ fn reflects(roles: &[Role], values: &[f64], mirrored: &[f64]) -> bool {
     true
 }
 
+/// The message of a body's or a flexure's size `value` (m) that the design makes zero or
+/// negative, naming its key.
+fn not_positive(name: &str, key: &str, size: &str, value: f64) -> String {
+    format!(
+        "\"{name}\" ({key}): its {size} {} m is not positive at this design: a size is \
+         positive; keep its expression above zero over the bounds",
+        crate::vocab::units::short(value)
+    )
+}
+
+/// The first outline, a body's or the ground's, that crosses itself at the evaluated
+/// design: no solid has it.
+fn outline_crossing(d: &Description, e: &Evaluated<f64>) -> Option<String> {
+    let bodies = d.bodies.iter().enumerate().filter_map(|(b, body)| {
+        let points = &e.points[e.offsets[b]..e.offsets[b + 1]];
+        (body.link_width.is_none()).then(|| {
+            let what = format!("body \"{}\" ({}.outline)", body.name, body.key);
+            (what, points)
+        })
+    });
+    let ground_at = e.offsets[d.bodies.len()];
+    let ground = std::iter::once((
+        "the ground's outline".to_string(),
+        &e.points[ground_at..ground_at + d.ground.len()],
+    ));
+    bodies.chain(ground).find_map(|(what, points)| {
+        let (i, j) = super::checks::crossing(points)?;
+        Some(format!(
+            "{what} crosses itself at this design (its edges from points {i} and {j}): list \
+             its points in order around it"
+        ))
+    })
+}
+
 /// Why hinge `h`'s dimensions `dims` (SI) make no hinge of its kind, named by their keys;
 /// the check on the values alone, without allocating, and the names only for a message.
 fn domain_error<D: Scalar>(h: &HingeDescription, dims: &[D]) -> Option<String> {
@@ -1630,6 +1700,7 @@ impl Model for NetworkModel {
                 let mut work = Work::default();
                 self.at(x, None, true, &mut work)?;
                 flexure_on_mirror_axis(&self.description, &work.evaluated.network.flexures)
+                    .or_else(|| outline_crossing(&self.description, &work.evaluated))
                     .map_or(Ok(()), Err)
             })
             .err()
@@ -1644,11 +1715,16 @@ impl Model for NetworkModel {
             .zip(upper)
             .map(|(a, b)| 0.5 * (a + b))
             .collect();
-        self.domain_error(&middle).map(|why| {
-            (
-                0,
-                format!("the network has no value at the middle of the bounds: {why}"),
-            )
+        if let Some(why) = self.domain_error(&middle) {
+            let why = format!("the network has no value at the middle of the bounds: {why}");
+            return Some((0, why));
+        }
+        let mut d = self.description.clone();
+        let all: Vec<&Keyed> = expressions(&mut d).into_iter().map(|(e, _)| &*e).collect();
+        let (parameters, unit) = (&self.description.parameters, self.description.unit);
+        super::checks::derivative_error(&all, parameters, unit, &middle).map(|why| {
+            let why = format!("the network has no gradient at the middle of the bounds: {why}");
+            (0, why)
         })
     }
 

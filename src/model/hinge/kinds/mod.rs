@@ -158,7 +158,13 @@ pub trait Kind: Sized {
 
 /// Why dimension `k` is not positive, if it is not.
 pub(super) fn positive(dims: &[f64], names: &[&str], k: usize) -> Option<String> {
-    (dims[k] <= 0.0).then(|| format!("{} = {} m is not positive", names[k], dims[k]))
+    (dims[k] <= 0.0).then(|| {
+        format!(
+            "{} = {} m is not positive",
+            names[k],
+            crate::vocab::units::short(dims[k])
+        )
+    })
 }
 
 /// The compliances of a hinge of varying thickness from its profile's moments

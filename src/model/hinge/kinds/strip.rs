@@ -51,7 +51,11 @@ impl Kind for Strip {
     /// A length of zero is allowed: the mechanism then has no hinge there.
     fn domain_error(&self, dims: &[f64], names: &[&str]) -> Option<String> {
         if dims[0] < 0.0 {
-            Some(format!("{} = {} m is negative", names[0], dims[0]))
+            Some(format!(
+                "{} = {} m is negative",
+                names[0],
+                crate::vocab::units::short(dims[0])
+            ))
         } else {
             positive(dims, names, 1)
         }
