@@ -237,7 +237,10 @@ pub(crate) fn tolerances(
         let RawEntry::Tolerance(t) = entry else {
             return Err(reader.err(
                 &[k("tolerances"), k(name)],
-                "a tolerance is a table such as { plus_minus = 0.005 } or { sigma = 0.002 }",
+                format!(
+                    "expected {}",
+                    crate::vocab::reader::table_expected("RawTolerance")
+                ),
             ));
         };
         let (input, unit) = if name == YOUNGS_MODULUS {
