@@ -192,10 +192,10 @@ fn yield_of_counts_the_samples_meeting_the_constraints_it_names() {
     };
     let every = ["span_x", "span_y", "stress_max", "k_in", "k_out"];
     assert_eq!(all.constraints.len(), every.len());
-    assert_eq!(ma.yield_fraction, fraction(&every));
+    assert_eq!(ma.yield_fraction, fraction(&every[..]));
     assert_eq!(
         mb.yield_fraction,
-        fraction(&["span_y", "stress_max", "k_in"])
+        fraction(&["span_y", "stress_max", "k_in"][..])
     );
     assert!(
         mb.yield_fraction >= ma.yield_fraction + 0.3,
