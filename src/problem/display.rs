@@ -2,7 +2,9 @@
 //! used for each (a variable's, a constraint's) or a designer's usual one, with the digits
 //! that matter. JSON keeps SI and full precision; these are for terminals, plots and CSV.
 
+use super::design::default_design;
 use super::Problem;
+use crate::model::Dimension;
 use crate::vocab::units::Unit;
 
 /// A number as a person reads it: exactly as written when it has few digits (a value from
@@ -65,15 +67,41 @@ pub fn csv(v: f64) -> String {
     }
 }
 
-/// The unit the output `output` of `problem`'s model is shown in: its constraint's unit
-/// when the file constrains it, else the model's choice for it, else the dimension's usual
-/// one ([`Unit::display`]).
+/// The unit the output `output` of `problem`'s model is shown in, wherever a person reads
+/// it (the terminal's summaries and tables, the report, plots' axes, CSV headers): its
+/// constraint's unit when the file constrains it, else the model's choice for it, else the
+/// designer's usual one for its dimension and size ([`usual_unit`]) at the middle of the
+/// design space ([`default_design`]), so that one problem shows an output in one unit
+/// whatever design it reports.
 pub fn output_unit(problem: &Problem, output: usize) -> Unit {
     if let Some(c) = problem.constraints.iter().find(|c| c.index == output) {
         return c.unit.clone();
     }
-    let info = &problem.model().outputs()[output];
-    Unit::shown(info.dimension, info.display)
+    let model = problem.model();
+    let info = &model.outputs()[output];
+    if let Some(unit) = info
+        .display
+        .and_then(|name| Unit::parse(name, info.dimension).ok())
+    {
+        return unit;
+    }
+    let mut typical = [f64::NAN];
+    if info.stand_in.is_none() && info.dimension == Dimension::Length {
+        model.evaluate(&default_design(problem), &[output], &mut typical);
+    }
+    usual_unit(info.dimension, typical[0])
+}
+
+/// The unit a designer reads a quantity of `dimension` and size `si` in: a length under a
+/// millimetre (a stroke, a displacement) in micrometres, any other in [`Unit::display`]'s
+/// (mm, N/um, MPa, Hz, ...). A size that is zero or not finite says nothing: the
+/// dimension's usual unit.
+pub fn usual_unit(dimension: Dimension, si: f64) -> Unit {
+    let small = si.is_finite() && si != 0.0 && si.abs() < 1e-3;
+    match dimension {
+        Dimension::Length if small => Unit::shown(dimension, Some("um")),
+        _ => Unit::display(dimension),
+    }
 }
 
 /// `value unit`, the unit left out for a dimensionless one.
@@ -117,6 +145,20 @@ mod tests {
         assert_eq!(percent(0.005), "0.5");
         assert_eq!(percent(0.1), "10");
         assert_eq!(percent(1e-9), "1e-7");
+    }
+
+    #[test]
+    fn lengths_under_a_millimetre_read_in_micrometres() {
+        let name = |d: Dimension, si: f64| usual_unit(d, si).name;
+        assert_eq!(name(Dimension::Length, 82.19e-6), "um");
+        assert_eq!(name(Dimension::Length, -150.4e-6), "um");
+        assert_eq!(name(Dimension::Length, 1e-3), "mm");
+        assert_eq!(name(Dimension::Length, 12e-3), "mm");
+        assert_eq!(name(Dimension::Length, 0.0), "mm");
+        assert_eq!(name(Dimension::Length, f64::NAN), "mm");
+        assert_eq!(name(Dimension::Stiffness, 1e3), "N/um");
+        assert_eq!(name(Dimension::Stress, 1e6), "MPa");
+        assert_eq!(name(Dimension::Frequency, 500.0), "Hz");
     }
 
     #[test]

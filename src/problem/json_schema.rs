@@ -67,8 +67,12 @@ pub fn json_schema() -> Value {
     properties.insert("refine".into(), g.subschema_for::<RawRefine>().to_value());
     properties.insert(
         "tolerances".into(),
-        json!({"type": "object", "additionalProperties":
-            g.subschema_for::<super::tolerances::RawTolerance>()}),
+        json!({"type": "object",
+            "properties": {
+                "coverage": g.subschema_for::<super::tolerances::RawCoverage>(),
+                "yield_of": {"type": "array", "items": {"type": "string"}, "minItems": 1},
+            },
+            "additionalProperties": g.subschema_for::<super::tolerances::RawTolerance>()}),
     );
     let mut per_model = Vec::new();
     for m in MODELS {

@@ -82,6 +82,10 @@ pub struct Constraint {
     /// The unit the file uses, for reports.
     #[serde(skip)]
     pub unit: Unit,
+    /// Whether the yield counts it (`[tolerances] yield_of`, every constraint by default):
+    /// the Monte Carlo's yield and a robust study's margins.
+    #[serde(skip)]
+    pub in_yield: bool,
 }
 
 /// The size a limit's relative margins and violations are measured against: the limit's

@@ -243,10 +243,12 @@ impl<'p> DesignNlp<'p> {
         let spreads = spreads(problem).filter(|_| robust);
         if spreads.is_some() {
             let first = wanted.len() + fits.len() + rules;
-            for r in rows
-                .iter_mut()
-                .filter(|r| r.constraint < problem.constraints.len())
-            {
+            for r in rows.iter_mut().filter(|r| {
+                problem
+                    .constraints
+                    .get(r.constraint)
+                    .is_some_and(|c| c.in_yield)
+            }) {
                 r.spread = Some(first + r.value);
             }
         }

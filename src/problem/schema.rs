@@ -40,7 +40,7 @@ pub struct RawProblem {
     pub zones: RawZones,
     pub refine: Option<super::refine::RawRefine>,
     #[serde(default)]
-    pub tolerances: IndexMap<String, super::tolerances::RawTolerance>,
+    pub tolerances: IndexMap<String, super::tolerances::RawEntry>,
     /// The other top-level keys, in file order: the model's sections, checked against
     /// the model's list before it reads them.
     #[serde(flatten)]

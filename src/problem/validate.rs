@@ -24,10 +24,11 @@ pub(crate) fn positive_only(dimension: Dimension) -> bool {
     )
 }
 
-/// The number of limits of `constraints`: a range counts twice.
+/// The number of limits of the constraints the yield counts: a range counts twice.
 fn limits(constraints: &[Constraint]) -> usize {
     constraints
         .iter()
+        .filter(|c| c.in_yield)
         .map(|c| usize::from(c.lower.is_some()) + usize::from(c.upper.is_some()))
         .sum()
 }
@@ -134,6 +135,8 @@ impl Validator<'_, '_> {
                 ));
             }
         }
+        let mut constraints = constraints;
+        super::tolerances::yield_of(self, &raw.tolerances, &mut constraints)?;
         let search = self.search(&raw.search, limits(&constraints))?;
         let tolerances =
             super::tolerances::tolerances(self, &mechanism, &variables, &raw.tolerances)?;
@@ -401,6 +404,7 @@ impl Validator<'_, '_> {
                 lower,
                 upper,
                 unit,
+                in_yield: true,
             }),
         }
     }

@@ -156,8 +156,8 @@ where
         .y_labels(7)
         .light_line_style(TRANSPARENT)
         .bold_line_style(BLACK.mix(0.12))
-        .y_label_formatter(&|v| format_tick(*v))
-        .x_label_formatter(&|v| format_tick(*v))
+        .y_label_formatter(&|v| axis_tick(*v, yr, 7))
+        .x_label_formatter(&|v| axis_tick(*v, xr, 6))
         .draw()?;
     for &l in &near {
         chart.draw_series(DashedLineSeries::new(
@@ -185,28 +185,88 @@ where
 
 /// Compact tick labels with up to 5 significant digits: 12.5, 0.01195, 7e6, 2.5e-4.
 pub fn format_tick(v: f64) -> String {
+    tick_label(v, None)
+}
+
+/// A tick's label on an axis spanning `range` with about `ticks` labels: [`format_tick`]'s
+/// five significant digits, or as many more as ticks that close need to read apart (an
+/// axis from 150.405 to 150.42 labels 150.406 and 150.408, not "150.41" for both); a tick
+/// within round-off of zero reads 0.
+pub fn axis_tick(v: f64, range: (f64, f64), ticks: usize) -> String {
+    let step = (range.1 - range.0).abs() / ticks.max(1) as f64;
+    if !(step > 0.0 && step.is_finite()) {
+        return format_tick(v);
+    }
+    if v.abs() < 1e-9 * step {
+        return "0".into();
+    }
+    tick_label(v, Some(-step.log10().floor() as i32))
+}
+
+/// `v` to 5 significant digits, or to `decimals` after the point where that is more
+/// (scientific outside 1e-3 .. 1e5, its mantissa as long as the same resolution needs).
+fn tick_label(v: f64, decimals: Option<i32>) -> String {
     let a = v.abs();
+    let trim = |s: &str| -> String {
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s.to_string()
+        }
+    };
     if a != 0.0 && !(1e-3..1e5).contains(&a) {
-        let s = format!("{v:.3e}");
+        let exponent = a.log10().floor() as i32;
+        let mantissa = decimals.map_or(3, |d| (d + exponent).max(3)).min(15) as usize;
+        let s = format!("{v:.mantissa$e}");
         return match s.split_once('e') {
-            Some((m, e)) => format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.')),
+            Some((m, e)) => format!("{}e{e}", trim(m)),
             None => s,
         };
     }
-    let decimals = if a == 0.0 {
+    let own = if a == 0.0 {
         0
     } else {
-        (4 - a.log10().floor() as i32).clamp(0, 8) as usize
+        4 - a.log10().floor() as i32
     };
-    let s = format!("{v:.decimals$}");
-    let s = if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.')
-    } else {
-        &s
-    };
+    let decimals = own.max(decimals.unwrap_or(0)).clamp(0, 15) as usize;
+    let s = trim(&format!("{v:.decimals$}"));
     if s == "-0" {
         "0".into()
     } else {
-        s.to_string()
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// zones.png of a stroke near 150.41 um spread over 15 nm: ticks 2 nm apart, which five
+    /// significant digits would all label "150.41".
+    #[test]
+    fn ticks_close_together_read_apart() {
+        for (scale, lo, hi) in [(1.0, 150.405, 150.42), (1e-6, 150.405e-6, 150.42e-6)] {
+            let ticks: Vec<f64> = (0..8)
+                .map(|i| (150.406 + 0.002 * i as f64) * scale)
+                .collect();
+            let labels: Vec<String> = ticks.iter().map(|&t| axis_tick(t, (lo, hi), 10)).collect();
+            let mut distinct = labels.clone();
+            distinct.dedup();
+            assert_eq!(distinct.len(), ticks.len(), "{labels:?}");
+            for (t, l) in ticks.iter().zip(&labels) {
+                let back: f64 = l.parse().unwrap();
+                assert!((back - t).abs() <= 1e-9 * t.abs(), "{l} for {t}");
+            }
+            let five: Vec<String> = ticks.iter().map(|&t| format_tick(t)).collect();
+            assert!(five.windows(2).any(|w| w[0] == w[1]), "{five:?}");
+        }
+        assert_eq!(axis_tick(150.408, (150.405, 150.42), 10), "150.408");
+        assert_eq!(
+            axis_tick(1.50408e-4, (1.50405e-4, 1.5042e-4), 10),
+            "1.50408e-4"
+        );
+        // a wide axis keeps five digits, and a tick at round-off from zero reads 0
+        assert_eq!(axis_tick(12.5, (0.0, 100.0), 10), format_tick(12.5));
+        assert_eq!(axis_tick(2.8e-15, (-1.0, 1.0), 10), "0");
     }
 }

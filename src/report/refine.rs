@@ -11,7 +11,6 @@ use super::tolerance::FeReport;
 use super::ConstraintReport;
 use crate::problem::nlp::ACTIVE_TOLERANCE;
 use crate::problem::refine::RefineSettings;
-use crate::problem::units::Unit;
 use crate::problem::Problem;
 use crate::refine::spread::FeSpread;
 use crate::refine::study::StudyRefinement;
@@ -21,7 +20,7 @@ use crate::refine::{Check, RefineStatus, Refinement};
 #[derive(Debug, Clone, Serialize)]
 pub struct OutputRow {
     pub output: String,
-    /// The file's unit of its constraint, else SI.
+    /// The unit it is shown in ([`crate::problem::display::output_unit`]).
     pub unit: String,
     pub analytic: f64,
     /// As measured; `null` for an output measured by the model only (geometry).
@@ -61,20 +60,13 @@ pub struct MeasuredDesign {
 impl MeasuredDesign {
     pub fn new(problem: &Problem, r: &Refinement, c: &Check) -> Self {
         let model = problem.model();
-        let unit_of = |o: usize| {
-            problem
-                .constraints
-                .iter()
-                .find(|c| c.index == o)
-                .map(|c| c.unit.clone())
-        };
         let outputs = r
             .outputs
             .iter()
             .enumerate()
             .map(|(k, &o)| {
-                let unit = unit_of(o).unwrap_or_else(|| Unit::si(model.outputs()[o].dimension));
-                let (name, si) = (unit.name.clone(), unit);
+                let si = crate::problem::display::output_unit(problem, o);
+                let name = si.name.clone();
                 OutputRow {
                     output: model.outputs()[o].name.to_string(),
                     unit: name,

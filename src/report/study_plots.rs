@@ -5,7 +5,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::plot::{draw_legend, format_tick, range, render_png, FAMILY};
+use super::plot::{axis_tick, draw_legend, range, render_png, FAMILY};
 use super::WriteError;
 use crate::problem::Problem;
 use crate::study::Study;
@@ -71,7 +71,8 @@ pub(super) fn zones_png(path: &Path, problem: &Problem, study: &Study) -> Result
             .label_style((FAMILY, 13))
             .light_line_style(TRANSPARENT)
             .bold_line_style(BLACK.mix(0.12))
-            .y_label_formatter(&|v| format_tick(*v))
+            .y_labels(10)
+            .y_label_formatter(&|v| axis_tick(*v, yr, 10))
             // starts are counted: whole ticks
             .x_label_formatter(&|v| format!("{v:.0}"))
             .draw()?;

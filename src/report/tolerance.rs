@@ -24,8 +24,9 @@ use crate::tolerance::{normal_within, Analysis};
 #[derive(Debug, Clone, Serialize)]
 pub struct ToleranceLine {
     pub name: String,
-    /// The band, in `unit` (a fraction for the modulus).
+    /// The band, in `unit` (a fraction for the modulus), `coverage` standard deviations.
     pub plus_minus: f64,
+    pub coverage: f64,
     /// The standard deviation, in `unit`.
     pub sigma: f64,
     pub unit: String,
@@ -70,9 +71,10 @@ pub struct ToleranceReport {
     pub outputs: Vec<OutputLine>,
     pub samples: usize,
     pub seed: u64,
-    /// The fraction of samples meeting every constraint.
+    /// The fraction of samples meeting every constraint of `yield_of`.
     #[serde(rename = "yield")]
     pub yield_fraction: f64,
+    pub yield_of: Vec<String>,
     pub yield_interval: [f64; 2],
     pub yield_confidence: f64,
     pub interval_method: &'static str,
@@ -271,6 +273,12 @@ impl ToleranceReport {
             samples: mc.samples,
             seed: mc.seed,
             yield_fraction: mc.yield_fraction,
+            yield_of: problem
+                .constraints
+                .iter()
+                .filter(|c| c.in_yield)
+                .map(|c| c.output.clone())
+                .collect(),
             yield_interval: mc.yield_interval,
             yield_confidence: CONFIDENCE,
             interval_method: mc.interval_method,
@@ -287,6 +295,7 @@ fn line(problem: &Problem, t: &Tolerance, params: usize) -> ToleranceLine {
     ToleranceLine {
         name: t.name.clone(),
         plus_minus: t.plus_minus,
+        coverage: t.coverage,
         sigma,
         unit: t.unit.clone(),
         distribution: t.distribution,
@@ -433,8 +442,10 @@ impl Display for ToleranceTable<'_> {
         for t in &r.tolerances {
             let unit = if t.unit == "1" { "" } else { &t.unit };
             let distribution = match t.distribution {
-                Distribution::Normal => "normal, the band 3 standard deviations",
-                Distribution::Uniform => "uniform",
+                Distribution::Normal => {
+                    format!("normal, the band {} standard deviations", human(t.coverage))
+                }
+                Distribution::Uniform => "uniform".into(),
             };
             let origin = match t.origin {
                 Origin::File => "",
@@ -475,9 +486,19 @@ impl Display for ToleranceTable<'_> {
         }
         writeln!(
             s,
-            "yield: {} of {} samples meet every constraint ({} {} interval {} .. {})",
+            "yield: {} of {} samples meet {} ({} {} interval {} .. {})",
             pc(r.yield_fraction),
             r.samples,
+            if r.yield_of.len()
+                == r.outputs
+                    .iter()
+                    .filter(|o| o.monte_carlo_yield.is_some())
+                    .count()
+            {
+                "every constraint".to_string()
+            } else {
+                r.yield_of.join(", ")
+            },
             pc(r.yield_confidence),
             r.interval_method.split(',').next().unwrap_or(""),
             pc(r.yield_interval[0]),

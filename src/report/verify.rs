@@ -52,8 +52,8 @@ const DECK_LEVEL: usize = 0;
 #[derive(Debug, Clone, Serialize)]
 pub struct OutputReport {
     pub unit: &'static str,
-    /// The unit the table shows it in.
-    #[serde(skip)]
+    /// The unit the tables show it in, the terminal's and the report's alike (its name).
+    #[serde(rename = "display_unit", serialize_with = "unit_name")]
     pub display: Unit,
     pub meaning: &'static str,
     #[serde(flatten)]
@@ -136,6 +136,10 @@ fn fidelities(v: &Verification) -> Vec<(Fidelity, &[Output], f64)> {
                 .map(|s| (Fidelity::Solid, s.outputs.as_slice(), s.actuation_force)),
         )
         .collect()
+}
+
+fn unit_name<S: serde::Serializer>(unit: &Unit, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&unit.name)
 }
 
 impl VerifyReport {

@@ -43,7 +43,7 @@ pub struct Spread {
 pub struct MonteCarlo {
     pub samples: usize,
     pub seed: u64,
-    /// The fraction of samples that meet every constraint.
+    /// The fraction of samples that meet every constraint the yield counts.
     #[serde(rename = "yield")]
     pub yield_fraction: f64,
     /// Its Wilson score interval at [`CONFIDENCE`].
@@ -148,7 +148,7 @@ pub fn run(
 }
 
 /// How many rows of `values` (the wanted outputs of each sample, row-major) meet each
-/// constraint, and how many meet every one.
+/// constraint, and how many meet every one the yield counts ([`crate::problem::Constraint::in_yield`]).
 pub fn count_met(outputs: &Outputs, values: &[f64]) -> (Vec<usize>, usize) {
     let m = outputs.wanted.len();
     let constraints = &outputs.problem.constraints;
@@ -173,7 +173,7 @@ pub fn count_met(outputs: &Outputs, values: &[f64]) -> (Vec<usize>, usize) {
         for (k, count) in met.iter_mut().enumerate() {
             if meets(row, k) {
                 *count += 1;
-            } else {
+            } else if constraints[k].in_yield {
                 every = false;
             }
         }

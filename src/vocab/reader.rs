@@ -71,7 +71,7 @@ pub(crate) fn deserialize<'de, S: DeserializeSeed<'de>>(
 }
 
 /// What a key read into the struct `name` holds, as the file writes it.
-fn table_expected(name: &str) -> &'static str {
+pub(crate) fn table_expected(name: &str) -> &'static str {
     match name {
         "RawTolerance" => {
             "a table of the variable's spread, e.g. { plus_minus = 0.005 } or { sigma = 0.004, \

@@ -1,5 +1,6 @@
-//! Tolerances: first-order spreads against Monte Carlo, reproducibility over threads, the
-//! yield of wei2017's nominal and robust optima, and the robust rows' exact gradients.
+//! Tolerances: first-order spreads against Monte Carlo, reproducibility over threads, a
+//! band's stated coverage, the yield of wei2017's nominal and robust optima and over the
+//! constraints `yield_of` names, and the robust rows' exact gradients.
 
 use std::path::Path;
 
@@ -74,6 +75,134 @@ fn first_order_spread_of_a_linear_output_matches_monte_carlo() {
             "{name}"
         );
     }
+}
+
+/// A band stated at 2 sigma (for the tolerance as text or a number, or for the section, the
+/// tolerance's own ruling over the section's) is two standard deviations: sigma = band / 2,
+/// where a band with no coverage is three. span_x is linear in l3: l3's share of its
+/// first-order variance is `(d span_x / d l3 * band / 2)^2`, the slope by central differences
+/// here, and the Monte Carlo's spread agrees with the first order within its sampling error.
+#[test]
+fn a_band_at_two_sigma_coverage_states_half_its_width_as_sigma() {
+    let band = 0.02e-3;
+    let l3 = |p: &Problem| {
+        p.tolerances
+            .iter()
+            .find(|t| t.name == "l3")
+            .unwrap()
+            .clone()
+    };
+    for tolerances in [
+        "l3 = { plus_minus = 0.02, coverage = \"2 sigma\" }",
+        "l3 = { plus_minus = 0.02, coverage = \" 2σ \" }",
+        "l3 = { plus_minus = 0.02, coverage = 2 }",
+        "coverage = \"2 sigma\"\nl3 = { plus_minus = 0.02 }",
+        "coverage = 3\nl3 = { plus_minus = 0.02, coverage = 2.0 }",
+    ] {
+        let t = l3(&wei2017_with("", &format!("[tolerances]\n{tolerances}")));
+        assert!(
+            (t.sigma - band / 2.0).abs() <= 1e-15 * band,
+            "{tolerances}: sigma {}",
+            t.sigma
+        );
+        assert_eq!(t.coverage, 2.0, "{tolerances}");
+        assert!((t.plus_minus - 0.02).abs() <= 1e-15, "{tolerances}");
+        assert!((t.band() - band).abs() <= 1e-15 * band, "{tolerances}");
+    }
+    let three = l3(&wei2017_with(
+        "",
+        "[tolerances]\nl3 = { plus_minus = 0.02 }",
+    ));
+    assert!((three.sigma - band / 3.0).abs() <= 1e-15 * band);
+    assert_eq!(three.coverage, 3.0);
+
+    let p = wei2017_with("", "[tolerances]\nl3 = { plus_minus = 0.02, coverage = 2 }");
+    let x = wei2017_optimum(&p);
+    let n = 200_000;
+    let a = analyze(&p, &x, settings(n, 0)).unwrap();
+    let j = output(&a, &p, "span_x");
+    let i = p
+        .variables
+        .iter()
+        .find(|v| v.name == "l3")
+        .unwrap()
+        .parameter;
+    let h = 1e-6;
+    let mut row = vec![0.0; a.outputs.wanted.len()];
+    let mut at = |d: f64| {
+        let mut xd = x.clone();
+        xd[i] += d;
+        a.outputs.values(&xd, 1.0, &mut row);
+        row[j]
+    };
+    let slope = (at(h) - at(-h)) / (2.0 * h);
+    let f = &a.first_order[j];
+    let k = p.tolerances.iter().position(|t| t.name == "l3").unwrap();
+    let l3_std = (f.shares[k]).sqrt() * f.std;
+    assert!(
+        (l3_std - slope.abs() * band / 2.0).abs() <= 1e-6 * l3_std,
+        "l3's part of span_x's spread {l3_std}, slope {slope}"
+    );
+    let mc = &a.monte_carlo.outputs[j];
+    let se = f.std / (2.0 * n as f64).sqrt();
+    assert!(
+        (mc.std - f.std).abs() < 5.0 * se,
+        "Monte Carlo std {} against first order {} (standard error {se})",
+        mc.std,
+        f.std
+    );
+}
+
+/// The same samples counted over every constraint and over the three `yield_of` names: the
+/// yields are the fractions of samples meeting those constraints, counted here from the
+/// samples, and the subset's (which leaves out span_x and k_out, active at the optimum)
+/// is far higher.
+#[test]
+fn yield_of_counts_the_samples_meeting_the_constraints_it_names() {
+    let all = wei2017_with("", "");
+    let some = wei2017_with(
+        "",
+        "[tolerances]\nyield_of = [\"span_y\", \"stress_max\", \"k_in\"]",
+    );
+    let x = wei2017_optimum(&all);
+    let n = 20_000;
+    let (a, b) = (
+        analyze(&all, &x, settings(n, 0)).unwrap(),
+        analyze(&some, &x, settings(n, 0)).unwrap(),
+    );
+    let (ma, mb) = (&a.monte_carlo, &b.monte_carlo);
+    assert_eq!(ma.values, mb.values, "the same samples");
+    assert_eq!(ma.constraint_yields, mb.constraint_yields);
+    let fraction = |names: &[&str]| {
+        let m = a.outputs.wanted.len();
+        let met = ma
+            .values
+            .chunks(m)
+            .filter(|row| {
+                all.constraints
+                    .iter()
+                    .filter(|c| names.contains(&c.output.as_str()))
+                    .all(|c| {
+                        let y = row[output(&a, &all, &c.output)];
+                        c.lower.is_none_or(|l| y >= l) && c.upper.is_none_or(|u| y <= u)
+                    })
+            })
+            .count();
+        met as f64 / n as f64
+    };
+    let every = ["span_x", "span_y", "stress_max", "k_in", "k_out"];
+    assert_eq!(all.constraints.len(), every.len());
+    assert_eq!(ma.yield_fraction, fraction(&every[..]));
+    assert_eq!(
+        mb.yield_fraction,
+        fraction(&["span_y", "stress_max", "k_in"][..])
+    );
+    assert!(
+        mb.yield_fraction >= ma.yield_fraction + 0.3,
+        "{} over three constraints, {} over all",
+        mb.yield_fraction,
+        ma.yield_fraction
+    );
 }
 
 #[test]

@@ -124,10 +124,17 @@ fn tolerance_refuses_bad_tolerances_naming_the_key() {
             "tolerances.t9",
             "no design variable",
         ),
+        (
+            "yield_of = [\"k_in\", \"stroke\"]",
+            "tolerances.yield_of[1]",
+            "\"stroke\" is no constrained output of this problem; expected one of",
+        ),
     ] {
         let err = refused("bad", tolerance);
         assert!(
-            err.contains(&format!("key `{key}`")) && err.contains(words),
+            err.contains("wei2017.toml")
+                && err.contains(&format!("key `{key}`"))
+                && err.contains(words),
             "{err}"
         );
     }

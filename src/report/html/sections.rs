@@ -80,6 +80,25 @@ fn figure(set: &Set, name: &str, caption: &str) -> Markup {
     }
 }
 
+/// The objective's value at the optimum in the unit its output is shown in, with the unit.
+fn objective_value(o: &Value) -> String {
+    let output = text(o, "objective_output");
+    let of = |key: &str| {
+        o.get(key)
+            .and_then(|u| u.get(output))
+            .and_then(Value::as_str)
+    };
+    let (value, unit) = in_unit(
+        o.get("objective"),
+        of("output_units").unwrap_or(""),
+        of("display_units"),
+    );
+    match unit.as_str() {
+        "" | "1" => value,
+        _ => format!("{value} {unit}"),
+    }
+}
+
 fn objective_line(o: &Value) -> String {
     let output = text(o, "objective_output");
     let output = if o.get("absolute").and_then(Value::as_bool) == Some(true) {
@@ -100,7 +119,7 @@ pub(super) fn heading(set: &Set) -> Markup {
                 "Model " strong { (text(o, "model")) } ". "
                 @if feasible {
                     "The optimum meets every constraint: " (objective_line(o)) " = "
-                    strong { (num(o.get("objective"))) } ", zone " (num(o.get("zone")))
+                    strong { (objective_value(o)) } ", zone " (num(o.get("zone")))
                     ", configuration " (text(o, "configuration")) "."
                 } @else {
                     strong.bad { "No start ended feasible" }
@@ -415,15 +434,16 @@ pub(super) fn fe_check(set: &Set) -> Markup {
                     @for name in names {
                         @let first = columns.iter().find_map(|(k, _)| outputs?.get(*k)?.get(name.as_str()));
                         @let si = first.map_or("", |f| text(f, "unit"));
+                        @let display = first.and_then(|f| f.get("display_unit")).and_then(Value::as_str);
                         tr {
                             td { code { (name) } br; span.small { (first.map_or("", |f| text(f, "meaning"))) } }
-                            td { (shown(si, None).name) }
-                            td.num { (in_unit(first.and_then(|f| f.get("analytic")), si, None).0) }
+                            td { (shown(si, display).name) }
+                            td.num { (in_unit(first.and_then(|f| f.get("analytic")), si, display).0) }
                             @for (k, _) in &columns {
                                 @let cell = outputs.and_then(|o| o.get(*k)).and_then(|o| o.get(name.as_str()));
                                 td.num.read[*k == read] {
                                     @if let Some(c) = cell {
-                                        (in_unit(c.get("value"), si, None).0) br;
+                                        (in_unit(c.get("value"), si, display).0) br;
                                         span.small {
                                             "± " (c.get("relative_error").and_then(Value::as_f64).map_or("–".into(), |e| significant(100.0 * e, 2))) " %"
                                             @if let Some(d) = c.get("deviation_percent").and_then(Value::as_f64) {
