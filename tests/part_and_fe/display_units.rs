@@ -8,7 +8,7 @@ use crate::common;
 use std::path::{Path, PathBuf};
 
 use common::flexopt_ok;
-use flexopt::model::{Dimension, Model as _};
+use flexopt::model::Dimension;
 use flexopt::problem::design::default_design;
 use flexopt::problem::refine::RefineSettings;
 use flexopt::problem::Problem;
