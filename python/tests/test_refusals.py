@@ -67,3 +67,14 @@ def test_a_huge_value_is_shown_cut_short(wei2017):
         wei2017.evaluate(design)
     assert len(str(e.value)) < 200, str(e.value)
     assert "1" + "0" * 39 + "… is not a finite number" in str(e.value)
+
+
+@pytest.mark.parametrize("threads", [-1, 1025, 100_000])
+def test_threads_have_the_command_lines_range(wei2017, threads):
+    # one range for every thread count (issue 50, case 7): a study's and a tolerance's
+    for call in (lambda: wei2017.run(starts=2, threads=threads),
+                 lambda: wei2017.tolerance(TABLE1, samples=10, threads=threads)):
+        with pytest.raises(flexopt.FlexoptError,
+                           match=f"must lie between 0 and 1024, got {threads}") as e:
+            call()
+        assert e.value.key == "threads" and e.value.code == 2

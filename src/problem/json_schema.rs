@@ -22,6 +22,16 @@ use crate::model::registry::{ModelEntry, MODELS};
 use crate::vocab::units;
 use crate::vocab::Dimension;
 
+/// `[tolerances]`: its two keys of its own, and a variable's tolerance under any other key.
+fn tolerances_schema(g: &mut schemars::SchemaGenerator) -> Value {
+    json!({"type": "object",
+        "properties": {
+            "coverage": g.subschema_for::<super::tolerances::RawCoverage>(),
+            "yield_of": {"type": "array", "items": {"type": "string"}, "minItems": 1},
+        },
+        "additionalProperties": g.subschema_for::<super::tolerances::RawTolerance>()})
+}
+
 /// The JSON Schema of a problem file: the common keys, every model's sections, and what
 /// each model requires and allows.
 pub fn json_schema() -> Value {
@@ -65,15 +75,7 @@ pub fn json_schema() -> Value {
     properties.insert("search".into(), g.subschema_for::<RawSearch>().to_value());
     properties.insert("zones".into(), g.subschema_for::<RawZones>().to_value());
     properties.insert("refine".into(), g.subschema_for::<RawRefine>().to_value());
-    properties.insert(
-        "tolerances".into(),
-        json!({"type": "object",
-            "properties": {
-                "coverage": g.subschema_for::<super::tolerances::RawCoverage>(),
-                "yield_of": {"type": "array", "items": {"type": "string"}, "minItems": 1},
-            },
-            "additionalProperties": g.subschema_for::<super::tolerances::RawTolerance>()}),
-    );
+    properties.insert("tolerances".into(), tolerances_schema(&mut g));
     let mut per_model = Vec::new();
     for m in MODELS {
         let sections = (m.schema)(&mut g);

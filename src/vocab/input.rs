@@ -15,7 +15,7 @@ pub const MAX_SET_FILE_BYTES: u64 = 64 << 20;
 /// refusal of a larger one ("a problem file"). The error is a sentence without the path,
 /// for the caller to place.
 pub fn read_bytes(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>, String> {
-    let mib = if limit % (1 << 20) == 0 {
+    let mib = if limit.is_multiple_of(1 << 20) {
         format!(" ({} MiB)", limit >> 20)
     } else {
         String::new()

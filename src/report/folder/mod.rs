@@ -239,10 +239,13 @@ impl OutputSet {
 
     /// Where the file (or folder) `name` of the set is written.
     pub fn path(&self, name: &str) -> PathBuf {
-        // a name that is no plain file name (a path, `..`) writes inside the staging folder
-        // under a name of its own, which the commit then refuses: no name leads out; the
-        // empty name is the staging folder itself
-        if name.is_empty() || plain(name) {
+        // a name that would lead out (`..`, an absolute path) writes inside the staging
+        // folder under a name of its own, which the commit then refuses; a path down into a
+        // folder of the set (`sub/x.txt`) stays, and the empty name is the staging folder
+        let inside = Path::new(name)
+            .components()
+            .all(|c| matches!(c, std::path::Component::Normal(_)));
+        if inside {
             self.staging.join(name)
         } else {
             self.staging
