@@ -9,7 +9,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::plot::{format_tick, range, render_png, FAMILY};
+use super::plot::{axis_tick, range, render_png, FAMILY};
 use super::study_plots::colour;
 use super::WriteError;
 use crate::model::Skeleton;
@@ -254,8 +254,8 @@ pub(super) fn configurations_png(
                 .label_style((FAMILY, 12))
                 .light_line_style(TRANSPARENT)
                 .bold_line_style(BLACK.mix(0.1))
-                .x_label_formatter(&|v| format_tick(*v))
-                .y_label_formatter(&|v| format_tick(*v))
+                .x_label_formatter(&|v| axis_tick(*v, xr, 10))
+                .y_label_formatter(&|v| axis_tick(*v, yr, 10))
                 .draw()?;
             for (_, shape, flexible) in shapes.iter().filter(|s| s.0 == rank) {
                 if *flexible {

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use plotters::prelude::*;
 
 use super::folder::OutputSet;
-use super::plot::{draw_legend, format_tick, range, render_png, FAMILY};
+use super::plot::{axis_tick, draw_legend, range, render_png, FAMILY};
 use super::{write_json, WriteError};
 use crate::pareto::Pareto;
 
@@ -53,8 +53,8 @@ fn plot(path: &Path, front: &Pareto) -> Result<(), WriteError> {
             .label_style((FAMILY, 13))
             .light_line_style(TRANSPARENT)
             .bold_line_style(BLACK.mix(0.12))
-            .x_label_formatter(&|v| format_tick(*v))
-            .y_label_formatter(&|v| format_tick(*v))
+            .x_label_formatter(&|v| axis_tick(*v, xr, 10))
+            .y_label_formatter(&|v| axis_tick(*v, yr, 10))
             .draw()?;
         let mut best: Vec<(f64, f64)> = feasible
             .iter()

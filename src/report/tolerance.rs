@@ -10,7 +10,7 @@ use plotters::prelude::*;
 use serde::Serialize;
 
 use super::folder::OutputSet;
-use super::plot::{format_tick, range, render_png, FAMILY};
+use super::plot::{axis_tick, range, render_png, FAMILY};
 use super::{write_json, WriteError};
 use crate::problem::display::{human, output_unit, significant};
 use crate::problem::tolerances::{Distribution, Input, Origin, Tolerance};
@@ -401,8 +401,8 @@ fn histogram(png: &Path, problem: &str, o: &OutputLine, values: &[f64]) -> Resul
             .axis_desc_style((FAMILY, 13))
             .light_line_style(TRANSPARENT)
             .bold_line_style(BLACK.mix(0.12))
-            .x_label_formatter(&|v| format_tick(*v))
-            .y_label_formatter(&|v| format_tick(*v))
+            .x_label_formatter(&|v| axis_tick(*v, (x0, x1), 10))
+            .y_label_formatter(&|v| axis_tick(*v, (0.0, top), 10))
             .draw()?;
         chart.draw_series(counts.iter().enumerate().map(|(b, &c)| {
             let left = lo + width * b as f64;
