@@ -55,10 +55,7 @@ pub fn critical_load_factor(
     opts: &Options,
 ) -> Result<Critical, LargeError> {
     let system = System::new(structure)?;
-    let mut state = State {
-        free: vec![0.0; system.free.len()],
-        lambda: 0.0,
-    };
+    let mut state = system.unloaded();
     let unloaded = system.at(&state).tangent;
     let scale: Vec<f64> = (0..unloaded.nrows())
         .map(|i| 1.0 / unloaded[(i, i)].abs().sqrt())

@@ -88,6 +88,14 @@ pub(crate) struct State {
 }
 
 impl System<'_> {
+    /// The unloaded structure: every path and search starts there.
+    pub(crate) fn unloaded(&self) -> State {
+        State {
+            free: vec![0.0; self.free.len()],
+            lambda: 0.0,
+        }
+    }
+
     pub(crate) fn at(&self, state: &State) -> Assembled {
         self.assemble(&self.expand(&state.free, state.lambda), state.lambda)
     }
@@ -200,10 +208,7 @@ pub fn continuation(
     opts: &Options,
 ) -> Result<Path, LargeError> {
     let system = System::new(structure)?;
-    let mut state = State {
-        free: vec![0.0; system.free.len()],
-        lambda: 0.0,
-    };
+    let mut state = system.unloaded();
     let mut points = vec![system.point(&state)];
     let steps = opts.steps.max(1);
     for i in 1..=steps {
@@ -293,10 +298,7 @@ pub fn arc_length(
     opts: &Options,
 ) -> Result<Path, LargeError> {
     let system = System::new(structure)?;
-    let mut state = State {
-        free: vec![0.0; system.free.len()],
-        lambda: 0.0,
-    };
+    let mut state = system.unloaded();
     let mut points = vec![system.point(&state)];
     let a = system.at(&state);
     let uq = solve_each(&a.tangent, &[&a.load])
