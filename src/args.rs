@@ -174,8 +174,12 @@ pub enum Command {
         /// The design the other variables are held at, `name=value` pairs in the file's
         /// units; variables left out (or all, without it) take the middle of their bounds,
         /// an angle range that straddles zero the middle of its positive part.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "optimum")]
         around: Option<String>,
+        /// A report of `flexopt run` whose design the other variables are held at (its
+        /// `design_si`), instead of `--around`.
+        #[arg(long)]
+        optimum: Option<PathBuf>,
         /// Outputs to record, comma-separated (default: all).
         #[arg(long, value_delimiter = ',')]
         outputs: Vec<String>,

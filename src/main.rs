@@ -115,6 +115,7 @@ fn run(command: Command) -> Result<(), Failure> {
             to,
             steps,
             around,
+            optimum,
             outputs,
             out,
         } => {
@@ -125,7 +126,11 @@ fn run(command: Command) -> Result<(), Failure> {
                 steps,
                 outputs,
             };
-            run_sweep(&problem, &spec, around.as_deref(), out)
+            let base = Base {
+                around: around.as_deref(),
+                optimum: optimum.as_deref(),
+            };
+            run_sweep(&problem, &spec, base, out)
         }
         Command::Run {
             problem,
@@ -239,17 +244,26 @@ fn output_dir(problem: &Problem, out: Option<PathBuf>) -> Result<PathBuf, Failur
 
 /// The design a sweep runs around: `--around` (partial: the rest from the default), or the
 /// default of [`default_design`].
-fn load_around(path: &Path, around: Option<&str>) -> Result<(Problem, Vec<f64>), Failure> {
+/// Where a sweep's base design comes from: `--around` pairs or an optimum's report (else the
+/// middle of the bounds).
+struct Base<'a> {
+    around: Option<&'a str>,
+    optimum: Option<&'a Path>,
+}
+
+fn load_around(path: &Path, base: Base) -> Result<(Problem, Vec<f64>), Failure> {
     let problem = load_problem(path)?;
-    let x = match around {
-        Some(text) => {
-            let parsed = parse_around(&problem, text).map_err(Failure::bad_input)?;
-            warn(path, &parsed.warnings);
-            parsed.x
+    let parsed = match (base.around, base.optimum) {
+        (Some(text), _) => parse_around(&problem, text),
+        (None, Some(report)) => design_from_optimum(&problem, report),
+        (None, None) => {
+            let x = default_design(&problem);
+            return Ok((problem, x));
         }
-        None => default_design(&problem),
     };
-    Ok((problem, x))
+    let parsed = parsed.map_err(Failure::bad_input)?;
+    warn(path, &parsed.warnings);
+    Ok((problem, parsed.x))
 }
 
 fn warn(path: &Path, warnings: &[String]) {
@@ -351,10 +365,10 @@ fn hinge(
 fn run_sweep(
     path: &Path,
     spec: &SweepSpec,
-    around: Option<&str>,
+    base: Base,
     out: Option<PathBuf>,
 ) -> Result<(), Failure> {
-    let (problem, base) = load_around(path, around)?;
+    let (problem, base) = load_around(path, base)?;
     let result = sweep(&problem, spec, &base).map_err(Failure::bad_input)?;
     warn(path, result.gaps().as_slice());
     let dir = out.unwrap_or_else(|| problem.default_output_dir().join("sweep"));

@@ -77,3 +77,24 @@ impl Part {
         }
     }
 }
+
+/// A length for a drawing or message: mm, at most three decimals.
+pub fn length(v: f64) -> String {
+    format!("{} mm", trimmed(v * 1e3, 3))
+}
+
+/// An angle (rad) for a drawing or message: degrees, at most two decimals.
+pub fn angle(v: f64) -> String {
+    format!("{}°", trimmed(v.to_degrees(), 2))
+}
+
+/// `v` with at most `decimals` decimals, no trailing zeros, and no sign on a zero.
+fn trimmed(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.into()
+    }
+}

@@ -21,7 +21,7 @@ pub mod analysis;
 pub mod checks;
 pub mod dxf;
 pub mod half;
-mod mm;
+pub mod mm;
 pub mod outline;
 mod roots;
 pub mod step;

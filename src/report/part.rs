@@ -213,21 +213,29 @@ fn drawing_png(
                 BLACK.stroke_width(2),
             )))?;
         }
-        for (k, f) in mm.faces.iter().enumerate() {
+        // one colour and one legend entry per face name, however many segments it spans
+        let mut names: Vec<&str> = Vec::new();
+        for f in &mm.faces {
+            let k = names
+                .iter()
+                .position(|n| *n == f.name)
+                .unwrap_or(names.len());
             let c = face_colour(k);
-            chart
-                .draw_series(std::iter::once(PathElement::new(
-                    vec![(f.a[0], f.a[1]), (f.b[0], f.b[1])],
-                    c.stroke_width(5),
-                )))?
-                .label(&f.name)
-                .legend(move |(x, y)| {
+            let series = chart.draw_series(std::iter::once(PathElement::new(
+                vec![(f.a[0], f.a[1]), (f.b[0], f.b[1])],
+                c.stroke_width(5),
+            )))?;
+            if k == names.len() {
+                names.push(&f.name);
+                series.label(&f.name).legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(5))
                 });
+            }
         }
         // the notes' labels stand where the model puts them; the dimensions' find room
         let mut placed = Vec::new();
-        let mut order: Vec<&Annotation> = part.annotations.iter().collect();
+        let overall = overall_size(part);
+        let mut order: Vec<&Annotation> = part.annotations.iter().chain(&overall).collect();
         order.sort_by_key(|a| matches!(a, Annotation::Length { .. }));
         for a in order {
             draw_annotation(
@@ -256,6 +264,34 @@ fn drawing_png(
             .draw()?;
         Ok(())
     })
+}
+
+/// The part's overall width and height, where its own dimensions give no lengths (a
+/// network's part names only its hinges): below and left of its bounding box.
+fn overall_size(part: &Part) -> Vec<Annotation> {
+    if part
+        .annotations
+        .iter()
+        .any(|a| matches!(a, Annotation::Length { .. }))
+    {
+        return Vec::new();
+    }
+    let [x0, y0, x1, y1] = part.bounding_box;
+    let gap = 0.04 * (x1 - x0).max(y1 - y0);
+    vec![
+        Annotation::Length {
+            a: [x1, y0],
+            b: [x0, y0],
+            offset: gap,
+            label: crate::part::mm::length(x1 - x0),
+        },
+        Annotation::Length {
+            a: [x0, y0],
+            b: [x0, y1],
+            offset: gap,
+            label: crate::part::mm::length(y1 - y0),
+        },
+    ]
 }
 
 type Chart<'a, 'b> = ChartContext<

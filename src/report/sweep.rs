@@ -26,7 +26,18 @@ pub fn write_sweep(dir: &Path, sweep: &Sweep) -> Result<Vec<PathBuf>, WriteError
 
 /// `<variable>.png`: a panel per output.
 fn plot(png: &Path, sweep: &Sweep) -> Result<(), WriteError> {
-    let around = sweep.around.get(&sweep.variable).copied();
+    // the base design is marked where it lies within the swept range
+    let (lo, hi) = sweep
+        .values
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
+            (l.min(v), h.max(v))
+        });
+    let around = sweep
+        .around
+        .get(&sweep.variable)
+        .copied()
+        .filter(|v| (lo..=hi).contains(v));
     let panels: Vec<Panel> = sweep
         .order
         .iter()

@@ -27,5 +27,6 @@ mod part_rules;
 mod refine;
 mod report_html;
 mod report_integrity;
+mod report_review;
 mod sets;
 mod step;

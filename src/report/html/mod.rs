@@ -5,6 +5,8 @@
 //! fetched, no script runs, and the page carries no time, so that the same set gives the same
 //! bytes.
 
+mod constraints;
+mod overview;
 mod sections;
 mod shape;
 pub use shape::check_optimum;
@@ -226,17 +228,17 @@ fn render(set: &Set, problem: Option<&ProblemText>) -> Markup {
             }
             body {
                 main {
-                    (sections::heading(set))
-                    (sections::problem(set, problem))
-                    (sections::optimum(set))
-                    (sections::constraints(set))
+                    (overview::heading(set))
+                    (overview::problem(set, problem))
+                    (overview::optimum(set))
+                    (constraints::constraints(set))
                     (sections::part(set))
                     (sections::fe_check(set))
                     (sections::refinement(set))
                     (sections::tolerances(set))
                     (sections::files(set))
                     (sections::reproduce(set, problem))
-                    (sections::problem_file(problem))
+                    (overview::problem_file(problem))
                 }
             }
         }

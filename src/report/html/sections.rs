@@ -4,25 +4,26 @@
 use maud::{html, Markup};
 use serde_json::Value;
 
+use super::constraints::constraint_table;
 use super::{ProblemText, Set, TOLERANCE, VERIFY};
 use crate::problem::display::{human, significant};
 use crate::vocab::units::{tables, Unit};
 
-fn num(v: Option<&Value>) -> String {
+pub(super) fn num(v: Option<&Value>) -> String {
     v.and_then(Value::as_f64).map_or("–".into(), human)
 }
 
-fn text<'a>(v: &'a Value, key: &str) -> &'a str {
+pub(super) fn text<'a>(v: &'a Value, key: &str) -> &'a str {
     v.get(key).and_then(Value::as_str).unwrap_or("–")
 }
 
-fn list<'a>(v: Option<&'a Value>, key: &str) -> &'a [Value] {
+pub(super) fn list<'a>(v: Option<&'a Value>, key: &str) -> &'a [Value] {
     v.and_then(|v| v.get(key))
         .and_then(Value::as_array)
         .map_or(&[], Vec::as_slice)
 }
 
-fn yes(v: &Value, key: &str) -> &'static str {
+pub(super) fn yes(v: &Value, key: &str) -> &'static str {
     match v.get(key).and_then(Value::as_bool) {
         Some(true) => "yes",
         Some(false) => "no",
@@ -32,7 +33,7 @@ fn yes(v: &Value, key: &str) -> &'static str {
 
 /// The unit a value given in the SI unit `si` is shown in (`display` where it is one of that
 /// dimension's units, else the designer's usual one), with its factor from SI.
-fn shown(si: &str, display: Option<&str>) -> Unit {
+pub(super) fn shown(si: &str, display: Option<&str>) -> Unit {
     tables()
         .iter()
         .find(|(_, units)| units.iter().any(|&(n, f)| n == si && f == 1.0))
@@ -47,7 +48,7 @@ fn shown(si: &str, display: Option<&str>) -> Unit {
 }
 
 /// `value` (SI, in `si`) in the unit [`shown`] gives, and that unit's name.
-fn in_unit(value: Option<&Value>, si: &str, display: Option<&str>) -> (String, String) {
+pub(super) fn in_unit(value: Option<&Value>, si: &str, display: Option<&str>) -> (String, String) {
     let unit = shown(si, display);
     let v = value
         .and_then(Value::as_f64)
@@ -56,7 +57,7 @@ fn in_unit(value: Option<&Value>, si: &str, display: Option<&str>) -> (String, S
 }
 
 /// A constraint's limits as the problem states them: `7.5 mm <= span_x <= 12 mm`.
-fn limits(c: &Value) -> String {
+pub(super) fn limits(c: &Value) -> String {
     let unit = text(c, "unit");
     let unit = if unit == "1" { "" } else { unit };
     let bound = |k: &str| c.get(k).and_then(Value::as_f64).map(human);
@@ -69,260 +70,12 @@ fn limits(c: &Value) -> String {
     }
 }
 
-fn figure(set: &Set, name: &str, caption: &str) -> Markup {
+pub(super) fn figure(set: &Set, name: &str, caption: &str) -> Markup {
     html! {
         @if let Some(uri) = set.picture(name) {
             figure {
                 img src=(uri) alt=(caption);
                 figcaption { (caption) " (" code { (name) } ")" }
-            }
-        }
-    }
-}
-
-/// The objective's value at the optimum in the unit its output is shown in, with the unit.
-fn objective_value(o: &Value) -> String {
-    let output = text(o, "objective_output");
-    let of = |key: &str| {
-        o.get(key)
-            .and_then(|u| u.get(output))
-            .and_then(Value::as_str)
-    };
-    let (value, unit) = in_unit(
-        o.get("objective"),
-        of("output_units").unwrap_or(""),
-        of("display_units"),
-    );
-    match unit.as_str() {
-        "" | "1" => value,
-        _ => format!("{value} {unit}"),
-    }
-}
-
-fn objective_line(o: &Value) -> String {
-    let output = text(o, "objective_output");
-    let output = if o.get("absolute").and_then(Value::as_bool) == Some(true) {
-        format!("|{output}|")
-    } else {
-        output.to_string()
-    };
-    format!("{} {output}", text(o, "sense"))
-}
-
-pub(super) fn heading(set: &Set) -> Markup {
-    let o = &set.optimum;
-    let feasible = o.get("feasible").and_then(Value::as_bool) == Some(true);
-    html! {
-        header {
-            h1 { "Design report: " (text(o, "problem")) }
-            p.lead {
-                "Model " strong { (text(o, "model")) } ". "
-                @if feasible {
-                    "The optimum meets every constraint: " (objective_line(o)) " = "
-                    strong { (objective_value(o)) } ", zone " (num(o.get("zone")))
-                    ", configuration " (text(o, "configuration")) "."
-                } @else {
-                    strong.bad { "No start ended feasible" }
-                    ": the design below is the least violating one."
-                }
-            }
-            p.small {
-                "Written by flexopt " (env!("CARGO_PKG_VERSION")) " from the set's files; seed " (num(o.get("seed"))) ", " (num(o.get("starts"))) " starts, solver "
-                (text(o, "solver")) ", problem file content " code { (text(o, "problem_fnv1a64")) }
-                " (FNV-1a of its data)."
-            }
-        }
-    }
-}
-
-pub(super) fn problem(set: &Set, problem: Option<&ProblemText>) -> Markup {
-    let o = &set.optimum;
-    let units = o.get("design_units");
-    html! {
-        section #problem {
-            h2 { "The problem" }
-            p { "Objective: " strong { (objective_line(o)) } "." }
-            p { "Constraints:" }
-            ul {
-                @for c in list(Some(o), "constraints") { li { (limits(c)) } }
-            }
-            p {
-                "Design variables (in the file's units): "
-                @for (i, name) in set.order.design.keys().enumerate() {
-                    @if i > 0 { ", " }
-                    code { (name) } " [" (units.and_then(|u| u.get(name)).and_then(Value::as_str).unwrap_or("")) "]"
-                }
-                "."
-            }
-            @match problem {
-                Some(p) => p { "The problem file as stated, " code { (p.path) } ", is the "
-                    a href="#problem-file" { "last section" } "." },
-                None => p.note {
-                    "The problem file is not part of the set; "
-                    code { "flexopt report DIR --problem FILE" }
-                    " adds it, checked against the content the run read."
-                },
-            }
-        }
-    }
-}
-
-pub(super) fn problem_file(problem: Option<&ProblemText>) -> Markup {
-    html! {
-        @if let Some(p) = problem {
-            section #problem-file {
-                h2 { "The problem file" }
-                p { code { (p.path) } ", as the run read it:" }
-                pre.source { (p.text) }
-            }
-        }
-    }
-}
-
-pub(super) fn optimum(set: &Set) -> Markup {
-    let o = &set.optimum;
-    let design = o.get("design");
-    let units = o.get("design_units");
-    let outputs = o.get("outputs");
-    let ends = o.get("ends");
-    html! {
-        section #optimum {
-            h2 { "The optimum" }
-            div.columns {
-                div {
-                    table {
-                        thead { tr { th { "variable" } th.num { "value" } th { "unit" } } }
-                        tbody {
-                            @for name in set.order.design.keys() {
-                                tr {
-                                    td { code { (name) } }
-                                    td.num { (num(design.and_then(|d| d.get(name)))) }
-                                    td { (units.and_then(|u| u.get(name)).and_then(Value::as_str).unwrap_or("")) }
-                                }
-                            }
-                        }
-                    }
-                    p {
-                        "The local solve from start " (num(o.get("start"))) " ended "
-                        (o.get("status").map_or("–", |s| text(s, "status")))
-                        " after " (num(o.get("iterations"))) " iterations (KKT residual "
-                        (num(o.get("kkt_residual"))) "). Of the starts, "
-                        @if let Some(e) = ends {
-                            (num(e.get("converged"))) " converged, " (num(e.get("iteration_limit")))
-                            " hit the iteration limit, " (num(e.get("infeasible"))) " ended infeasible and "
-                            (num(e.get("failed"))) " failed."
-                        }
-                    }
-                    @if let Some(z) = &set.zones {
-                        h3 { "Zones of the optima" }
-                        table {
-                            thead { tr { th { "zone" } th.num { "from" } th.num { "to" } th.num { "starts" } th.num { "best" } th.num { "optima" } } }
-                            tbody {
-                                @for zone in list(Some(z), "zones") {
-                                    tr {
-                                        td { (num(zone.get("rank"))) }
-                                        td.num { (num(zone.get("low"))) }
-                                        td.num { (num(zone.get("high"))) }
-                                        td.num { (num(zone.get("count"))) }
-                                        td.num { (num(zone.get("best"))) }
-                                        td.num { (list(Some(zone), "optima").len()) }
-                                    }
-                                }
-                            }
-                        }
-                        @if let Some(rule) = z.get("configuration_rule").and_then(Value::as_str) {
-                            p.small { "Configurations: " (rule) }
-                        }
-                    }
-                }
-                table {
-                    thead { tr { th { "output" } th.num { "value" } th { "unit" } } }
-                    tbody {
-                        @for name in set.order.outputs.keys() {
-                            @let v = outputs.and_then(|d| d.get(name));
-                            @let si = o.get("output_units").and_then(|u| u.get(name)).and_then(Value::as_str).unwrap_or("");
-                            @let display = o.get("display_units").and_then(|u| u.get(name)).and_then(Value::as_str);
-                            @let (value, unit) = in_unit(v, si, display);
-                            tr { td { code { (name) } } td.num { (value) } td { (unit) } }
-                        }
-                    }
-                }
-            }
-            (figure(set, "zones.png", "The starts' objectives by zone"))
-            (figure(set, "configurations.png", "Each zone's optima, to scale"))
-        }
-    }
-}
-
-fn constraint_table(constraints: &[Value]) -> Markup {
-    html! {
-        table {
-            thead { tr {
-                th { "constraint" } th.num { "value" } th.num { "lower" } th.num { "upper" }
-                th { "unit" } th.num { "margin" } th.num { "relative" } th { "met" } th { "active" }
-            } }
-            tbody {
-                @for c in constraints {
-                    tr.active[c.get("active").and_then(Value::as_bool) == Some(true)]
-                      .bad[c.get("satisfied").and_then(Value::as_bool) == Some(false)] {
-                        td { code { (text(c, "output")) } }
-                        td.num { (num(c.get("value"))) }
-                        td.num { (num(c.get("lower"))) }
-                        td.num { (num(c.get("upper"))) }
-                        td { (text(c, "unit")) }
-                        td.num { (num(c.get("margin"))) }
-                        td.num { (num(c.get("relative_margin"))) }
-                        td { (yes(c, "satisfied")) }
-                        td { (yes(c, "active")) }
-                    }
-                }
-            }
-        }
-    }
-}
-
-pub(super) fn constraints(set: &Set) -> Markup {
-    let o = &set.optimum;
-    let fits = list(Some(o), "fit_ranges");
-    let rules = list(Some(o), "part_rules");
-    html! {
-        section #constraints {
-            h2 { "Constraints at the optimum" }
-            p.small {
-                "Margin: the distance to the nearer limit in the constraint's unit, positive \
-                 inside; relative: over the limit. Active rows (shaded) hold the optimum where it is."
-            }
-            (constraint_table(list(Some(o), "constraints")))
-            @if !fits.is_empty() {
-                h3 { "Ranges where the model's formulas hold" }
-                table {
-                    thead { tr { th { "owner" } th { "ratio" } th.num { "value" } th.num { "lower" } th.num { "upper" } th { "inside" } th { "source" } } }
-                    tbody {
-                        @for f in fits {
-                            tr.bad[f.get("inside").and_then(Value::as_bool) == Some(false)] {
-                                td { (text(f, "owner")) } td { code { (text(f, "ratio")) } }
-                                td.num { (num(f.get("value"))) } td.num { (num(f.get("lower"))) }
-                                td.num { (num(f.get("upper"))) } td { (yes(f, "inside")) }
-                                td.small { (text(f, "source")) }
-                            }
-                        }
-                    }
-                }
-            }
-            @if !rules.is_empty() {
-                h3 { "The part's size rules" }
-                table {
-                    thead { tr { th { "rule" } th { "what" } th.num { "margin, mm" } th { "met" } th { "active" } } }
-                    tbody {
-                        @for r in rules {
-                            tr.active[r.get("active").and_then(Value::as_bool) == Some(true)]
-                              .bad[r.get("met").and_then(Value::as_bool) == Some(false)] {
-                                td { code { (text(r, "rule")) } } td { (text(r, "description")) }
-                                td.num { (num(r.get("margin_mm"))) } td { (yes(r, "met")) } td { (yes(r, "active")) }
-                            }
-                        }
-                    }
-                }
             }
         }
     }
@@ -496,7 +249,7 @@ pub(super) fn refinement(set: &Set) -> Markup {
             }
             h3 { "The refined design's outputs: model and FE" }
             table {
-                thead { tr { th { "output" } th { "unit" } th.num { "model" } th.num { "FE" } th.num { "FE error" } th.num { "model over FE" } } }
+                thead { tr { th { "output" } th { "unit" } th.num { "model" } th.num { "FE" } th.num { "FE error" } th.num { "(model − FE) / FE" } } }
                 tbody {
                     @for out in list(refined, "outputs") {
                         tr {

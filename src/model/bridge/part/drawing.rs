@@ -5,25 +5,7 @@ use super::{across, add, scale, Quarter, P};
 use crate::model::bridge::geometry::{Geometry, Layout};
 use crate::part::Annotation;
 
-/// A length for a drawing or message: mm, at most three decimals.
-pub(super) fn mm(v: f64) -> String {
-    format!("{} mm", trimmed(v * 1e3, 3))
-}
-
-pub(super) fn deg(v: f64) -> String {
-    format!("{}°", trimmed(v.to_degrees(), 2))
-}
-
-/// `v` with at most `decimals` decimals, no trailing zeros, and no sign on a zero.
-fn trimmed(v: f64, decimals: usize) -> String {
-    let s = format!("{v:.decimals$}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.into()
-    }
-}
+pub(super) use crate::part::mm::{angle as deg, length as mm};
 
 /// The drawing's dimensions: overall size, pocket, the upper left quarter's hinges and link.
 pub(super) fn annotations(

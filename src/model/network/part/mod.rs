@@ -53,7 +53,8 @@ use crate::model::{Dimension, PartMaker};
 use crate::part::analysis::{
     Analysis, FeCounterpart, FeOutput, Modal, Quantity, Spring as FeSpring,
 };
-use crate::part::{convex_hull, Actuation, Face, HingeSite, PartSpec, Solid};
+use crate::part::mm::length as mm;
+use crate::part::{convex_hull, Actuation, Annotation, Face, HingeSite, PartSpec, Solid};
 
 mod faces;
 mod flexures;
@@ -494,6 +495,7 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
     if part.actuation.stiffness.is_some() {
         modes_check(&mut check, d, grounded);
     }
+    let annotations = hinge_notes(&hinges);
     Ok(PartSpec {
         width: d.width,
         actuation: Some(part.actuation),
@@ -502,14 +504,14 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
         joints,
         hinges,
         faces,
-        annotations: Vec::new(),
+        annotations,
         caption: format!(
-            "flexure network: {} bodies, {} hinges{}{}",
-            d.bodies.len(),
-            d.hinges.len(),
+            "flexure network: {}, {}{}{}",
+            counted(d.bodies.len(), "body", "bodies"),
+            counted(d.hinges.len(), "hinge", "hinges"),
             match d.beams.len() {
                 0 => String::new(),
-                n => format!(", {n} beams"),
+                n => format!(", {}", counted(n, "beam", "beams")),
             },
             if images.len() > 1 {
                 format!(", {} images of the described part", images.len())
@@ -521,4 +523,31 @@ fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
         actuator: None,
         warnings: Vec::new(),
     })
+}
+
+/// `n` and the noun in its number.
+fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// The drawing's dimension of each hinge of the described part (its images are its mirror
+/// copies): its name, least thickness and length in mm, labelled beside its middle on the
+/// side its axis turns left to.
+fn hinge_notes(hinges: &[HingeSite]) -> Vec<Annotation> {
+    hinges
+        .iter()
+        .filter(|h| !h.name.ends_with(')'))
+        .map(|h| {
+            let d = [h.end[0] - h.start[0], h.end[1] - h.start[1]];
+            let length = d[0].hypot(d[1]);
+            let normal = [-d[1] / length, d[0] / length];
+            let at = [0.5 * (h.start[0] + h.end[0]), 0.5 * (h.start[1] + h.end[1])];
+            let off = h.root.max(h.thickness) + 2.5e-3;
+            Annotation::Note {
+                at,
+                label_at: [at[0] + off * normal[0], at[1] + off * normal[1]],
+                label: format!("{} t {}, l {}", h.name, mm(h.thickness), mm(length)),
+            }
+        })
+        .collect()
 }

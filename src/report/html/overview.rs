@@ -1,0 +1,182 @@
+//! The report's front: its heading (the verdict), the problem as stated, and the optimum with
+//! its zones.
+
+use maud::{html, Markup};
+use serde_json::Value;
+
+use super::sections::{figure, in_unit, limits, list, num, text};
+use super::{ProblemText, Set};
+
+/// The objective's value at the optimum in the unit its output is shown in, with the unit.
+fn objective_value(o: &Value) -> String {
+    let output = text(o, "objective_output");
+    let of = |key: &str| {
+        o.get(key)
+            .and_then(|u| u.get(output))
+            .and_then(Value::as_str)
+    };
+    let (value, unit) = in_unit(
+        o.get("objective"),
+        of("output_units").unwrap_or(""),
+        of("display_units"),
+    );
+    match unit.as_str() {
+        "" | "1" => value,
+        _ => format!("{value} {unit}"),
+    }
+}
+
+fn objective_line(o: &Value) -> String {
+    let output = text(o, "objective_output");
+    let output = if o.get("absolute").and_then(Value::as_bool) == Some(true) {
+        format!("|{output}|")
+    } else {
+        output.to_string()
+    };
+    format!("{} {output}", text(o, "sense"))
+}
+
+pub(super) fn heading(set: &Set) -> Markup {
+    let o = &set.optimum;
+    let feasible = o.get("feasible").and_then(Value::as_bool) == Some(true);
+    html! {
+        header {
+            h1 { "Design report: " (text(o, "problem")) }
+            p.lead {
+                "Model " strong { (text(o, "model")) } ". "
+                @if feasible {
+                    "The optimum meets every constraint: " (objective_line(o)) " = "
+                    strong { (objective_value(o)) } ", zone " (num(o.get("zone")))
+                    ", configuration " (text(o, "configuration")) "."
+                } @else {
+                    strong.bad { "No start ended feasible" }
+                    ": the design below is the least violating one."
+                }
+            }
+            p.small {
+                "Written by flexopt " (env!("CARGO_PKG_VERSION")) " from the set's files; seed " (num(o.get("seed"))) ", " (num(o.get("starts"))) " starts, solver "
+                (text(o, "solver")) ", problem file content " code { (text(o, "problem_fnv1a64")) }
+                " (FNV-1a of its data)."
+            }
+        }
+    }
+}
+
+pub(super) fn problem(set: &Set, problem: Option<&ProblemText>) -> Markup {
+    let o = &set.optimum;
+    let units = o.get("design_units");
+    html! {
+        section #problem {
+            h2 { "The problem" }
+            p { "Objective: " strong { (objective_line(o)) } "." }
+            p { "Constraints:" }
+            ul {
+                @for c in list(Some(o), "constraints") { li { (limits(c)) } }
+            }
+            p {
+                "Design variables (in the file's units): "
+                @for (i, name) in set.order.design.keys().enumerate() {
+                    @if i > 0 { ", " }
+                    code { (name) } " [" (units.and_then(|u| u.get(name)).and_then(Value::as_str).unwrap_or("")) "]"
+                }
+                "."
+            }
+            @match problem {
+                Some(p) => p { "The problem file as stated, " code { (p.path) } ", is the "
+                    a href="#problem-file" { "last section" } "." },
+                None => p.note {
+                    "The problem file is not part of the set; "
+                    code { "flexopt report DIR --problem FILE" }
+                    " adds it, checked against the content the run read."
+                },
+            }
+        }
+    }
+}
+
+pub(super) fn problem_file(problem: Option<&ProblemText>) -> Markup {
+    html! {
+        @if let Some(p) = problem {
+            section #problem-file {
+                h2 { "The problem file" }
+                p { code { (p.path) } ", as the run read it:" }
+                pre.source { (p.text) }
+            }
+        }
+    }
+}
+
+pub(super) fn optimum(set: &Set) -> Markup {
+    let o = &set.optimum;
+    let design = o.get("design");
+    let units = o.get("design_units");
+    let outputs = o.get("outputs");
+    let ends = o.get("ends");
+    html! {
+        section #optimum {
+            h2 { "The optimum" }
+            div.columns {
+                div {
+                    table {
+                        thead { tr { th { "variable" } th.num { "value" } th { "unit" } } }
+                        tbody {
+                            @for name in set.order.design.keys() {
+                                tr {
+                                    td { code { (name) } }
+                                    td.num { (num(design.and_then(|d| d.get(name)))) }
+                                    td { (units.and_then(|u| u.get(name)).and_then(Value::as_str).unwrap_or("")) }
+                                }
+                            }
+                        }
+                    }
+                    p {
+                        "The local solve from start " (num(o.get("start"))) " ended "
+                        (o.get("status").map_or("–", |s| text(s, "status")))
+                        " after " (num(o.get("iterations"))) " iterations (KKT residual "
+                        (num(o.get("kkt_residual"))) "). Of the starts, "
+                        @if let Some(e) = ends {
+                            (num(e.get("converged"))) " converged, " (num(e.get("iteration_limit")))
+                            " hit the iteration limit, " (num(e.get("infeasible"))) " ended infeasible and "
+                            (num(e.get("failed"))) " failed."
+                        }
+                    }
+                    @if let Some(z) = &set.zones {
+                        h3 { "Zones of the optima" }
+                        table {
+                            thead { tr { th { "zone" } th.num { "from" } th.num { "to" } th.num { "starts" } th.num { "best" } th.num { "optima" } } }
+                            tbody {
+                                @for zone in list(Some(z), "zones") {
+                                    tr {
+                                        td { (num(zone.get("rank"))) }
+                                        td.num { (num(zone.get("low"))) }
+                                        td.num { (num(zone.get("high"))) }
+                                        td.num { (num(zone.get("count"))) }
+                                        td.num { (num(zone.get("best"))) }
+                                        td.num { (list(Some(zone), "optima").len()) }
+                                    }
+                                }
+                            }
+                        }
+                        @if let Some(rule) = z.get("configuration_rule").and_then(Value::as_str) {
+                            p.small { "Configurations: " (rule) }
+                        }
+                    }
+                }
+                table {
+                    thead { tr { th { "output" } th.num { "value" } th { "unit" } } }
+                    tbody {
+                        @for name in set.order.outputs.keys() {
+                            @let v = outputs.and_then(|d| d.get(name));
+                            @let si = o.get("output_units").and_then(|u| u.get(name)).and_then(Value::as_str).unwrap_or("");
+                            @let display = o.get("display_units").and_then(|u| u.get(name)).and_then(Value::as_str);
+                            @let (value, unit) = in_unit(v, si, display);
+                            tr { td { code { (name) } } td.num { (value) } td { (unit) } }
+                        }
+                    }
+                }
+            }
+            (figure(set, "zones.png", "The starts' objectives by zone"))
+            (figure(set, "configurations.png", "Each zone's optima, to scale"))
+        }
+    }
+}
