@@ -54,8 +54,10 @@ struct RawOneHinge {
 #[serde(deny_unknown_fields)]
 struct RawDynamics {
     payload_mass: Measured<NonNegativeMass>,
-    input_link_mass: Measured<NonNegativeMass>,
-    output_link_mass: Measured<NonNegativeMass>,
+    /// Default: the input block's, from `[part]`'s sizes, the plate and the density.
+    input_link_mass: Option<Measured<NonNegativeMass>>,
+    /// Default: the output block's, likewise.
+    output_link_mass: Option<Measured<NonNegativeMass>>,
     /// Moved to `[part]`: read only to say so, and no key of the schema.
     #[schemars(skip)]
     link_thickness: Option<Quantity>,
@@ -164,15 +166,17 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
     };
     let actuator_size = [size("length", &a.length)?, size("height", &a.height)?];
     let part = part_settings(s, &p, actuator_size)?;
+    let width = s.measured(&[k("hinge"), k("width")], &h.width)?;
+    let blocks = part.block_masses(width, material.density);
     let settings = BridgeSettings {
         hinge_b,
         hinge_d,
-        width: s.measured(&[k("hinge"), k("width")], &h.width)?,
+        width,
         material,
         actuator: Actuator::read(s, &a)?,
         dynamics: d
             .as_ref()
-            .map(|d| dynamics(s, d, part.link_thickness))
+            .map(|d| dynamics(s, d, part.link_thickness, blocks))
             .transpose()?,
         part,
     };
@@ -236,7 +240,14 @@ fn part_settings(
     })
 }
 
-fn dynamics(s: &Sections, d: &RawDynamics, link_thickness: f64) -> Res<DynamicsSettings> {
+/// `[dynamics]`; `blocks` the input and output blocks' masses of the part, which a link's
+/// mass left out takes (NaN without a density, then refused).
+fn dynamics(
+    s: &Sections,
+    d: &RawDynamics,
+    link_thickness: f64,
+    blocks: [f64; 2],
+) -> Res<DynamicsSettings> {
     let path = |key: &str| [k("dynamics"), k(key)];
     if d.link_thickness.is_some() {
         return Err(s.err(
@@ -247,6 +258,16 @@ fn dynamics(s: &Sections, d: &RawDynamics, link_thickness: f64) -> Res<DynamicsS
         ));
     }
     let mass = |key: &str, q: &Measured<NonNegativeMass>| s.measured(&path(key), q);
+    let block = |key: &str, q: &Option<Measured<NonNegativeMass>>, or: f64| match q {
+        Some(q) => mass(key, q),
+        None if or.is_finite() => Ok(or),
+        None => Err(s.err(
+            &path(key),
+            "missing: the part's block gives it from the material's density, which \
+             [material] does not give; give the density or this mass"
+                .to_string(),
+        )),
+    };
     let zeta = s.finite(&path("damping_ratio"), d.damping_ratio)?;
     let (above, most) = DAMPING_RATIO;
     if !(zeta > above && zeta <= most) {
@@ -257,8 +278,8 @@ fn dynamics(s: &Sections, d: &RawDynamics, link_thickness: f64) -> Res<DynamicsS
     }
     Ok(DynamicsSettings::new(
         mass("payload_mass", &d.payload_mass)?,
-        mass("input_link_mass", &d.input_link_mass)?,
-        mass("output_link_mass", &d.output_link_mass)?,
+        block("input_link_mass", &d.input_link_mass, blocks[0])?,
+        block("output_link_mass", &d.output_link_mass, blocks[1])?,
         link_thickness,
         zeta,
     ))

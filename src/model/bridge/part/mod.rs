@@ -92,6 +92,21 @@ impl Default for PartSettings {
     }
 }
 
+impl PartSettings {
+    /// The masses (kg) of an input block and of an output block, each its rectangle of
+    /// `[part]`'s sizes through a plate `width` thick of `density`: what the dynamics takes
+    /// for a link's mass the file leaves out. The hinges' pads and the output block's
+    /// trapezoid where the faces of hinges d tilt are left out: at Table 1's optimum the cut
+    /// blocks are 0.86 % (input) and 2.14 % (output) heavier (tests/models/bridge_dynamics.rs).
+    pub fn block_masses(&self, width: f64, density: f64) -> [f64; 2] {
+        let rho_w = density * width;
+        [
+            rho_w * self.input_block_width * self.input_block_height,
+            rho_w * self.output_block_width * self.output_block_height,
+        ]
+    }
+}
+
 type P<D = f64> = [D; 2];
 
 fn add<D: Scalar>(a: P<D>, b: P<D>) -> P<D> {
