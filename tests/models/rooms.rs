@@ -434,7 +434,6 @@ const OVER_THE_LIMITS: &[&str] = &[
     "src/model/bridge/part/fe_cases.rs fn analysis",
     "src/model/bridge/part/mod.rs fn spec",
     "src/model/clearance.rs",
-    "src/model/expression/tape.rs",
     "src/optim/qp/direct.rs fn solve_on_active_set",
     "src/optim/qp/mod.rs fn solve_with_hint",
     "src/optim/sqp/mod.rs fn run",

@@ -11,10 +11,11 @@
 //! expression and why ([`Expression::eval`]'s message), a path taken once per failing
 //! design.
 
-use std::collections::HashMap;
+mod compile;
 
-use super::{asin_or_acos, atan2, operands, pop, Expression, Function, Kind};
+use super::{asin_or_acos, atan2, Expression, Function};
 use crate::model::scalar::{self, Scalar};
+use compile::Compiler;
 
 /// Expressions compiled together: registers `0..inputs` hold the names' values, each
 /// operation appends one register (two for [`Code::SinCos`]).
@@ -237,130 +238,14 @@ impl Op {
 /// [`Tape::only`]'s output of an expression it dropped.
 const DROPPED: u32 = u32::MAX;
 
-/// A compiled sub-expression: a register, or a constant not yet placed in one.
-#[derive(Debug, Clone, Copy)]
-enum Value {
-    Register(u32),
-    Constant(f64),
-}
-
-struct Compiler {
-    ops: Vec<Op>,
-    registers: u32,
-    /// Each operation's register, by its code, operands and the constant's bits.
-    seen: HashMap<(Code, u32, u32, u64), u32>,
-}
-
-impl Compiler {
-    fn emit(&mut self, code: Code, a: u32, b: u32, c: f64) -> u32 {
-        let key = (code, a, b, c.to_bits());
-        if let Some(&r) = self.seen.get(&key) {
-            return r;
-        }
-        let r = self.registers;
-        self.ops.push(Op { code, a, b, c });
-        self.registers += if code == Code::SinCos { 2 } else { 1 };
-        self.seen.insert(key, r);
-        r
-    }
-
-    fn register(&mut self, v: Value) -> u32 {
-        match v {
-            Value::Register(r) => r,
-            Value::Constant(c) => self.emit(Code::Const, 0, 0, c),
-        }
-    }
-
-    /// The expression's value: its nodes compiled in post-order, each operand's value taken
-    /// from a stack, so the tree's depth never recurses.
-    fn expression(&mut self, e: &Expression) -> Value {
-        let mut stack = Vec::new();
-        for node in &e.nodes {
-            let (first, second) = operands(node.kind);
-            // an operand the node lacks is never read
-            let y = second.map_or(Value::Constant(0.0), |_| pop(&mut stack));
-            let x = first.map_or(Value::Constant(0.0), |_| pop(&mut stack));
-            let v = self.node(node.kind, x, y);
-            stack.push(v);
-        }
-        pop(&mut stack)
-    }
-
-    /// A node of `kind` whose operands' values are `x` and `y`.
-    fn node(&mut self, kind: Kind, x: Value, y: Value) -> Value {
-        use Value::{Constant as C, Register as R};
-        let (code, a, b, c) = match kind {
-            Kind::Constant(c) => return C(c),
-            Kind::Name(k) => return R(k as u32),
-            Kind::Neg(_) => match x {
-                C(x) => return C(-x),
-                R(a) => (Code::Neg, a, 0, 0.0),
-            },
-            Kind::Add(..) => match (x, y) {
-                (C(x), C(y)) => return C(x + y),
-                (R(a), C(y)) | (C(y), R(a)) => (Code::AddC, a, 0, y),
-                (R(a), R(b)) => (Code::Add, a, b, 0.0),
-            },
-            Kind::Sub(..) => match (x, y) {
-                (C(x), C(y)) => return C(x - y),
-                (R(a), C(y)) => (Code::SubC, a, 0, y),
-                (C(x), R(b)) => (Code::SubFrom, b, 0, x),
-                (x, y) => {
-                    let (a, b) = (self.register(x), self.register(y));
-                    (Code::Sub, a, b, 0.0)
-                }
-            },
-            Kind::Mul(..) => match (x, y) {
-                (C(x), C(y)) => return C(x * y),
-                (R(a), C(y)) | (C(y), R(a)) => (Code::MulC, a, 0, y),
-                (R(a), R(b)) => (Code::Mul, a, b, 0.0),
-            },
-            // a quotient of constants is left to the scalar: a dual number divides by
-            // multiplying with the reciprocal, which `f64` division does not round alike
-            Kind::Div(..) => match (x, y) {
-                (R(a), C(y)) if y != 0.0 => (Code::DivC, a, 0, y),
-                (x, y) => {
-                    let (a, b) = (self.register(x), self.register(y));
-                    (Code::Div, a, b, 0.0)
-                }
-            },
-            Kind::Powi(_, n) => (Code::Powi, self.register(x), n as u32, 0.0),
-            Kind::Powf(_, y) => (Code::Powf, self.register(x), 0, y),
-            Kind::Call(f, _, b) => {
-                let x = self.register(x);
-                let y = match b {
-                    Some(_) => self.register(y),
-                    None => 0,
-                };
-                match f {
-                    Function::Sin => return R(self.emit(Code::SinCos, x, 0, 0.0)),
-                    Function::Cos => return R(self.emit(Code::SinCos, x, 0, 0.0) + 1),
-                    _ => (Code::Call(f), x, y, 0.0),
-                }
-            }
-        };
-        R(self.emit(code, a, b, c))
-    }
-}
-
 impl Tape {
     /// The expressions, each parsed against the same `inputs` names, compiled into one tape.
     pub fn compile<'a>(
         expressions: impl IntoIterator<Item = &'a Expression>,
         inputs: usize,
     ) -> Self {
-        let mut c = Compiler {
-            ops: Vec::new(),
-            registers: inputs as u32,
-            seen: HashMap::new(),
-        };
-        let outputs: Vec<u32> = expressions
-            .into_iter()
-            .map(|e| {
-                let v = c.expression(e);
-                c.register(v)
-            })
-            .collect();
+        let mut c = Compiler::new(inputs);
+        let outputs: Vec<u32> = expressions.into_iter().map(|e| c.output(e)).collect();
         let plan = Plan::new(inputs, &c.ops, &outputs, c.registers as usize);
         Tape {
             inputs,
@@ -620,111 +505,4 @@ fn call<D: Scalar>(f: Function, x: D, b: impl Fn() -> D, fine: &mut bool) -> D {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::super::tests::{NAMES, SMOOTH};
-    use super::*;
-    use crate::model::scalar::Jet;
-
-    /// The tape gives the tree's values and gradients bit for bit, shares what the
-    /// expressions share, and fails where the tree fails.
-    #[test]
-    fn the_tape_computes_what_the_tree_computes() {
-        let texts: Vec<&str> = SMOOTH
-            .iter()
-            .copied()
-            .chain([
-                "l2*cos(delta2)",
-                "l2*cos(delta2) + t*sin(delta2)",
-                "2*3 - l2/3 + (1 - t) - 4/l2",
-                "-(2 + 1)*l2^2 + 0",
-            ])
-            .collect();
-        let parsed: Vec<Expression> = texts
-            .iter()
-            .map(|t| Expression::parse(t, &NAMES).unwrap())
-            .collect();
-        let tape = Tape::compile(&parsed, 3);
-        let x = [1.7, 0.4, 0.55];
-        let jets: Vec<Jet<3>> = (0..3).map(|i| Jet::variable(x[i], i)).collect();
-        let (mut plain, mut dual) = (Vec::new(), Vec::new());
-        assert!(tape.run(&x, &mut plain));
-        assert!(tape.run(&jets, &mut dual));
-        for (k, e) in parsed.iter().enumerate() {
-            let r = tape.output(k);
-            assert_eq!(
-                plain[r].to_bits(),
-                e.eval(&x).unwrap().to_bits(),
-                "{}",
-                texts[k]
-            );
-            let tree = e.eval(&jets).unwrap();
-            assert_eq!(dual[r].re.to_bits(), tree.re.to_bits(), "{}", texts[k]);
-            for i in 0..3 {
-                // the same numbers, a zero's sign aside (a constant's zero derivative)
-                assert!(dual[r].grad[i] == tree.grad[i], "{} d/d{i}", texts[k]);
-            }
-        }
-        // `l2*cos(delta2)` once, with one sin_cos of delta2 for every expression
-        let one = Tape::compile(&parsed[8..10], 3);
-        assert_eq!(one.ops.len(), 4, "{:?}", one.ops);
-        // the odd expressions alone: their values bit for bit, the others' operations gone
-        let odd = tape.only(|k| k % 2 == 1);
-        assert!(odd.ops.len() < tape.ops.len());
-        let mut kept = Vec::new();
-        assert!(odd.run(&jets, &mut kept));
-        for k in (1..parsed.len()).step_by(2) {
-            let (a, b) = (kept[odd.output(k)], dual[tape.output(k)]);
-            assert_eq!(a.re.to_bits(), b.re.to_bits(), "{}", texts[k]);
-            assert!(a.grad == b.grad, "{}", texts[k]);
-        }
-        assert_eq!(odd.outputs[0], DROPPED);
-        assert_eq!(kept.len(), odd.registers());
-        // the operations of one code run together: fewer changes of code than compiled
-        fn changes<T: PartialEq>(codes: Vec<T>) -> usize {
-            codes.windows(2).filter(|w| w[0] != w[1]).count()
-        }
-        let compiled = tape
-            .ops
-            .iter()
-            .map(|op| op.code)
-            .filter(|&c| c != Code::Const);
-        let planned = tape.plan.steps.iter().map(|op| (op.run, op.f));
-        assert!(changes(planned.collect()) < changes(compiled.collect()));
-        assert_eq!(
-            tape.plan.steps.len() + tape.plan.constants.len(),
-            tape.ops.len()
-        );
-        // an angle's sine and cosine where another expression takes them, bit for bit
-        let angle = Expression::parse("delta2", &NAMES).unwrap();
-        let both = Tape::compile([&angle, &parsed[8]], 3);
-        let (sin, cos) = both.sin_cos_of(0).expect("cos(delta2) is on the tape");
-        assert!(both.run(&jets, &mut dual));
-        let (s, c) = jets[1].sin_cos();
-        assert!(dual[sin] == s && dual[cos] == c);
-        assert_eq!(both.sin_cos_of(1), None);
-        assert_eq!(Tape::compile([&angle], 3).sin_cos_of(0), None);
-        // a constant less a register: the tree's zero, with its sign
-        let e = Expression::parse("1 - l2", &NAMES).unwrap();
-        let one = Tape::compile([&e], 3);
-        assert!(one.run(&[1.0, 0.0, 0.0], &mut plain));
-        let zero = plain[one.output(0)];
-        assert_eq!(zero.to_bits(), e.eval(&[1.0, 0.0, 0.0]).unwrap().to_bits());
-        assert_eq!(zero.to_bits(), 0.0f64.to_bits());
-        // a constant is known as one
-        let constants: Vec<Expression> = ["-1", "l2", "2*3", "l2 - 1"]
-            .iter()
-            .map(|t| Expression::parse(t, &NAMES).unwrap())
-            .collect();
-        let c = Tape::compile(&constants, 3);
-        let known: Vec<Option<f64>> = (0..4).map(|k| c.constant(k)).collect();
-        assert_eq!(known, [Some(-1.0), None, Some(6.0), None]);
-        // a division by zero, a root of a negative number: refused, as the tree refuses
-        for text in ["1 / (l2 - t)", "sqrt(delta2 - l2)", "hypot(l2 - t, 0)"] {
-            let e = Expression::parse(text, &NAMES).unwrap();
-            let tape = Tape::compile([&e], 3);
-            let x = [2.0, 0.5, 2.0];
-            assert!(e.eval(&x).is_err(), "{text}");
-            assert!(!tape.run(&x, &mut plain), "{text}");
-        }
-    }
-}
+mod tests;
