@@ -63,6 +63,12 @@ pub trait PartMaker: Send + Sync + std::fmt::Debug {
     /// verify` compares it with and `run --refine fe` corrects it by.
     fn fe_counterpart(&self, output: usize) -> Option<FeCounterpart>;
 
+    /// Whether the model's output `output` is a size of the part as drawn (a span, a
+    /// described measure): the part has it exactly, and no finite element need measure it.
+    fn drawn(&self, _output: usize) -> bool {
+        false
+    }
+
     /// The part's manufacturability rules this model states as functions of the design
     /// ([`super::part_rules`]); none by default, and then the part is only checked after the
     /// study.
@@ -229,6 +235,12 @@ impl Mechanism {
     /// ([`PartMaker::fe_counterpart`]).
     pub fn fe_counterpart(&self, output: usize) -> Option<FeCounterpart> {
         self.part_maker.as_ref()?.fe_counterpart(output)
+    }
+
+    /// Whether the model's output `output` is a size of the part as drawn
+    /// ([`PartMaker::drawn`]).
+    pub fn drawn(&self, output: usize) -> bool {
+        self.part_maker.as_ref().is_some_and(|p| p.drawn(output))
     }
 }
 

@@ -80,6 +80,8 @@ pub enum Quantity {
     SymmetricFrequency,
     /// The lowest mode of either symmetry (Hz).
     LowestFrequency,
+    /// What the part does driven by its actuator, read through its two ports ([`Ports`]).
+    Actuated { ports: Ports, what: Actuated },
 }
 
 impl Quantity {
@@ -95,6 +97,154 @@ impl Quantity {
     pub fn is_stress(self) -> bool {
         matches!(self, Quantity::SectionStress | Quantity::PeakStress)
     }
+}
+
+/// The part's two ports as its measures read them (indices into [`Analysis::measures`]), each
+/// over the test force a compliance `C_ij`, the read of port `i` per force on port `j`: the
+/// input is read as `k_in` reads it under the actuation case, the output as the stroke at the
+/// output is read.
+///
+/// The actuator is a spring of its stiffness `k_a` on the input's read `g . u`, pushing as
+/// the actuation case's loads `h` do, driven by its free stroke: `(K + k_a h g^T) u = k_a
+/// stroke h`. The rank-one term is solved on the factorization already made (Sherman and
+/// Morrison): every field of the part with the spring in place is a combination of the two
+/// cases' fields, so every read of it is the same combination of the four reads. Nothing
+/// more is solved, in 2D or in 3D; the stack's force being the actuation case's loads
+/// scaled, the amplification under the stack is `fe_amplification` itself.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ports {
+    /// The input under the actuation case: `C_ii`.
+    pub input: usize,
+    /// The output under the actuation case: `C_oi`.
+    pub output: usize,
+    /// The output under the output's case, read along its load: `C_oo`.
+    pub output_loaded: usize,
+    /// The input under the output's case per force along the direction [`Ports::output`]
+    /// reads the output (its terms negated where the case loads the other way): `C_io`.
+    pub input_by_output: usize,
+}
+
+/// A quantity of the part driven by its actuator ([`Ports`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Actuated {
+    /// The stroke the stack makes against the part (m): paper 004's Eq. 13,
+    /// `stroke C_ii / (C_ii + 1 / k_a)`, the free stroke for a rigid stack.
+    StrokeIn,
+    /// The output's motion under that stroke (m): `C_oi / C_ii` times it.
+    StrokeOut,
+    /// The output's stiffness with the stack in place (N/m): `1 / (C_oo - C_oi C_io / (C_ii
+    /// + 1 / k_a))`.
+    KOutActuated,
+    /// The output's stiffness with the input held (N/m), as under a rigid stack.
+    KOutBlocked,
+    /// The force that holds the output still under the stroke (N): `stroke_out k_out_actuated`.
+    BlockedForce,
+}
+
+impl Actuated {
+    /// Every one, in the order [`actuated_outputs`] states them.
+    pub const ALL: [Actuated; 5] = [
+        Actuated::StrokeIn,
+        Actuated::StrokeOut,
+        Actuated::KOutActuated,
+        Actuated::KOutBlocked,
+        Actuated::BlockedForce,
+    ];
+
+    /// Its output's id where [`actuated_outputs`] start at `first`.
+    pub fn id(self, first: usize) -> FeOutputId {
+        FeOutputId(first + Actuated::ALL.iter().position(|&a| a == self).unwrap_or(0))
+    }
+}
+
+impl Ports {
+    /// Every measure it reads.
+    pub fn measures(&self) -> [usize; 4] {
+        [
+            self.input,
+            self.output,
+            self.output_loaded,
+            self.input_by_output,
+        ]
+    }
+
+    /// `what` from the measures `m` at the test force `force`, the actuator's free stroke
+    /// `stroke` (m) and stiffness `stiffness` (N/m; `None` for a rigid stack).
+    pub fn value(
+        &self,
+        what: Actuated,
+        m: &[f64],
+        force: f64,
+        stroke: f64,
+        stiffness: Option<f64>,
+    ) -> f64 {
+        let c = |i: usize| m[i] / force;
+        let (c_ii, c_oi) = (c(self.input), c(self.output));
+        let (c_oo, c_io) = (c(self.output_loaded), c(self.input_by_output));
+        // the stack's compliance, in series with the input's
+        let c_a = stiffness.map_or(0.0, f64::recip);
+        let stroke_in = stroke * c_ii / (c_ii + c_a);
+        let held = |c_a: f64| (c_oo - c_oi * c_io / (c_ii + c_a)).recip();
+        match what {
+            Actuated::StrokeIn => stroke_in,
+            Actuated::StrokeOut => stroke_in * c_oi / c_ii,
+            Actuated::KOutActuated => held(c_a),
+            Actuated::KOutBlocked => held(0.0),
+            Actuated::BlockedForce => stroke_in * c_oi / c_ii * held(c_a),
+        }
+    }
+}
+
+/// The outputs of the part driven by its actuator, read through `ports`, in the order of
+/// [`Actuated::ALL`]: strokes in micrometres, stiffnesses in `stiffness_display`.
+pub fn actuated_outputs(ports: Ports, stiffness_display: Option<&'static str>) -> Vec<FeOutput> {
+    let out = |name, dimension, meaning, what, display| FeOutput {
+        name,
+        dimension,
+        meaning,
+        quantity: Quantity::Actuated { ports, what },
+        converges: true,
+        display,
+        analytic: None,
+    };
+    let um = Some("um");
+    vec![
+        out(
+            "fe_stroke_in",
+            Dimension::Length,
+            "the stack's stroke against the part: a spring of its stiffness between the faces it pushes, driven by its free stroke",
+            Actuated::StrokeIn,
+            um,
+        ),
+        out(
+            "fe_stroke_out",
+            Dimension::Length,
+            "the output's motion under the stack's stroke",
+            Actuated::StrokeOut,
+            um,
+        ),
+        out(
+            "fe_k_out_actuated",
+            Dimension::Stiffness,
+            "the output's stiffness, the stack's spring between its faces",
+            Actuated::KOutActuated,
+            stiffness_display,
+        ),
+        out(
+            "fe_k_out_blocked",
+            Dimension::Stiffness,
+            "the output's stiffness, the stack's faces held",
+            Actuated::KOutBlocked,
+            stiffness_display,
+        ),
+        out(
+            "fe_blocked_force",
+            Dimension::Force,
+            "the force that holds the output still under the stack's stroke",
+            Actuated::BlockedForce,
+            None,
+        ),
+    ]
 }
 
 /// The analytic value an output is compared with when no model output has it as its

@@ -37,6 +37,10 @@ pub struct OutputRow {
     /// ([`crate::model::OutputInfo::stand_in`]): what it is.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stand_in: Option<&'static str>,
+    /// Neither measured nor a size of the part as drawn: the part's check has no counterpart
+    /// of it, and its value is the model's alone.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub not_measured_on_the_part: bool,
 }
 
 /// A measured design.
@@ -76,6 +80,8 @@ impl MeasuredDesign {
                     required_margin: c.measured[k].map(|_| c.margins[k]),
                     deviation: c.measured[k].map(|m| (c.analytic[k] - m) / m),
                     stand_in: model.outputs()[o].stand_in,
+                    not_measured_on_the_part: c.measured[k].is_none()
+                        && !problem.mechanism().drawn(o),
                 }
             })
             .collect();
@@ -328,6 +334,13 @@ impl Display for RefineSummary<'_> {
             "", "optimum", "its FE", "refined", "its FE"
         )?;
         let num = |v: Option<f64>| v.map_or("-".to_string(), significant);
+        let fe = |r: &OutputRow| {
+            if r.not_measured_on_the_part {
+                "not measured".to_string()
+            } else {
+                num(r.measured)
+            }
+        };
         for (ra, rb) in a.outputs.iter().zip(&b.outputs) {
             let limits =
                 a.constraints
@@ -345,9 +358,16 @@ impl Display for RefineSummary<'_> {
                 "{:<24} {:>13} {:>13}   {:>13} {:>13}   {limits}",
                 format!("{} ({})", ra.output, ra.unit),
                 num(Some(ra.analytic)),
-                num(ra.measured),
+                fe(ra),
                 num(Some(rb.analytic)),
-                num(rb.measured)
+                fe(rb)
+            )?;
+        }
+        if b.outputs.iter().any(|r| r.not_measured_on_the_part) {
+            writeln!(
+                s,
+                "not measured: on the part, whose check has no counterpart of it (the model's value \
+                 alone)"
             )?;
         }
         for r in &a.outputs {

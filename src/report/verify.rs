@@ -114,6 +114,9 @@ pub struct VerifyReport {
     /// ([`Fidelity::for_plate`]): the column to read.
     pub width_over_thickness: f64,
     pub read: Fidelity,
+    /// The outputs the problem's constraints name that the part's check does not measure
+    /// (nor the part's drawing give): a check with any is no verification of the design.
+    pub not_measured_on_the_part: Vec<String>,
 }
 
 fn key(f: Fidelity) -> &'static str {
@@ -200,8 +203,29 @@ impl VerifyReport {
             modal_note: v.modal_note.clone(),
             width_over_thickness: v.width / thinnest,
             read: Fidelity::for_plate(v.width, thinnest),
+            not_measured_on_the_part: not_measured(problem, v),
         }
     }
+}
+
+/// The outputs `problem`'s constraints name (each once) that `v` does not measure and the
+/// part's drawing does not give.
+fn not_measured(problem: &Problem, v: &Verification) -> Vec<String> {
+    let mechanism = problem.mechanism();
+    let measured = |output: usize| match mechanism.fe_counterpart(output) {
+        Some(FeCounterpart::ActuationForce) => true,
+        Some(FeCounterpart::Output(id)) => fidelities(v)
+            .iter()
+            .any(|(_, outputs, _)| outputs.iter().any(|o| o.id == id)),
+        None => mechanism.drawn(output),
+    };
+    let mut names: Vec<String> = Vec::new();
+    for c in &problem.constraints {
+        if !measured(c.index) && !names.contains(&c.output) {
+            names.push(c.output.clone());
+        }
+    }
+    names
 }
 
 /// Writes the verification's files through `path` (a file name to where it goes).
@@ -481,6 +505,9 @@ impl Display for VerifyTable<'_> {
             }
             writeln!(s, "{line} {analytic:>10} {deviation:>20}")?;
         }
+        for name in &r.not_measured_on_the_part {
+            writeln!(s, "{name:<21} {:>24}", "not measured on the part")?;
+        }
         let forces: Vec<String> = r
             .actuation_force
             .iter()
@@ -509,6 +536,14 @@ impl Display for VerifyTable<'_> {
         };
         if let Some(why) = &r.modal_note {
             writeln!(s, "no natural frequencies: {why}")?;
+        }
+        if !r.not_measured_on_the_part.is_empty() {
+            writeln!(
+                s,
+                "NOT verified on the part: its check does not measure {}, which the constraints \
+                 name",
+                r.not_measured_on_the_part.join(", ")
+            )?;
         }
         writeln!(
             s,

@@ -7,6 +7,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod actuated;
 mod display_units;
 mod dxf_audit;
 mod fe_budget;

@@ -221,7 +221,8 @@ pub(super) fn solve_level(
     // the actuation: the largest input force, the stresses it gives
     let a = &setup.actuation;
     let act = &setup.actuation_case;
-    let stiffness = static_value(quantity(act.stiffness.0), &measured, force).unwrap_or(f64::NAN);
+    let stiffness =
+        static_value(quantity(act.stiffness.0), &measured, force, a).unwrap_or(f64::NAN);
     let actuation_force = a.nominal_stroke * stiffness + a.preload;
     let scale = actuation_force / force;
     let u_act: Vec<f64> = fields[act.case].iter().map(|v| v * scale).collect();
@@ -323,7 +324,7 @@ pub(super) fn solve_level(
             f_output.min(lowest(held(&holds.cut_y), &sideways)?)
         };
     }
-    let values = output_values(&setup.analysis, &measured, force, |q| match q {
+    let values = output_values(&setup.analysis, &measured, force, a, |q| match q {
         Quantity::SectionStress => best.0,
         Quantity::PeakStress => peak,
         Quantity::SymmetricFrequency => f_output,

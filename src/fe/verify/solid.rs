@@ -70,8 +70,9 @@ pub(super) fn solve_solid(
         .collect();
     let quantity = |k: usize| setup.analysis.outputs[k].quantity;
     let act = &setup.actuation_case;
-    let stiffness = static_value(quantity(act.stiffness.0), &measured, force).unwrap_or(f64::NAN);
     let a = &setup.actuation;
+    let stiffness =
+        static_value(quantity(act.stiffness.0), &measured, force, a).unwrap_or(f64::NAN);
     let scale = (a.nominal_stroke * stiffness + a.preload) / force;
     let u_act: Vec<f64> = fields[act.case].iter().map(|v| v * scale).collect();
     let von_mises = solid::nodal_von_mises(&ext, &setup.material, &u_act);
@@ -86,7 +87,7 @@ pub(super) fn solve_solid(
             (f64::NEG_INFINITY, 0),
             |best, v| if v.0 > best.0 { v } else { best },
         );
-    let values = output_values(&setup.analysis, &measured, force, |q| match q {
+    let values = output_values(&setup.analysis, &measured, force, a, |q| match q {
         Quantity::PeakStress => peak,
         _ => f64::NAN,
     });

@@ -16,7 +16,7 @@ use crate::fe::loads;
 use crate::fe::mesh::{EdgeNodes, Mesh};
 use crate::fe::FeError;
 use crate::part::analysis::{Analysis, Measure, Quantity};
-use crate::part::Face;
+use crate::part::{Actuation, Face};
 
 /// A load as applied: its face, its total force (N).
 #[derive(Debug, Clone)]
@@ -358,24 +358,28 @@ pub(super) fn measure_solid(
 }
 
 /// Every output's value (in the analysis's order): the static ones from the measures at the
-/// test force `force`, the others as `other` gives them.
+/// test force `force` (and the actuator `a`), the others as `other` gives them.
 pub(super) fn output_values(
     analysis: &Analysis,
     measured: &[f64],
     force: f64,
+    a: &Actuation,
     other: impl Fn(Quantity) -> f64,
 ) -> Vec<f64> {
     analysis
         .outputs
         .iter()
-        .map(|o| static_value(o.quantity, measured, force).unwrap_or_else(|| other(o.quantity)))
+        .map(|o| static_value(o.quantity, measured, force, a).unwrap_or_else(|| other(o.quantity)))
         .collect()
 }
 
-/// The static outputs (those read from the measures alone) at the test force `force`;
-/// `None` for the others.
-pub(super) fn static_value(q: Quantity, values: &[f64], force: f64) -> Option<f64> {
+/// The static outputs (those read from the measures alone, with the actuator `a`) at the
+/// test force `force`; `None` for the others.
+pub(super) fn static_value(q: Quantity, values: &[f64], force: f64, a: &Actuation) -> Option<f64> {
     match q {
+        Quantity::Actuated { ports, what } => {
+            Some(ports.value(what, values, force, a.nominal_stroke, a.stiffness))
+        }
         Quantity::Displacement(i) => Some(values[i]),
         Quantity::Stiffness(i) => Some(force / values[i]),
         Quantity::Ratio {
@@ -421,6 +425,7 @@ pub(super) fn check(a: &Analysis) -> Result<(), FeError> {
                 numerator,
                 denominator,
             } => vec![numerator, denominator],
+            Quantity::Actuated { ports, .. } => ports.measures().to_vec(),
             _ => Vec::new(),
         };
         if let Some(i) = read.into_iter().find(|&i| i >= measures) {

@@ -342,6 +342,13 @@ impl PartMaker for Bridge {
         part::fe_cases::counterpart(BridgeOutput::ALL[output])
     }
 
+    fn drawn(&self, output: usize) -> bool {
+        matches!(
+            BridgeOutput::ALL.get(output),
+            Some(BridgeOutput::SpanX | BridgeOutput::SpanY)
+        )
+    }
+
     fn rules(&self) -> &[PartRule] {
         &self.rules
     }

@@ -45,6 +45,13 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         k_out: model.output_index("k_out"),
         stress_max: model.output_index("stress_max"),
         f1: model.output_index("f1"),
+        actuated: super::part::ACTUATED_OUTPUTS.map(|name| model.output_index(name)),
+        // the spans and the described measures are sizes of the part as drawn
+        drawn: ["span_x", "span_y"]
+            .into_iter()
+            .chain(model.description().measures.iter().map(|m| m.name.as_str()))
+            .filter_map(|name| model.output_index(name))
+            .collect(),
     };
     let model = std::sync::Arc::new(model);
     let mut mechanism = Mechanism::physics_only(model.clone()).with_modulus_scaling(model.clone());

@@ -16,6 +16,10 @@
 //!   the input faces free (the analytic `k_out`).
 //! - the section stress is what Eq. 12-17 predict (`stress_beam_max`); the peak stress is the
 //!   part's real one, at a fillet (`stress_max`'s counterpart).
+//! - under the stack (a spring of its stiffness between the input faces, driven by its free
+//!   stroke, [`crate::part::analysis::Ports`]): `stroke_in`, `stroke_out`, `k_out_actuated`
+//!   (`k_out` with the stack in place), the output's stiffness with the input faces held and
+//!   the force that holds the output still under the stroke (no model output has these two).
 //! - the output frequency is the analytic `output_frequency` (and `natural_frequency`); the
 //!   lowest mode of either symmetry is `first_frequency`'s, which the model has no closed
 //!   form of (its value is the output mode's).
@@ -23,8 +27,8 @@
 use super::super::BridgeOutput;
 use crate::model::Dimension;
 use crate::part::analysis::{
-    ActuationCase, Analysis, Comparison, FeCounterpart, FeOutput, FeOutputId, Load, LoadCase,
-    Measure, Modal, Quantity, Spring, Term,
+    actuated_outputs, Actuated, ActuationCase, Analysis, Comparison, FeCounterpart, FeOutput,
+    FeOutputId, Load, LoadCase, Measure, Modal, Ports, Quantity, Spring, Term,
 };
 
 /// The faces the part names ([`super::spec`]).
@@ -41,6 +45,8 @@ const STRESS_SECTION: usize = 5;
 const STRESS_MAX: usize = 6;
 const OUTPUT_FREQUENCY: usize = 7;
 const FIRST_FREQUENCY: usize = 8;
+/// The first of the outputs under the stack ([`actuated_outputs`]).
+const ACTUATED: usize = 9;
 
 fn load(face: &str, direction: [f64; 2]) -> Load {
     Load {
@@ -84,7 +90,7 @@ pub fn analysis() -> Analysis {
         BridgeOutput::KIn as usize,
         BridgeOutput::Amplification as usize,
     );
-    let outputs = vec![
+    let mut outputs = vec![
         FeOutput {
             analytic: Some(Comparison::PerTestForce {
                 stiffness: k_in,
@@ -164,6 +170,14 @@ pub fn analysis() -> Analysis {
             None,
         ),
     ];
+    debug_assert_eq!(outputs.len(), ACTUATED);
+    let ports = Ports {
+        input: 0,
+        output: 1,
+        output_loaded: 2,
+        input_by_output: 3,
+    };
+    outputs.extend(actuated_outputs(ports, Some("N/mm")));
     Analysis {
         clamped: vec![CLAMP_BOTTOM.into()],
         cases: vec![
@@ -191,6 +205,21 @@ pub fn analysis() -> Analysis {
             Measure {
                 case: 1,
                 terms: vec![term(OUTPUT_TOP, [0.0, 1.0])],
+            },
+            // x_in under the output's load, negated: per force towards the axis, the way
+            // y_out reads the output (the stack and the output as two ports)
+            Measure {
+                case: 1,
+                terms: vec![
+                    Term {
+                        weight: -1.0,
+                        ..term(INPUT_RIGHT, [1.0, 0.0])
+                    },
+                    Term {
+                        weight: -1.0,
+                        ..term(INPUT_LEFT, [-1.0, 0.0])
+                    },
+                ],
             },
         ],
         outputs,
@@ -225,6 +254,9 @@ pub fn counterpart(output: BridgeOutput) -> Option<FeCounterpart> {
         ForceInMax => Some(FeCounterpart::ActuationForce),
         NaturalFrequency | OutputFrequency => id(OUTPUT_FREQUENCY),
         FirstFrequency => id(FIRST_FREQUENCY),
+        StrokeIn => Some(FeCounterpart::Output(Actuated::StrokeIn.id(ACTUATED))),
+        StrokeOut => Some(FeCounterpart::Output(Actuated::StrokeOut.id(ACTUATED))),
+        KOutActuated => Some(FeCounterpart::Output(Actuated::KOutActuated.id(ACTUATED))),
         _ => None,
     }
 }

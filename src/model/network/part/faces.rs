@@ -5,7 +5,8 @@ use super::images::Image;
 use super::plane::{add, covered, exit, same_face, scale, P};
 use crate::model::Dimension;
 use crate::part::analysis::{
-    ActuationCase, Analysis, FeOutput, Load, LoadCase, Measure, Quantity, Term,
+    actuated_outputs, ActuationCase, Analysis, FeOutput, Load, LoadCase, Measure, Ports, Quantity,
+    Term,
 };
 use crate::part::{Face, Solid};
 
@@ -15,8 +16,10 @@ pub(super) const FE_K_IN: FeOutputId = FeOutputId(0);
 pub(super) const FE_AMPLIFICATION: FeOutputId = FeOutputId(1);
 pub(super) const FE_K_OUT: FeOutputId = FeOutputId(2);
 pub(super) const FE_STRESS_SECTION: FeOutputId = FeOutputId(3);
-/// After `fe_stress_max` ([`analysis`]), where the part has its modes checked.
-pub(super) const FE_F1: FeOutputId = FeOutputId(5);
+/// After `fe_stress_max` ([`analysis`]): the outputs under the stack.
+pub(super) const FE_ACTUATED: FeOutputId = FeOutputId(5);
+/// After those under the stack, where the part has its modes checked.
+pub(super) const FE_F1: FeOutputId = FeOutputId(10);
 
 /// A port's face on the described part: its name, ends, the port's direction and axis.
 pub(super) struct PlacedPort<'a> {
@@ -212,7 +215,8 @@ pub(super) fn ports_check(
 
 /// The check through the ports: the test force on the input's faces (the actuation case),
 /// the input's and the first output's motions under it; then on the first output's faces,
-/// the input free.
+/// the input free, the output's and the input's motions under it; and the outputs under the
+/// stack from those four.
 pub(super) fn analysis(
     input_loads: Vec<Load>,
     input_reads: Vec<Term>,
@@ -227,6 +231,12 @@ pub(super) fn analysis(
         converges: quantity != Quantity::PeakStress,
         display: None,
         analytic: None,
+    };
+    let ports = Ports {
+        input: 0,
+        output: 1,
+        output_loaded: 2,
+        input_by_output: 3,
     };
     Analysis {
         clamped: vec!["clamp".into()],
@@ -243,7 +253,7 @@ pub(super) fn analysis(
         measures: vec![
             Measure {
                 case: 0,
-                terms: input_reads,
+                terms: input_reads.clone(),
             },
             Measure {
                 case: 0,
@@ -252,6 +262,11 @@ pub(super) fn analysis(
             Measure {
                 case: 1,
                 terms: output_reads,
+            },
+            // the input under the output's load: the stack and the output as two ports
+            Measure {
+                case: 1,
+                terms: input_reads,
             },
         ],
         outputs: vec![
@@ -288,7 +303,10 @@ pub(super) fn analysis(
                 "the largest von Mises stress under the actuation",
                 Quantity::PeakStress,
             ),
-        ],
+        ]
+        .into_iter()
+        .chain(actuated_outputs(ports, None))
+        .collect(),
         actuation: Some(ActuationCase {
             name: "actuation_force",
             case: 0,

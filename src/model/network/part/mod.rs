@@ -40,6 +40,10 @@
 //! output's image across its axis, as the bridge's lower output block is. The part is
 //! symmetric about the y axis where the description is, so the check solves its right half.
 //!
+//! Under the stack (a spring of its stiffness on the input's face, driven by its free stroke,
+//! [`crate::part::analysis::Ports`]): `stroke_in`, `stroke_out`, `k_out_actuated`,
+//! `k_out_blocked` and `blocked_force`, the first output's.
+//!
 //! The natural modes, where the model has them (the actuator's stiffness given): `fe_f1`,
 //! the part's lowest mode, the payload on the first output's face ([`modes_check`]). Without
 //! mirror axes it is solved whole, the stack a spring from the input's face to the clamped
@@ -51,7 +55,7 @@ use crate::model::hinge::HingeKind;
 use crate::model::part_rules::{PartRule, Witness};
 use crate::model::{Dimension, PartMaker};
 use crate::part::analysis::{
-    Analysis, FeCounterpart, FeOutput, Modal, Quantity, Spring as FeSpring,
+    Actuated, Analysis, FeCounterpart, FeOutput, Modal, Quantity, Spring as FeSpring,
 };
 use crate::part::mm::length as mm;
 use crate::part::{convex_hull, Actuation, Annotation, Face, HingeSite, PartSpec, Solid};
@@ -65,7 +69,7 @@ mod settings;
 mod values;
 
 use faces::{port_face, ports_check, FaceProblem, PlacedPort};
-use faces::{FE_AMPLIFICATION, FE_F1, FE_K_IN, FE_K_OUT, FE_STRESS_SECTION};
+use faces::{FE_ACTUATED, FE_AMPLIFICATION, FE_F1, FE_K_IN, FE_K_OUT, FE_STRESS_SECTION};
 use flexures::{CutHinge, Named};
 use images::Image;
 use plane::{band, convex_pieces, exposed, scale, sub, P};
@@ -73,7 +77,7 @@ pub use settings::{PartSettings, RawNetworkPart};
 use values::Values;
 
 /// The model's outputs the check measures, by their indices among the model's outputs.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Counterparts {
     pub amplification: Option<usize>,
     pub k_in: Option<usize>,
@@ -81,7 +85,21 @@ pub struct Counterparts {
     pub stress_max: Option<usize>,
     /// The lowest natural frequency, `f1`.
     pub f1: Option<usize>,
+    /// Those under the stack, named as [`ACTUATED_OUTPUTS`].
+    pub actuated: [Option<usize>; 5],
+    /// The sizes of the part as drawn ([`PartMaker::drawn`]).
+    pub drawn: Vec<usize>,
 }
+
+/// The model's outputs the check measures under the stack, in the order of
+/// [`crate::part::analysis::Actuated::ALL`].
+pub const ACTUATED_OUTPUTS: [&str; 5] = [
+    "stroke_in",
+    "stroke_out",
+    "k_out_actuated",
+    "k_out_blocked",
+    "blocked_force",
+];
 
 /// A network's part: the description, the settings, the actuator, and its rules' layout.
 #[derive(Debug, Clone)]
@@ -140,8 +158,13 @@ impl PartMaker for NetworkPart {
         } else if is(c.f1) {
             Some(FeCounterpart::Output(FE_F1))
         } else {
-            None
+            let k = c.actuated.iter().position(|&a| is(a))?;
+            Some(FeCounterpart::Output(Actuated::ALL[k].id(FE_ACTUATED.0)))
         }
+    }
+
+    fn drawn(&self, output: usize) -> bool {
+        self.counterparts.drawn.contains(&output)
     }
 
     fn rules(&self) -> &[PartRule] {
