@@ -7,73 +7,64 @@ use std::path::Path;
 
 use flexopt::problem::Problem;
 
+use crate::network_refused::edited;
+
 const GUIDE: &str = "problems/guide_network.toml";
 const LEVER: &str = "problems/lever_network.toml";
 
-/// `file` with `support` (its keys) added before `[network.input]`.
-fn with_support(file: &str, support: &str) -> String {
-    let text = std::fs::read_to_string(file).unwrap();
-    assert!(text.contains("\n[network.input]"), "{file}");
-    text.replacen(
+/// The edit that adds `support` (its keys) before `[network.input]`.
+fn support(keys: &str) -> [(&'static str, String); 1] {
+    [(
         "\n[network.input]",
-        &format!("\n[[network.supports]]\n{support}\n\n[network.input]"),
-        1,
-    )
+        format!("\n[[network.supports]]\n{keys}\n\n[network.input]"),
+    )]
 }
 
-fn refused(text: &str, key: &str, words: &[&str]) {
-    let Err(e) = Problem::parse(Path::new("held.toml"), text) else {
-        panic!("must be refused: {key}");
-    };
-    let shown = e.to_string();
-    assert_eq!(e.key, key, "{shown}");
-    assert!(shown.starts_with("held.toml"), "{shown}");
-    assert!(shown.contains(&format!("`{key}`")), "{shown}");
-    for w in words {
-        assert!(shown.contains(w), "{w:?} missing from: {shown}");
-    }
+fn refused(file: &str, keys: &str, key: &str, words: &[&str]) {
+    let [(from, to)] = support(keys);
+    crate::network_refused::refused(file, &[(from, &to)], key, words);
+}
+
+fn with_support(file: &str, keys: &str) -> String {
+    let [(from, to)] = support(keys);
+    edited(file, &[(from, &to)])
 }
 
 #[test]
 fn a_support_is_refused_with_its_key_and_the_reason() {
     let at = "at = [\"L/2\", \"0\"]";
     refused(
-        &with_support(
-            GUIDE,
-            &format!("body = \"stage\"\n{at}\ndirection = [\"0\", \"0*2\"]"),
-        ),
+        GUIDE,
+        &format!("body = \"stage\"\n{at}\ndirection = [\"0\", \"0*2\"]"),
         "network.supports[0].direction",
         &["zero length"],
     );
     refused(
-        &with_support(
-            GUIDE,
-            &format!("body = \"slider\"\n{at}\ndirection = [\"1\", \"0\"]"),
-        ),
+        GUIDE,
+        &format!("body = \"slider\"\n{at}\ndirection = [\"1\", \"0\"]"),
         "network.supports[0].body",
         &["unknown body \"slider\"", "\"stage\""],
     );
     refused(
-        &with_support(
-            GUIDE,
-            &format!("body = \"ground\"\n{at}\ndirection = [\"1\", \"0\"]"),
-        ),
+        GUIDE,
+        &format!("body = \"ground\"\n{at}\ndirection = [\"1\", \"0\"]"),
         "network.supports[0].body",
         &["the ground does not move"],
     );
-    refused(
-        &with_support(
-            GUIDE,
-            &format!("body = \"stage\"\n{at}\ndirection = [\"1\", \"0\"]\nheld = true"),
-        ),
-        "network.supports[0]",
-        &["held"],
+    // a key a support does not take, named with the support's
+    let text = with_support(
+        GUIDE,
+        &format!("body = \"stage\"\n{at}\ndirection = [\"1\", \"0\"]\nheld = true"),
     );
+    let shown = Problem::parse(Path::new("held.toml"), &text)
+        .err()
+        .expect("an unknown key is refused")
+        .to_string();
+    assert!(shown.contains("network.supports[0]"), "{shown}");
+    assert!(shown.contains("unknown field `held`"), "{shown}");
     refused(
-        &with_support(
-            LEVER,
-            "body = \"lever\"\nat = [\"a\", \"0\"]\ndirection = [\"1\", \"0\"]",
-        ),
+        LEVER,
+        "body = \"lever\"\nat = [\"a\", \"0\"]\ndirection = [\"1\", \"0\"]",
         "network.supports",
         &[
             "network.supports[0]",

@@ -525,7 +525,7 @@ impl<D: Scalar> Network<D> {
         };
         for s in &self.springs {
             let a = along_row(&s.point, &self.references[s.body], &s.direction);
-            spring(k, s.body, a, s.stiffness);
+            spring(&mut k[..], s.body, a, s.stiffness);
         }
         // each guide a spring as stiff as the stiffest free degree of freedom: any stiffness
         // gives the same constrained motion, and this one keeps the factor's conditioning
@@ -535,7 +535,12 @@ impl<D: Scalar> Network<D> {
             .iter()
             .map(|g| {
                 let a = along_row(&g.point, &self.references[g.body], &g.direction);
-                spring(k, g.body, a, D::from(stiffest.max(f64::MIN_POSITIVE)));
+                spring(
+                    &mut k[..],
+                    g.body,
+                    a,
+                    D::from(stiffest.max(f64::MIN_POSITIVE)),
+                );
                 (0..3)
                     .filter(|&p| index[3 * g.body + p] != HELD)
                     .map(|p| (index[3 * g.body + p], a[p]))
@@ -552,7 +557,8 @@ impl<D: Scalar> Network<D> {
         let constraints = if guides.is_empty() {
             None
         } else {
-            let solve = |f: &mut [D]| substitute(k, m, f, 0, 0);
+            let factored: &[D] = k;
+            let solve = |f: &mut [D]| substitute(factored, m, f, 0, 0);
             Some(
                 Constraints::new(guides, m, solve)
                     .map_err(|guide| NetworkError::Redundant { guide })?,

@@ -116,7 +116,7 @@ impl<D: Scalar> Constraints<D> {
             row.iter().fold(D::from(0.0), |acc, &(i, a)| acc + a * x[i])
         };
         let mut g: Vec<D> = (0..n * n)
-            .map(|ij| dot(&rows[ij / n], &w[(ij % n) * m..(ij % n + 1) * m]))
+            .map(|ij| dot(rows[ij / n].as_slice(), &w[(ij % n) * m..(ij % n + 1) * m]))
             .collect();
         let scale: Vec<f64> = (0..n).map(|i| g[i * n + i].re()).collect();
         for j in 0..n {
