@@ -23,6 +23,7 @@ const ARM: f64 = 0.03;
 fn lever(direction: [&str; 2], hold: bool) -> Problem {
     let text = format!(
         r#"
+name = "guided"
 model = "network"
 
 [material]
