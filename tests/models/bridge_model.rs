@@ -304,6 +304,7 @@ fn the_quarter_as_a_flexure_network_has_appendix_as_coefficients() {
                 (2, Dof::X),
                 (2, Dof::Rotation),
             ],
+            guides: Vec::new(),
         };
         let solve = |body: usize, force: [f64; 2]| {
             let u = net

@@ -21,6 +21,7 @@ mod network_bridge;
 mod network_mirror_modes;
 mod network_modulus;
 mod network_shipped;
+mod network_supports;
 mod paper001;
 mod paper004_tables;
 mod prr3;

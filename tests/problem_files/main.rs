@@ -14,6 +14,7 @@ mod messages;
 mod names;
 mod network_errors;
 mod network_refused;
+mod network_supports;
 mod optimum_report;
 mod problem_errors;
 mod problem_fuzz;

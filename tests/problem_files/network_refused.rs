@@ -14,7 +14,7 @@ const GUIDE: &str = "problems/guide_network.toml";
 const LINK: &str = "link = { from = [\"0\", \"0\"], to = [\"arm + 2\", \"0\"], width = \"8\" }";
 
 /// `file` with each `[from, to]` made in order (each `from` must occur).
-fn edited(file: &str, edits: &[(&str, &str)]) -> String {
+pub(crate) fn edited(file: &str, edits: &[(&str, &str)]) -> String {
     let mut text = std::fs::read_to_string(file).unwrap();
     for (from, to) in edits {
         assert!(text.contains(from), "fixture text {from:?} not in {file}");
@@ -25,7 +25,7 @@ fn edited(file: &str, edits: &[(&str, &str)]) -> String {
 
 /// The edited file refused: its key is `key` (named in the message, with the file), and
 /// the message holds each of `words`.
-fn refused(file: &str, edits: &[(&str, &str)], key: &str, words: &[&str]) {
+pub(crate) fn refused(file: &str, edits: &[(&str, &str)], key: &str, words: &[&str]) {
     let Err(e) = Problem::parse(Path::new("net.toml"), &edited(file, edits)) else {
         panic!("{edits:?} must be refused");
     };

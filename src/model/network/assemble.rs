@@ -12,7 +12,7 @@ use crate::model::material::{Material, RawMaterial};
 use crate::model::Mechanism;
 use crate::model::Model;
 use crate::part::Actuation;
-use crate::vocab::reader::Res;
+use crate::vocab::reader::{k, Res};
 use crate::vocab::sections::Sections;
 
 /// Reads the network's sections and builds the model.
@@ -25,6 +25,17 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
     let actuator = Actuator::read(s, &a)?;
     let part: Option<RawNetworkPart> = s.optional("part")?;
     let part = part.map(|p| PartSettings::read(s, &p)).transpose()?;
+    if let (Some(_), Some(g)) = (&part, description.supports.first()) {
+        // the part's check holds whole faces (the ground's), not one direction of a face
+        return Err(s.err(
+            &[k("network"), k("supports")],
+            format!(
+                "a network with supports has no part: its finite-element check cannot hold a \
+                 face in one direction only ({}); remove the [part] section or the supports",
+                g.key
+            ),
+        ));
+    }
     let actuation = Actuation {
         nominal_stroke: actuator.nominal_stroke,
         preload: actuator.preload,

@@ -99,6 +99,18 @@ pub struct PortDescription {
     pub payload: f64,
 }
 
+/// A support in one direction (a guide, a roller): the motion of a body's point along a
+/// direction held at zero, the motion across it free, the body's rotation free or held.
+#[derive(Debug, Clone)]
+pub struct SupportDescription {
+    /// Its key in the file (`network.supports[0]`).
+    pub key: String,
+    pub body: usize,
+    pub at: Point,
+    pub direction: Point,
+    pub hold_rotation: bool,
+}
+
 /// A named expression reported as an output.
 #[derive(Debug, Clone)]
 pub struct MeasureDescription {
@@ -124,4 +136,5 @@ pub struct Description {
     pub input: PortDescription,
     pub outputs: Vec<PortDescription>,
     pub measures: Vec<MeasureDescription>,
+    pub supports: Vec<SupportDescription>,
 }

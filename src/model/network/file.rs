@@ -29,6 +29,8 @@
 //! - `[[network.measures]]`: named expressions reported as outputs (`name`, `dimension`,
 //!   `value`); one named `span_x` or `span_y` replaces the described part's extent (a
 //!   signed span, as the bridge's).
+//! - `[[network.supports]]`: `body`, `at`, `direction`, `hold_rotation`: a guide or a
+//!   roller ([`super::supports`]).
 //! - `[actuator]`: `nominal_stroke`, `preload`, optional `stiffness`, the bridge's section
 //!   (its `length` and `height`, the stack's size, are for the part, still to come).
 //!
@@ -47,6 +49,7 @@ use super::description::{
     MeasureDescription, Point, PortDescription, DEG, GROUND,
 };
 use super::part::RawNetworkPart;
+use super::supports::{self, RawNetworkSupport};
 use crate::model::actuator::RawActuator;
 use crate::model::entry::SectionSchema;
 use crate::model::expression::Expression;
@@ -81,6 +84,8 @@ pub(super) struct RawNetwork {
     outputs: Vec<RawNetworkPort>,
     #[serde(default)]
     measures: Vec<RawNetworkMeasure>,
+    #[serde(default)]
+    supports: Vec<RawNetworkSupport>,
 }
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -639,6 +644,7 @@ pub(super) fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
             value: parse(sub("value"), &m.value)?,
         });
     }
+    let supports = supports::read(s, &n.supports, &find_body, &point)?;
     Ok(Description {
         parameters,
         unit,
@@ -651,5 +657,6 @@ pub(super) fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
         input,
         outputs,
         measures,
+        supports,
     })
 }

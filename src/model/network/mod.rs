@@ -17,6 +17,7 @@ pub mod part;
 pub mod ports;
 mod scaling;
 pub mod structure;
+mod supports;
 
 use super::entry::ModelEntry;
 

@@ -27,7 +27,8 @@ use super::modes::{described_piece, Inertia, ModeError};
 use super::on_axis::flexure_on_mirror_axis;
 use super::structure::{beam_compliance, end_of};
 use super::structure::{
-    Body, Case, Displacements, Dof, Flexure, Load, Network, NetworkError, SolveBuffers, Spring,
+    Body, Case, Displacements, Dof, Flexure, Guide, Load, Network, NetworkError, SolveBuffers,
+    Spring,
 };
 use crate::model::actuator::Actuator;
 use crate::model::expression::Tape;
@@ -185,6 +186,7 @@ impl<D> Default for Evaluated<D> {
                 flexures: Vec::new(),
                 springs: Vec::new(),
                 held: Vec::new(),
+                guides: Vec::new(),
             },
             ports: Vec::new(),
             points: Vec::new(),
@@ -440,7 +442,15 @@ impl NetworkModel {
                 }
             })
             .collect();
-        let held = axis_holds(d, None, &[]);
+        let mut held = axis_holds(d, None, &[]);
+        held.extend(
+            d.supports
+                .iter()
+                .filter(|g| g.hold_rotation)
+                .map(|g| (g.body, Dof::Rotation)),
+        );
+        held.sort_by_key(|&(b, dof)| (b, dof as usize));
+        held.dedup();
         let ports = || std::iter::once(&d.input).chain(&d.outputs);
         let read = ports()
             .map(|p| if p.across.is_some() { 2.0 } else { 1.0 })
@@ -752,6 +762,22 @@ impl NetworkModel {
         network.held.clear();
         network.held.extend_from_slice(&self.held);
         network.springs.clear();
+        network.guides.clear();
+        for g in &d.supports {
+            let [dx, dy] = point(&g.direction).map_err(Message::message)?;
+            let norm = (dx * dx + dy * dy).sqrt();
+            if norm.re() == 0.0 || !norm.re().is_finite() {
+                return Err(format!(
+                    "support ({}.direction): its direction is zero",
+                    g.key
+                ));
+            }
+            network.guides.push(Guide {
+                body: g.body,
+                point: point(&g.at).map_err(Message::message)?,
+                direction: [dx / norm, dy / norm],
+            });
+        }
         assert!(
             placed.iter().all(|&p| p),
             "every body has a hinge or a beam, whose end is a point of it"
@@ -1120,6 +1146,12 @@ impl NetworkModel {
                 "body \"{}\" ({}) is free to move ({direction}): nothing holds it against the \
                  ground",
                 self.description.bodies[body].name, self.description.bodies[body].key
+            ),
+            NetworkError::Redundant { guide } => format!(
+                "support {}: it holds a motion of body \"{}\" that is held already (by a \
+                 support before it, or a mirror axis): remove it",
+                self.description.supports[guide].key,
+                self.description.bodies[self.description.supports[guide].body].name
             ),
             other => other.to_string(),
         }
@@ -1534,11 +1566,17 @@ fn expressions(d: &mut Description) -> Vec<(&mut Keyed, Role)> {
     }
     // the links' widths, for the bodies' masses: last, so that the others keep their slots
     all.extend(widths.into_iter().map(|e| (e, Role::Dimension)));
-    // the beams after them, for the same reason
+    // the beams after them, for the same reason, and the supports after the beams
     for b in &mut d.beams {
         point(&mut all, &mut b.start);
         point(&mut all, &mut b.end);
         all.push((&mut b.thickness, Role::Dimension));
+    }
+    for g in &mut d.supports {
+        point(&mut all, &mut g.at);
+        let [x, y] = &mut g.direction;
+        all.push((x, Role::DirectionX));
+        all.push((y, Role::DirectionY));
     }
     all
 }
@@ -1752,6 +1790,13 @@ impl Model for NetworkModel {
         };
         let name = &self.outputs[output].name;
         let d = &self.description;
+        if let Some(g) = d.supports.first() {
+            return Some(format!(
+                "output \"{name}\": the natural frequencies of a network with supports \
+                 ({}) are not modelled",
+                g.key
+            ));
+        }
         if !self.material.density.is_finite() {
             return Some(format!(
                 "output \"{name}\" needs the material's density: give `[material] density` \

@@ -307,6 +307,7 @@ impl<D: Scalar> Network<D> {
             flexures,
             springs,
             held: all_held,
+            guides: Vec::new(),
         };
         (network, image)
     }
@@ -402,6 +403,7 @@ mod tests {
                 spring([-a, 0.0], [0.0, 1.0], ky),
             ],
             held: vec![],
+            guides: Vec::new(),
         };
         let inertia = [Inertia {
             mass: m,
@@ -444,6 +446,7 @@ mod tests {
                 flexures: vec![leaf(-0.01), leaf(0.01)],
                 springs: vec![],
                 held: vec![(0, Dof::Rotation)],
+                guides: Vec::new(),
             }
         };
         let inertia = [Inertia {
@@ -576,6 +579,7 @@ mod tests {
                 },
             ],
             held: vec![],
+            guides: Vec::new(),
         };
         let none = [Inertia {
             mass: 0.0,

@@ -100,6 +100,7 @@ mod tests {
             )],
             springs: vec![],
             held: vec![],
+            guides: Vec::new(),
         };
         let port = |x: f64| Port {
             body: 0,

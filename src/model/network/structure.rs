@@ -34,6 +34,7 @@
 use std::borrow::Cow;
 use std::fmt;
 
+use super::supports::Constraints;
 use crate::model::hinge::{Compliance, HingeLoads};
 use crate::model::material::Material;
 use crate::model::scalar::Scalar;
@@ -108,6 +109,15 @@ pub struct Spring<D> {
     pub stiffness: D,
 }
 
+/// A support in one direction: the motion of `point` of `body` along the unit `direction`
+/// held at zero (a guide, a roller), held exactly ([`Constraints`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Guide<D> {
+    pub body: usize,
+    pub point: [D; 2],
+    pub direction: [D; 2],
+}
+
 /// A force and moment applied at a point of a body.
 #[derive(Debug, Clone, Copy)]
 pub struct Load<D> {
@@ -134,6 +144,7 @@ pub struct Network<D> {
     pub flexures: Vec<Flexure<D>>,
     pub springs: Vec<Spring<D>>,
     pub held: Vec<(usize, Dof)>,
+    pub guides: Vec<Guide<D>>,
 }
 
 /// What keeps a network from being solved.
@@ -147,6 +158,9 @@ pub enum NetworkError {
         body: usize,
         direction: &'static str,
     },
+    /// Guide `guide` holds a motion that the ones before it, or the held degrees of
+    /// freedom, hold already.
+    Redundant { guide: usize },
 }
 
 impl fmt::Display for NetworkError {
@@ -159,6 +173,9 @@ impl fmt::Display for NetworkError {
                 f,
                 "body {body} is free to move ({direction}): nothing holds it against the ground"
             ),
+            NetworkError::Redundant { guide } => {
+                write!(f, "guide {guide} holds a motion already held")
+            }
         }
     }
 }
@@ -495,20 +512,41 @@ impl<D: Scalar> Network<D> {
         for (i, (fl, kf)) in self.flexures.iter().zip(stiffness.iter_mut()).enumerate() {
             self.add_flexure_free(fl, index, k, ends, plan.terms(i), kf);
         }
-        for s in &self.springs {
-            let r = sub(s.point, self.references[s.body]);
-            let [nx, ny] = s.direction;
-            let a = [nx, ny, -r[1] * nx + r[0] * ny];
+        let spring = |k: &mut [D], body: usize, a: [D; 3], stiffness: D| {
             for p in 0..3 {
                 for q in 0..=p {
-                    let (i, j) = (index[3 * s.body + p], index[3 * s.body + q]);
+                    let (i, j) = (index[3 * body + p], index[3 * body + q]);
                     if i != HELD && j != HELD {
                         let (i, j) = (i.max(j), i.min(j));
-                        k[i * m + j] = k[i * m + j] + s.stiffness * a[p] * a[q];
+                        k[i * m + j] = k[i * m + j] + stiffness * a[p] * a[q];
                     }
                 }
             }
+        };
+        for s in &self.springs {
+            let a = along_row(&s.point, &self.references[s.body], &s.direction);
+            spring(&mut k[..], s.body, a, s.stiffness);
         }
+        // each guide a spring as stiff as the stiffest free degree of freedom: any stiffness
+        // gives the same constrained motion, and this one keeps the factor's conditioning
+        let stiffest = (0..m).fold(0.0f64, |s, i| s.max(k[i * m + i].re().abs()));
+        let guides: Vec<Vec<(usize, D)>> = self
+            .guides
+            .iter()
+            .map(|g| {
+                let a = along_row(&g.point, &self.references[g.body], &g.direction);
+                spring(
+                    &mut k[..],
+                    g.body,
+                    a,
+                    D::from(stiffest.max(f64::MIN_POSITIVE)),
+                );
+                (0..3)
+                    .filter(|&p| index[3 * g.body + p] != HELD)
+                    .map(|p| (index[3 * g.body + p], a[p]))
+                    .collect()
+            })
+            .collect();
         factor(k, m, scaled).map_err(|free| {
             let dof = index.iter().position(|&i| i == free).unwrap_or(0);
             NetworkError::Free {
@@ -516,6 +554,16 @@ impl<D: Scalar> Network<D> {
                 direction: ["x", "y", "rotation"][dof % 3],
             }
         })?;
+        let constraints = if guides.is_empty() {
+            None
+        } else {
+            let factored: &[D] = k;
+            let solve = |f: &mut [D]| substitute(factored, m, f, 0, 0);
+            Some(
+                Constraints::new(guides, m, solve)
+                    .map_err(|guide| NetworkError::Redundant { guide })?,
+            )
+        };
         // written in place: a pushed [Jet<8>; 3] is a call to memcpy
         moved.clear();
         moved.resize(cases.len() * bodies, [D::from(0.0); 3]);
@@ -547,7 +595,14 @@ impl<D: Scalar> Network<D> {
                     }
                 }
             }
-            substitute(k, m, f, loaded, first_read);
+            match &constraints {
+                None => substitute(k, m, f, loaded, first_read),
+                Some(c) => {
+                    // the correction reads the guided bodies and writes every entry
+                    substitute(k, m, f, loaded, 0);
+                    c.correct(f);
+                }
+            }
             for (b, (u, index)) in moved.iter_mut().zip(index.chunks_exact(3)).enumerate() {
                 if case.read.is_some_and(|read| !read.contains(&b)) {
                     *u = [D::from(f64::NAN); 3];
@@ -888,6 +943,14 @@ fn transpose<D: Scalar>(a: [[D; 3]; 3]) -> [[D; 3]; 3] {
 
 fn sub<D: Scalar>(a: [D; 2], b: [D; 2]) -> [D; 2] {
     [a[0] - b[0], a[1] - b[1]]
+}
+
+/// The row `T(P - O)^T n` that gives the motion of `point` along the unit `direction` from
+/// its body's reference motion (its reference point `reference`).
+fn along_row<D: Scalar>(point: &[D; 2], reference: &[D; 2], direction: &[D; 2]) -> [D; 3] {
+    let r = [point[0] - reference[0], point[1] - reference[1]];
+    let [nx, ny] = *direction;
+    [nx, ny, -r[1] * nx + r[0] * ny]
 }
 
 /// The motion at `r` from a point moving by `u`: `T(r) u`.
