@@ -213,25 +213,7 @@ fn drawing_png(
                 BLACK.stroke_width(2),
             )))?;
         }
-        // one colour and one legend entry per face name, however many segments it spans
-        let mut names: Vec<&str> = Vec::new();
-        for f in &mm.faces {
-            let k = names
-                .iter()
-                .position(|n| *n == f.name)
-                .unwrap_or(names.len());
-            let c = face_colour(k);
-            let series = chart.draw_series(std::iter::once(PathElement::new(
-                vec![(f.a[0], f.a[1]), (f.b[0], f.b[1])],
-                c.stroke_width(5),
-            )))?;
-            if k == names.len() {
-                names.push(&f.name);
-                series.label(&f.name).legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(5))
-                });
-            }
-        }
+        draw_faces(&mut chart, &mm.faces)?;
         // the notes' labels stand where the model puts them; the dimensions' find room
         let mut placed = Vec::new();
         let overall = overall_size(part);
@@ -266,8 +248,7 @@ fn drawing_png(
     })
 }
 
-/// The part's overall width and height, where its own dimensions give no lengths (a
-/// network's part names only its hinges): below and left of its bounding box.
+/// The part's overall width and height, below and left of it, where it gives no lengths.
 fn overall_size(part: &Part) -> Vec<Annotation> {
     if part
         .annotations
@@ -292,6 +273,33 @@ fn overall_size(part: &Part) -> Vec<Annotation> {
             label: crate::part::mm::length(y1 - y0),
         },
     ]
+}
+
+/// The faces in colour: one colour and one legend entry per face name, however many
+/// segments it spans.
+fn draw_faces(
+    chart: &mut Chart<'_, '_>,
+    faces: &[crate::part::Face],
+) -> Result<(), super::plot::DrawError> {
+    let mut names: Vec<&str> = Vec::new();
+    for f in faces {
+        let k = names
+            .iter()
+            .position(|n| *n == f.name)
+            .unwrap_or(names.len());
+        let c = face_colour(k);
+        let series = chart.draw_series(std::iter::once(PathElement::new(
+            vec![(f.a[0], f.a[1]), (f.b[0], f.b[1])],
+            c.stroke_width(5),
+        )))?;
+        if k == names.len() {
+            names.push(&f.name);
+            series.label(&f.name).legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(5))
+            });
+        }
+    }
+    Ok(())
 }
 
 type Chart<'a, 'b> = ChartContext<

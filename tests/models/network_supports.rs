@@ -19,9 +19,11 @@ const ARM: f64 = 0.03;
 
 /// A lever from (0, 0) to (30 mm, 0) on a strip of length `l` and thickness `t` from the
 /// ground at (0, -l) up to (0, 0); pushed up at (a, 0), read up at its tip; held at the
-/// input's point along `direction`, its rotation held too where `hold` says so.
-fn lever(direction: [&str; 2], hold: bool) -> Problem {
-    let text = format!(
+/// input's point along `direction`, its rotation held too where `hold` says so. The stack
+/// has a stiffness: a rigid one on a lever held in x and in rotation would hold it whole, and
+/// its output stiffness with the stack in place would be infinite.
+fn lever_text(direction: [&str; 2], hold: bool) -> String {
+    format!(
         r#"
 name = "guided"
 model = "network"
@@ -67,6 +69,7 @@ direction = ["0", "1"]
 [actuator]
 nominal_stroke = "10 um"
 preload = "1 N"
+stiffness = "50 N/um"
 
 [[variables]]
 name = "l"
@@ -90,8 +93,11 @@ upper = 8
 maximize = "amplification"
 "#,
         direction[0], direction[1]
-    );
-    Problem::parse(Path::new("guided.toml"), &text).unwrap()
+    )
+}
+
+fn lever(direction: [&str; 2], hold: bool) -> Problem {
+    Problem::parse(Path::new("guided.toml"), &lever_text(direction, hold)).unwrap()
 }
 
 fn designs(seed: u64) -> Vec<Vec<f64>> {
@@ -200,10 +206,17 @@ fn a_lever_guided_in_x_is_its_compliance_matrix_answer() {
 fn a_tilted_guide_and_a_held_rotation_are_their_compliance_matrix_answers() {
     let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
     let tilted = worst_against_hand(["cos(30*deg)", "sin(30*deg)"], [c, s], false, 512);
-    let held = worst_against_hand(["1", "0"], [1.0, 0.0], true, 513);
-    eprintln!("tilted guide {tilted:e}, guide holding the rotation {held:e}");
+    eprintln!("tilted guide {tilted:e}");
     assert!(tilted < 1e-9, "{tilted:e}");
-    assert!(held < 1e-9, "{held:e}");
+    // a guide that holds the rotation too leaves the lever only its pivot's axial give: with
+    // the stack blocked it is held whole, and the file is refused for its infinite output
+    // stiffness (the model has no way yet to leave that output out)
+    let refused = Problem::parse(Path::new("held.toml"), &lever_text(["1", "0"], true));
+    let message = refused.expect_err("a lever held whole").to_string();
+    assert!(
+        message.contains("k_out_blocked") && message.contains("not finite"),
+        "{message}"
+    );
 }
 
 /// Every output's gradient of the guided lever against central differences.

@@ -56,10 +56,10 @@ fn a_support_is_refused_with_its_key_and_the_reason() {
         GUIDE,
         &format!("body = \"stage\"\n{at}\ndirection = [\"1\", \"0\"]\nheld = true"),
     );
-    let shown = Problem::parse(Path::new("held.toml"), &text)
-        .err()
-        .expect("an unknown key is refused")
-        .to_string();
+    let Err(e) = Problem::parse(Path::new("held.toml"), &text) else {
+        panic!("an unknown key is refused")
+    };
+    let shown = e.to_string();
     assert!(shown.contains("network.supports[0]"), "{shown}");
     assert!(shown.contains("unknown field `held`"), "{shown}");
     refused(

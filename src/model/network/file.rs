@@ -644,7 +644,7 @@ pub(super) fn describe(s: &Sections, n: &RawNetwork) -> Res<Description> {
             value: parse(sub("value"), &m.value)?,
         });
     }
-    let supports = supports::read(s, &n.supports, &find_body, &point)?;
+    let supports = supports::read(s, &n.supports, find_body, point)?;
     Ok(Description {
         parameters,
         unit,

@@ -1053,6 +1053,7 @@ mod tests {
                 references: vec![end],
                 flexures: vec![f],
                 springs: vec![],
+                guides: vec![],
                 held: vec![],
             };
             let (fx, fy, m) = (3.0, -2.0, 0.01);
@@ -1093,6 +1094,7 @@ mod tests {
             references: vec![[l, 0.0]],
             flexures: vec![leaf(-h / 2.0), leaf(h / 2.0)],
             springs: vec![],
+            guides: vec![],
             held: vec![],
         };
         let force = 1.0;
@@ -1229,6 +1231,7 @@ mod tests {
                 stiffness: D::from(2e6),
             }],
             held: vec![],
+            guides: vec![],
         }
     }
 
@@ -1378,6 +1381,7 @@ mod tests {
                         c,
                     )],
                     springs: vec![],
+                    guides: vec![],
                     held: vec![
                         (0, Dof::Y),
                         (0, Dof::Rotation),
