@@ -17,6 +17,7 @@ mod fe_fillet;
 mod fe_generic;
 mod fe_verify;
 mod first_mode;
+mod footprint;
 mod link_width;
 mod meshing;
 mod network_beams;

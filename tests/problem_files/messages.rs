@@ -137,7 +137,7 @@ fn a_sweep_says_which_points_gave_no_output() {
         ]
     };
     let words = [
-        "warning: problems/wei2017.toml: the model gives no value of 18 of 21 outputs",
+        "warning: problems/wei2017.toml: the model gives no value of 18 of 24 outputs",
         "at 1 of 5 points, t2 = 1e-300 mm",
     ];
     says(&sweep("1e-300"), 0, &words);

@@ -345,7 +345,13 @@ impl PartMaker for Bridge {
     fn drawn(&self, output: usize) -> bool {
         matches!(
             BridgeOutput::ALL.get(output),
-            Some(BridgeOutput::SpanX | BridgeOutput::SpanY)
+            Some(
+                BridgeOutput::SpanX
+                    | BridgeOutput::SpanY
+                    | BridgeOutput::PartWidth
+                    | BridgeOutput::PartHeight
+                    | BridgeOutput::PocketLength
+            )
         )
     }
 

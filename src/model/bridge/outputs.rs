@@ -1,7 +1,8 @@
 //! The named outputs of the general bridge and one evaluation of those a problem asks for.
 
 use super::dynamics::{self, QuarterMode};
-use super::geometry::{Geometry, Trig};
+use super::geometry::{Geometry, Layout, Trig};
+use super::part::footprint;
 use super::quarter::{hinge_compliances, QuarterBridge};
 use super::{Bridge, BridgeSettings};
 use crate::model::scalar::{max, Scalar};
@@ -36,11 +37,14 @@ pub enum BridgeOutput {
     StressBeamMax,
     OutputFrequency,
     FirstFrequency,
+    PartWidth,
+    PartHeight,
+    PocketLength,
 }
 
 impl BridgeOutput {
     /// Every output, in the order of [`OUTPUTS`].
-    pub const ALL: [BridgeOutput; 26] = [
+    pub const ALL: [BridgeOutput; 29] = [
         BridgeOutput::Amplification,
         BridgeOutput::KIn,
         BridgeOutput::KOut,
@@ -67,6 +71,9 @@ impl BridgeOutput {
         BridgeOutput::StressBeamMax,
         BridgeOutput::OutputFrequency,
         BridgeOutput::FirstFrequency,
+        BridgeOutput::PartWidth,
+        BridgeOutput::PartHeight,
+        BridgeOutput::PocketLength,
     ];
 
     /// Whether the output needs the masses and damping of [`BridgeSettings::dynamics`].
@@ -83,7 +90,7 @@ impl BridgeOutput {
 }
 
 /// Names, dimensions and meanings of the outputs, indexed like [`BridgeOutput::ALL`].
-pub static OUTPUTS: [OutputInfo; 26] = [
+pub static OUTPUTS: [OutputInfo; 29] = [
     OutputInfo::new("amplification", Dimension::Ratio, "displacement amplification da = a21/a11 (Eq. 9)"),
     OutputInfo::new("k_in", Dimension::Stiffness, "input stiffness 1/a11 (Eq. 10)"),
     OutputInfo::full("k_out", Dimension::Stiffness, "output stiffness -1/a22 (Eq. 11)", Some("N/mm"), None),
@@ -114,6 +121,9 @@ pub static OUTPUTS: [OutputInfo; 26] = [
     // one quarter's: no closed form, so the model's value is the output mode's, which the
     // first mode does not exceed, and the refinement's correction carries the sideways mode
     OutputInfo::full("first_frequency", Dimension::Frequency, "lowest natural frequency of the part, of either symmetry (the output block's sideways sway, or the output mode), as the FE measures it", None, Some("output_frequency, the output mode's frequency, at or above the part's first mode")),
+    OutputInfo::full("part_width", Dimension::Length, "the part's overall width along the actuator: the outline's bounding box in x, blocks included", Some("mm"), None),
+    OutputInfo::full("part_height", Dimension::Length, "the part's overall height along the output: the outline's bounding box in y, blocks included", Some("mm"), None),
+    OutputInfo::full("pocket_length", Dimension::Length, "the room between the faces the actuator pushes: the longest stack the part holds", Some("mm"), None),
 ];
 
 impl Bridge {
@@ -137,8 +147,9 @@ impl Bridge {
         let s = &self.settings;
         let trig = g.trig();
         let needs_quarter = wanted.iter().any(|&k| match BridgeOutput::ALL[k] {
-            SpanX | SpanY | KOutActuated | EquivalentMass | NaturalFrequency | SettlingTime
-            | OutputFrequency | FirstFrequency => false,
+            SpanX | SpanY | PartWidth | PartHeight | PocketLength | KOutActuated
+            | EquivalentMass | NaturalFrequency | SettlingTime | OutputFrequency
+            | FirstFrequency => false,
             StrokeIn => s.actuator.stiffness.is_some(),
             _ => true,
         });
@@ -159,6 +170,7 @@ impl Bridge {
         let mut e = Evaluation {
             g,
             s,
+            layout: &self.layout,
             trig: &trig,
             quarter,
             input,
@@ -177,6 +189,7 @@ impl Bridge {
 struct Evaluation<'a, D> {
     g: &'a Geometry<D>,
     s: &'a BridgeSettings,
+    layout: &'a Layout,
     trig: &'a Trig<D>,
     /// Present whenever an output needs the compliances.
     quarter: Option<&'a QuarterBridge<D>>,
@@ -313,6 +326,9 @@ impl<D: Scalar> Evaluation<'_, D> {
             ForceInMax => self.force_in_max(),
             SpanX => self.g.span_x_with(self.trig),
             SpanY => self.g.span_y_with(self.trig),
+            PartWidth => footprint::extent(&self.s.part, self.layout, self.g)[0],
+            PartHeight => footprint::extent(&self.s.part, self.layout, self.g)[1],
+            PocketLength => footprint::pocket_length(&self.s.part, self.layout, self.g),
             StrokeIn => self.stroke_in(),
             StrokeOut => {
                 let (_, a21, k_in) = self.input();

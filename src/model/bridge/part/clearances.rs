@@ -281,6 +281,8 @@ const RANGES: [(usize, usize); 24] = [
     (26, 1),
 ];
 const PIECES: usize = 27;
+/// How many of [`pieces`], the first ones, are the part's solids.
+pub(super) const SOLID_PIECES: usize = 20;
 
 fn mirror_x<D: Scalar>(p: P<D>) -> P<D> {
     [-p[0], p[1]]
@@ -321,7 +323,11 @@ fn band_ends<D: Scalar>(len: D, r: f64, w: D) -> [[D; 2]; 3] {
 
 /// Every piece of the part's solids and of the shapes the rules compare them with, at the
 /// design `g`, in [`RANGES`]' order.
-fn pieces<D: Scalar>(s: &PartSettings, layout: &Layout, g: &Geometry<D>) -> [Piece<D>; PIECES] {
+pub(super) fn pieces<D: Scalar>(
+    s: &PartSettings,
+    layout: &Layout,
+    g: &Geometry<D>,
+) -> [Piece<D>; PIECES] {
     let tb = layout.hinge_b.root_thickness(g.b.dims());
     let td = layout.hinge_d.root_thickness(g.d.dims());
     let (rb, rd) = (fillet(s, layout.hinge_b), fillet(s, layout.hinge_d));

@@ -40,6 +40,7 @@ use serde::Serialize;
 pub mod clearances;
 mod drawing;
 pub mod fe_cases;
+pub mod footprint;
 pub mod rules;
 
 use super::geometry::{Geometry, Layout};
