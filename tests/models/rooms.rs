@@ -430,7 +430,6 @@ const OVER_THE_LIMITS: &[&str] = &[
     "src/fe/verify/mod.rs",
     "src/fe/verify/mod.rs fn verify",
     "src/main.rs fn run",
-    "src/model/bridge/part/clearances.rs",
     "src/model/bridge/part/fe_cases.rs fn analysis",
     "src/model/bridge/part/mod.rs fn spec",
     "src/model/clearance.rs",

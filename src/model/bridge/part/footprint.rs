@@ -5,13 +5,13 @@
 //! gradients.
 //!
 //! The outline is the union of the solids [`super::spec`] places, which
-//! [`super::clearances`] states over [`Scalar`] as convex pieces; the fillets at the hinges'
+//! [`super::pieces`] states over [`Scalar`] as convex pieces; the fillets at the hinges'
 //! roots are concave and lie inside the pieces' hull, so the outline's bounding box is the
 //! pieces' vertices' box. The part is symmetric about both axes: the width is twice the
 //! largest x of a vertex, the height twice the largest y. Each is a maximum over vertices,
 //! continuous, with the gradient of the vertex that attains it.
 
-use super::clearances::{pieces, SOLID_PIECES};
+use super::pieces::{pieces, SOLID_PIECES};
 use super::PartSettings;
 use crate::model::bridge::{Geometry, Layout};
 use crate::model::scalar::{max, Scalar};

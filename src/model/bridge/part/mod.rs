@@ -41,6 +41,7 @@ pub mod clearances;
 mod drawing;
 pub mod fe_cases;
 pub mod footprint;
+mod pieces;
 pub mod rules;
 
 use super::geometry::{Geometry, Layout};
