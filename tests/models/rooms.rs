@@ -432,7 +432,6 @@ const OVER_THE_LIMITS: &[&str] = &[
     "src/main.rs fn run",
     "src/model/bridge/part/fe_cases.rs fn analysis",
     "src/model/bridge/part/mod.rs fn spec",
-    "src/model/clearance.rs",
     "src/optim/qp/direct.rs fn solve_on_active_set",
     "src/optim/qp/mod.rs fn solve_with_hint",
     "src/optim/sqp/mod.rs fn run",
