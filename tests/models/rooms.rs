@@ -440,7 +440,6 @@ const OVER_THE_LIMITS: &[&str] = &[
     "src/problem/validate.rs fn variables",
     "src/refine/mod.rs fn refine",
     "src/report/summary.rs fn fmt",
-    "src/report/tolerance.rs",
     "src/report/verify.rs fn fmt",
     "src/study/mod.rs fn solve_range",
     "src/study_command.rs fn run_study",
