@@ -4,7 +4,9 @@
 //! parallelogram's leaves.
 
 use std::path::Path;
+use std::time::Instant;
 
+use crate::common::table1_optimum;
 use flexopt::model::large::report::{StrokeOptions, StrokeReport};
 use flexopt::problem::Problem;
 
@@ -107,4 +109,170 @@ fn a_vanishing_stroke_is_the_linear_network() {
             );
         }
     }
+}
+
+/// wei2017's network at Table 1's optimum under the force that opens its input 17.4 um in a
+/// linear solve, and twice it, against CalculiX's geometrically nonlinear solve of the
+/// part (issue 48: quadratic plane-stress triangles on the exported outline, two meshes
+/// agreeing to 0.01 %): the part is 16.6 % stiffer at the input (17.40 / 14.92 um) and
+/// amplifies 2.9 % more (12.321 / 11.970); at twice the force 32.8 % and 4.9 %.
+#[test]
+fn wei2017_at_its_stroke_against_the_nonlinear_finite_elements() {
+    let p = load("problems/wei2017_network.toml");
+    let x = table1_optimum();
+    let force = 17.4e-6 * output(&p, &x, "k_in");
+    let measured = |factor: f64| {
+        let options = StrokeOptions {
+            elements: 8,
+            steps: 10,
+            critical_up_to: 0.0,
+            force: Some(factor * force),
+        };
+        let r = at_stroke(&p, &x, &options);
+        let end = r.at_stroke();
+        (
+            r.linear.stroke_in / end.stroke_in,
+            end.amplification / r.linear.amplification,
+        )
+    };
+    // the network's effect overshoots the part's by 20 % (stiffness) and 60 % (amplification)
+    // at the stroke: the finding this test keeps, measured to 1e-3 of the effect; the FE's
+    // figures bound it below and the effect stays within twice theirs
+    for (factor, fe_k, fe_amp, k_measured, amp_measured) in [
+        (1.0, 17.40 / 14.92, 12.321 / 11.970, 1.1989, 1.0461),
+        (2.0, 34.80 / 26.21, 12.553 / 11.970, 1.3968, 1.0809),
+    ] {
+        let (k, amp) = measured(factor);
+        println!(
+            "wei2017_network at {factor} x {force:.2} N: k_in x {k:.4} (FE {fe_k:.4}), \
+             amplification x {amp:.4} (FE {fe_amp:.4})"
+        );
+        assert!((k - k_measured).abs() < 1e-3 * (k_measured - 1.0), "{k}");
+        assert!(
+            (amp - amp_measured).abs() < 1e-3 * (amp_measured - 1.0),
+            "{amp}"
+        );
+        assert!(k - 1.0 > fe_k - 1.0 && k - 1.0 < 2.0 * (fe_k - 1.0));
+        assert!(amp - 1.0 > fe_amp - 1.0 && amp - 1.0 < 2.0 * (fe_amp - 1.0));
+    }
+    // one solve at the stroke (8 and 16 elements a flexure, 10 steps each) against one
+    // linear evaluation of every output
+    let options = StrokeOptions {
+        force: Some(force),
+        ..StrokeOptions::default()
+    };
+    let start = Instant::now();
+    let r = at_stroke(&p, &x, &options);
+    let nonlinear = start.elapsed().as_secs_f64();
+    let m = &p.mechanism.physics;
+    let all: Vec<usize> = (0..m.outputs().len()).collect();
+    let mut out = vec![0.0; all.len()];
+    let start = Instant::now();
+    for _ in 0..1000 {
+        m.evaluate(&x, &all, &mut out);
+    }
+    let linear = start.elapsed().as_secs_f64() / 1000.0;
+    let (end, finer) = (r.at_stroke(), r.finer.as_ref().unwrap());
+    println!(
+        "wei2017_network: at stroke {nonlinear:.2e} s, linear {linear:.2e} s; n = 8 / 16: \
+         stroke_out {:e} / {:e}, k_in {:e} / {:e}, critical load factor {:?}",
+        end.stroke_out, finer.stroke_out, end.k_in, finer.k_in, r.critical_load_factor
+    );
+    assert!(rel(end.stroke_out, finer.stroke_out) < 1e-4);
+    assert!(rel(end.k_in, finer.k_in) < 1e-4);
+}
+
+/// A parallelogram guide: two parallel strips `L` long from the ground to a stage, the stage
+/// pushed across them by `delta`.
+const PARALLELOGRAM: &str = r#"
+name = "parallelogram"
+model = "network"
+
+[material]
+preset = "al7075-t6"
+
+[network]
+width = "10 mm"
+unit = "mm"
+parameters = [["L", "length"], ["t", "length"]]
+
+[[network.bodies]]
+name = "stage"
+outline = [["-5", "L"], ["25", "L"], ["25", "L + 5"], ["-5", "L + 5"]]
+
+[[network.hinges]]
+name = "left"
+kind = "strip"
+from = "ground"
+to = "stage"
+start = ["0", "0"]
+angle = "90*deg"
+l = "L"
+t = "t"
+
+[[network.hinges]]
+name = "right"
+kind = "strip"
+from = "ground"
+to = "stage"
+start = ["20", "0"]
+angle = "90*deg"
+l = "L"
+t = "t"
+
+[network.input]
+body = "stage"
+at = ["10", "L"]
+direction = ["1", "0"]
+
+[[network.outputs]]
+name = "stage"
+body = "stage"
+at = ["10", "L"]
+direction = ["1", "0"]
+
+[actuator]
+nominal_stroke = "1 mm"
+preload = "0 N"
+
+[[variables]]
+name = "L"
+unit = "mm"
+value = 20
+
+[[variables]]
+name = "t"
+unit = "mm"
+value = 0.3
+
+[objective]
+minimize = "k_in"
+"#;
+
+/// The parallelogram's stage, pushed 1 mm across its 20 mm leaves, sinks by each leaf's
+/// shortening, `3/5 delta^2 / L` to the first order in `delta / L` (the guided beam's
+/// kinematic coefficient: Awtar, Slocum and Sevincer, "Characteristics of Beam-Based
+/// Flexure Modules", J. Mech. Des. 129 (2007) 625-639, Eq. 11 with no axial load: 30 um
+/// here), and does not turn; the linear model has it move across its direction not at
+/// all. 8 and 16 elements a leaf agree.
+#[test]
+fn a_parallelograms_stage_sinks_by_its_leaves_shortening() {
+    let dir = std::env::temp_dir().join(format!("flexopt-stroke-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("parallelogram.toml");
+    std::fs::write(&file, PARALLELOGRAM).unwrap();
+    let p = Problem::load(&file).unwrap();
+    let x = middle(&p);
+    let r = at_stroke(&p, &x, &StrokeOptions::default());
+    std::fs::remove_dir_all(&dir).unwrap();
+    let end = r.at_stroke();
+    let (delta, l) = (1e-3, 20e-3);
+    assert!(rel(end.stroke_in, delta) < 1e-12, "{}", end.stroke_in);
+    let sink = -end.parasitic[0].across;
+    let first_order = 0.6 * delta * delta / l;
+    println!("parallelogram: sink {sink:e} m against 3/5 delta^2 / L = {first_order:e} m");
+    assert!(rel(sink, first_order) < 0.01, "{sink} {first_order}");
+    assert!(r.linear.parasitic[0].across.abs() < 1e-9 * delta);
+    let finer = r.finer.as_ref().unwrap();
+    assert!(rel(-finer.parasitic[0].across, sink) < 1e-4);
 }

@@ -89,9 +89,85 @@ pub(super) fn build(
     let d = model.description();
     let (material, actuator) = model.material_and_actuator();
     let net = &lin.network;
-    // each body's master: at the input port for the input's body (the drive acts there
-    // without an offset), at its support for a supported one (held there), else at its
-    // reference point
+    let (mut s, masters) = bodies(&lin, model)?;
+    let mut flexures = Vec::new();
+    for (h, f) in net.flexures.iter().enumerate() {
+        let kind = d.hinges.get(h).map(|h| h.kind);
+        let segments = segments(kind, &lin.dims[h], f, elements.max(1), d.width, material);
+        let end = |s: &mut Structure, body: Body, p: [f64; 2]| {
+            let node = s.node(p[0], p[1]);
+            match body {
+                Body::Ground => s.fix(node),
+                Body::Rigid(b) => s.attach(node, masters[b]),
+            }
+            node
+        };
+        let a = end(&mut s, f.from, f.start);
+        let b = end(&mut s, f.to, f.end);
+        let first = s.beams.len();
+        let chain = s.flexure(a, b, segments.len(), |_| Section { ea: 1.0, ei: 1.0 });
+        let l0 = f.length / segments.len() as f64;
+        for (beam, c) in s.beams[first..].iter_mut().zip(&segments) {
+            beam.local = Some(Local::from_compliance(l0, c.c11, c.c22, c.c23, c.c33));
+        }
+        debug_assert_eq!(chain.len(), segments.len() + 1);
+        flexures.push(FlexureEnd {
+            beam: s.beams.len() - 1,
+            axis: f.axis,
+            kind: kind.unwrap_or(HingeKind::Strip),
+            dims: lin.dims[h].clone(),
+        });
+    }
+    let ports = port_nodes(&mut s, &lin, &masters);
+    let anchor = {
+        let (p, n) = (lin.ports[0].point, lin.ports[0].force);
+        s.node(p[0] - ANCHOR * n[0], p[1] - ANCHOR * n[1])
+    };
+    s.fix(anchor);
+    let alone = s.clone();
+    let port = ports[0];
+    match (drive, actuator.stiffness) {
+        (Drive::Force(force), _) => {
+            let f = force * port.share;
+            s.load(
+                port.node,
+                [f * port.direction[0], f * port.direction[1], 0.0],
+            );
+        }
+        (Drive::Stack, Some(k_a)) => s.springs.push(Spring {
+            a: anchor,
+            b: port.node,
+            stiffness: port.share * port.read * k_a,
+            free_stroke: actuator.nominal_stroke / port.read,
+            preload: port.share * actuator.preload,
+        }),
+        (Drive::Stack, None) => {
+            let (dof, sign) = axis_dof(port.direction).ok_or_else(|| {
+                "[actuator] stiffness: an actuator without a stiffness prescribes the input's \
+                 motion, which the large-deflection model does along x or y only; give the \
+                 actuator its stiffness"
+                    .to_string()
+            })?;
+            if s.held.iter().any(|&(n, h, _)| n == port.node && h == dof) {
+                return Err("the input port's motion is held by a mirror axis or a support".into());
+            }
+            s.prescribe(port.node, dof, sign * actuator.nominal_stroke / port.read);
+        }
+    }
+    Ok(Built {
+        driven: s,
+        alone,
+        ports,
+        flexures,
+        width: d.width,
+    })
+}
+
+/// The bodies' master nodes with the mirror axes' and the supports' holds. Each master
+/// stands at the input port for the input's body (the drive acts there without an offset),
+/// at its support for a supported one (held there), else at its reference point.
+fn bodies(lin: &LinearAt, model: &NetworkModel) -> Result<(Structure, Vec<usize>), String> {
+    let (net, d) = (&lin.network, model.description());
     let mut at: Vec<Option<[f64; 2]>> = vec![None; net.references.len()];
     let input = &lin.ports[0];
     at[input.body] = Some(input.point);
@@ -135,77 +211,7 @@ pub(super) fn build(
             s.hold(masters[b], dof);
         }
     }
-    let mut flexures = Vec::new();
-    for (h, f) in net.flexures.iter().enumerate() {
-        let kind = d.hinges.get(h).map(|h| h.kind);
-        let segments = segments(kind, &lin.dims[h], f, elements.max(1), d.width, material);
-        let end = |s: &mut Structure, body: Body, p: [f64; 2]| {
-            let node = s.node(p[0], p[1]);
-            match body {
-                Body::Ground => s.fix(node),
-                Body::Rigid(b) => s.attach(node, masters[b]),
-            }
-            node
-        };
-        let a = end(&mut s, f.from, f.start);
-        let b = end(&mut s, f.to, f.end);
-        let first = s.beams.len();
-        let chain = s.flexure(a, b, segments.len(), |_| Section { ea: 1.0, ei: 1.0 });
-        let l0 = f.length / segments.len() as f64;
-        for (beam, c) in s.beams[first..].iter_mut().zip(&segments) {
-            beam.local = Some(Local::from_compliance(l0, c.c11, c.c22, c.c23, c.c33));
-        }
-        debug_assert_eq!(chain.len(), segments.len() + 1);
-        flexures.push(FlexureEnd {
-            beam: s.beams.len() - 1,
-            axis: f.axis,
-            kind: kind.unwrap_or(HingeKind::Strip),
-            dims: lin.dims[h].clone(),
-        });
-    }
-    let ports = port_nodes(&mut s, &lin, &masters);
-    let anchor = {
-        let (p, n) = (input.point, input.force);
-        s.node(p[0] - ANCHOR * n[0], p[1] - ANCHOR * n[1])
-    };
-    s.fix(anchor);
-    let alone = s.clone();
-    let port = ports[0];
-    match (drive, actuator.stiffness) {
-        (Drive::Force(force), _) => {
-            let f = force * port.share;
-            s.load(
-                port.node,
-                [f * port.direction[0], f * port.direction[1], 0.0],
-            );
-        }
-        (Drive::Stack, Some(k_a)) => s.springs.push(Spring {
-            a: anchor,
-            b: port.node,
-            stiffness: port.share * port.read * k_a,
-            free_stroke: actuator.nominal_stroke / port.read,
-            preload: port.share * actuator.preload,
-        }),
-        (Drive::Stack, None) => {
-            let (dof, sign) = axis_dof(port.direction).ok_or_else(|| {
-                "[actuator] stiffness: an actuator without a stiffness prescribes the input's \
-                 motion, which the large-deflection model does along x or y only; give the \
-                 actuator its stiffness"
-                    .to_string()
-            })?;
-            if s.held.iter().any(|&(n, h, _)| n == port.node && h == dof) {
-                return Err("the input port's motion is held by a mirror axis or a support".into());
-            }
-            s.prescribe(port.node, dof, sign * actuator.nominal_stroke / port.read);
-        }
-    }
-    Ok(Built {
-        driven: s,
-        alone,
-        ports,
-        flexures,
-        width: d.width,
-    })
+    Ok((s, masters))
 }
 
 /// The ports as nodes: the input its body's master, each output a slave of its body.
