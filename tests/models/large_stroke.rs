@@ -136,7 +136,7 @@ fn wei2017_at_its_stroke_against_the_nonlinear_finite_elements() {
         )
     };
     // the network's effect overshoots the part's by 20 % (stiffness) and 60 % (amplification)
-    // at the stroke: the finding this test keeps, measured to 1e-3 of the effect; the FE's
+    // at the stroke: the finding this test keeps, measured to 1 % of the effect; the FE's
     // figures bound it below and the effect stays within twice theirs
     for (factor, fe_k, fe_amp, k_measured, amp_measured) in [
         (1.0, 17.40 / 14.92, 12.321 / 11.970, 1.1989, 1.0461),
@@ -147,9 +147,9 @@ fn wei2017_at_its_stroke_against_the_nonlinear_finite_elements() {
             "wei2017_network at {factor} x {force:.2} N: k_in x {k:.4} (FE {fe_k:.4}), \
              amplification x {amp:.4} (FE {fe_amp:.4})"
         );
-        assert!((k - k_measured).abs() < 1e-3 * (k_measured - 1.0), "{k}");
+        assert!((k - k_measured).abs() < 1e-2 * (k_measured - 1.0), "{k}");
         assert!(
-            (amp - amp_measured).abs() < 1e-3 * (amp_measured - 1.0),
+            (amp - amp_measured).abs() < 1e-2 * (amp_measured - 1.0),
             "{amp}"
         );
         assert!(k - 1.0 > fe_k - 1.0 && k - 1.0 < 2.0 * (fe_k - 1.0));
