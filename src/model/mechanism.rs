@@ -9,6 +9,7 @@
 
 use std::sync::Arc;
 
+use super::large::report::LargeDeflection;
 use super::part_rules::{PartRule, Witness};
 use super::{Drawing, Model, Skeleton};
 use crate::part::analysis::FeCounterpart;
@@ -143,6 +144,8 @@ pub struct Mechanism {
     pub part_maker: Option<Arc<dyn PartMaker>>,
     /// The physics with the material's moduli as an input, where the model has it.
     pub modulus: Option<Arc<dyn ModulusScaling>>,
+    /// The mechanism solved with large deflections at its stroke, where the model has it.
+    pub large: Option<Arc<dyn LargeDeflection>>,
 }
 
 /// The depiction of a mechanism without one: every default.
@@ -159,6 +162,7 @@ impl Mechanism {
             depiction: None,
             part_maker: None,
             modulus: None,
+            large: None,
         }
     }
 
@@ -170,6 +174,7 @@ impl Mechanism {
             depiction: Some(model.clone()),
             part_maker: Some(model),
             modulus: None,
+            large: None,
         }
     }
 
@@ -181,6 +186,7 @@ impl Mechanism {
             depiction: Some(model),
             part_maker: None,
             modulus: None,
+            large: None,
         }
     }
 

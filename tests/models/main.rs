@@ -14,6 +14,7 @@ mod bridge_model;
 mod fit_ranges;
 mod hinges;
 mod large_deflection;
+mod large_stroke;
 mod layout;
 mod model_stability;
 mod network_beams;

@@ -58,15 +58,12 @@ impl<'a> System<'a> {
             check((xb[0] - xa[0]).hypot(xb[1] - xa[1]) > 0.0, || {
                 format!("beam {e}: zero length")
             })?;
-            let s = b.section;
+            let s = b.local((xb[0] - xa[0]).hypot(xb[1] - xa[1]));
+            let [[k11, k12], [k21, k22]] = s.bending;
+            let finite = [s.axial, k11, k12, k21, k22].iter().all(|v| v.is_finite());
             check(
-                s.ea > 0.0 && s.ei > 0.0 && s.ea.is_finite() && s.ei.is_finite(),
-                || {
-                    format!(
-                        "beam {e}: section EA = {}, EI = {} not positive",
-                        s.ea, s.ei
-                    )
-                },
+                finite && s.axial > 0.0 && k11 > 0.0 && k11 * k22 - k12 * k21 > 0.0 && k12 == k21,
+                || format!("beam {e}: local stiffness {s:?} not symmetric positive definite"),
             )?;
         }
         for (e, s) in structure.springs.iter().enumerate() {
@@ -176,7 +173,8 @@ impl<'a> System<'a> {
             let idx = [0, 1, 2].map(|j| 3 * b.a + j);
             let idx = [idx[0], idx[1], idx[2], 3 * b.b, 3 * b.b + 1, 3 * b.b + 2];
             let d = idx.map(|i| u[i]);
-            let c = beam(st.nodes[b.a], st.nodes[b.b], b.section, &d);
+            let (xa, xb) = (st.nodes[b.a], st.nodes[b.b]);
+            let c = beam(xa, xb, b.local((xb[0] - xa[0]).hypot(xb[1] - xa[1])), &d);
             for (x, &i) in idx.iter().enumerate() {
                 r[i] += c.force[x];
                 for (y, &j) in idx.iter().enumerate() {

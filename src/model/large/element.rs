@@ -16,7 +16,7 @@
 //! notation; Battini and Pacoste, Comput. Methods Appl. Mech. Engrg. 191 (2002) 1755-1789,
 //! write the same element in three dimensions).
 
-use super::Section;
+use super::Local;
 
 /// The internal force and tangent stiffness of an element.
 pub struct Contribution<const N: usize> {
@@ -24,8 +24,9 @@ pub struct Contribution<const N: usize> {
     pub stiffness: [[f64; N]; N],
 }
 
-/// The beam from reference positions `xa, xb` under displacements `d` (6 values).
-pub fn beam(xa: [f64; 2], xb: [f64; 2], section: Section, d: &[f64; 6]) -> Contribution<6> {
+/// The beam from reference positions `xa, xb` under displacements `d` (6 values), of
+/// local linear stiffness `local`.
+pub fn beam(xa: [f64; 2], xb: [f64; 2], local: Local, d: &[f64; 6]) -> Contribution<6> {
     let chord0 = [xb[0] - xa[0], xb[1] - xa[1]];
     let l0 = chord0[0].hypot(chord0[1]);
     // the chord's change apart from the chord, so that a small stretch keeps its digits
@@ -40,7 +41,7 @@ pub fn beam(xa: [f64; 2], xb: [f64; 2], section: Section, d: &[f64; 6]) -> Contr
         + change[1] * (2.0 * chord0[1] + change[1]))
         / (l + l0);
     let (ta, tb) = (d[2] - turn, d[5] - turn);
-    let (local, dmat) = local_law(section, l0, stretch, ta, tb);
+    let (local, dmat) = local_law(local, l0, stretch, ta, tb);
     let r = [-c, -s, 0.0, c, s, 0.0];
     let z = [s, -c, 0.0, -s, c, 0.0];
     let mut rows = [r, [0.0; 6], [0.0; 6]];
@@ -70,27 +71,32 @@ pub fn beam(xa: [f64; 2], xb: [f64; 2], section: Section, d: &[f64; 6]) -> Contr
 }
 
 /// The local forces `(N, M_a, M_b)` and their derivatives by `(u_l, theta_a, theta_b)` from
-/// the energy `EA l0 eps^2 / 2 + EI / l0 (2 ta^2 + 2 ta tb + 2 tb^2)` with the shallow-arch
-/// strain `eps = u_l / l0 + (2 ta^2 - ta tb + 2 tb^2) / 30` (Crisfield 1991, ch. 7).
-fn local_law(
-    section: Section,
-    l0: f64,
-    stretch: f64,
-    ta: f64,
-    tb: f64,
-) -> ([f64; 3], [[f64; 3]; 3]) {
+/// the energy `k l0^2 eps^2 / 2 + theta^T K_b theta / 2`, `theta = (ta, tb)`, with the
+/// shallow-arch strain `eps = u_l / l0 + (2 ta^2 - ta tb + 2 tb^2) / 30` (Crisfield 1991,
+/// ch. 7, whose uniform beam has `k = EA / l0` and `K_b = EI / l0 [4 2; 2 4]`). A general
+/// `k` and symmetric `K_b` (a segment of a notch's profile, a beam with its shear
+/// compliance) keep the element's linear stiffness exactly theirs at the unloaded state;
+/// the arch term, the geometric coupling of stretch and end rotations, is the cubic
+/// shape's, which the element's shortening makes exact in the limit.
+fn local_law(local: Local, l0: f64, stretch: f64, ta: f64, tb: f64) -> ([f64; 3], [[f64; 3]; 3]) {
     let eps = stretch / l0 + (2.0 * ta * ta - ta * tb + 2.0 * tb * tb) / 30.0;
-    let n = section.ea * eps;
+    // EA of the uniform beam: N = k l0 eps
+    let ea = local.axial * l0;
+    let n = ea * eps;
     let g = [1.0 / l0, (4.0 * ta - tb) / 30.0, (4.0 * tb - ta) / 30.0];
-    let k = section.ei / l0;
-    let ma = k * (4.0 * ta + 2.0 * tb) + n * l0 * g[1];
-    let mb = k * (2.0 * ta + 4.0 * tb) + n * l0 * g[2];
-    let bend = [[0.0; 3], [0.0, 4.0 * k, 2.0 * k], [0.0, 2.0 * k, 4.0 * k]];
+    let kb = local.bending;
+    let ma = kb[0][0] * ta + kb[0][1] * tb + n * l0 * g[1];
+    let mb = kb[1][0] * ta + kb[1][1] * tb + n * l0 * g[2];
+    let bend = [
+        [0.0; 3],
+        [0.0, kb[0][0], kb[0][1]],
+        [0.0, kb[1][0], kb[1][1]],
+    ];
     let arch = [[0.0; 3], [0.0, 4.0, -1.0], [0.0, -1.0, 4.0]];
     let mut dmat = [[0.0; 3]; 3];
     for p in 0..3 {
         for q in 0..3 {
-            dmat[p][q] = section.ea * l0 * g[p] * g[q] + bend[p][q] + n * l0 / 30.0 * arch[p][q];
+            dmat[p][q] = ea * l0 * g[p] * g[q] + bend[p][q] + n * l0 / 30.0 * arch[p][q];
         }
     }
     ([n, ma, mb], dmat)

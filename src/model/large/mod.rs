@@ -20,6 +20,7 @@
 pub mod assemble;
 pub mod critical;
 pub mod element;
+pub mod report;
 pub mod solve;
 
 use std::fmt;
@@ -39,6 +40,51 @@ pub struct Section {
     pub ei: f64,
 }
 
+impl Section {
+    /// The uniform Euler-Bernoulli beam's local stiffness over a length `l0`.
+    pub fn local(self, l0: f64) -> Local {
+        let k = self.ei / l0;
+        Local {
+            axial: self.ea / l0,
+            bending: [[4.0 * k, 2.0 * k], [2.0 * k, 4.0 * k]],
+        }
+    }
+}
+
+/// A beam element's local linear stiffness: `axial` the force over the chord's stretch,
+/// `bending` the end moments over the end rotations against the chord, `(theta_a,
+/// theta_b)` (symmetric, positive definite).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Local {
+    pub axial: f64,
+    pub bending: [[f64; 2]; 2],
+}
+
+impl Local {
+    /// From the compliance at a segment's end `b` with its end `a` clamped, in its frame
+    /// (`c11` axial, `[c22 c23; c23 c33]` the transverse motion and rotation): its inverse
+    /// carried to the end rotations against the chord, `v = -l theta_a`, `phi_b = theta_b
+    /// - theta_a` (the clamped end's rotation against the chord is minus the chord's turn).
+    pub fn from_compliance(l0: f64, c11: f64, c22: f64, c23: f64, c33: f64) -> Local {
+        let det = c22 * c33 - c23 * c23;
+        let kc = [[c33 / det, -c23 / det], [-c23 / det, c22 / det]];
+        let m = [[-l0, 0.0], [-1.0, 1.0]];
+        let mut bending = [[0.0; 2]; 2];
+        for (i, row) in bending.iter_mut().enumerate() {
+            for (j, v) in row.iter_mut().enumerate() {
+                *v = (0..2)
+                    .flat_map(|p| (0..2).map(move |q| (p, q)))
+                    .map(|(p, q)| m[p][i] * kc[p][q] * m[q][j])
+                    .sum();
+            }
+        }
+        Local {
+            axial: 1.0 / c11,
+            bending,
+        }
+    }
+}
+
 /// A linear spring between two nodes whose natural length grows by `lambda * (free_stroke +
 /// preload / stiffness)` at load factor `lambda`: a piezo stack that at full load has
 /// extended by its free stroke and carries its preload (the force it would push with if
@@ -52,12 +98,21 @@ pub struct Spring {
     pub preload: f64,
 }
 
-/// A beam element between two nodes.
+/// A beam element between two nodes: its section, or a local stiffness of its own in its
+/// place (`local`, a segment of a flexure's exact compliance).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Beam {
     pub a: usize,
     pub b: usize,
     pub section: Section,
+    pub local: Option<Local>,
+}
+
+impl Beam {
+    /// The local stiffness over the reference length `l0`.
+    pub fn local(&self, l0: f64) -> Local {
+        self.local.unwrap_or_else(|| self.section.local(l0))
+    }
 }
 
 /// A node held rigidly to a master node: its offset from the master in the reference
@@ -115,6 +170,7 @@ impl Structure {
                 a: pair[0],
                 b: pair[1],
                 section: section(s),
+                local: None,
             });
         }
         chain

@@ -66,6 +66,7 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
     };
     let model = std::sync::Arc::new(model);
     let mut mechanism = Mechanism::physics_only(model.clone()).with_modulus_scaling(model.clone());
+    mechanism.large = Some(model.clone());
     mechanism.depiction = Some(model);
     if let Some((settings, description)) = drawn {
         mechanism.part_maker = Some(std::sync::Arc::new(NetworkPart::new(

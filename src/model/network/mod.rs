@@ -6,6 +6,7 @@
 //! check through its ports ([`part`]), for a file with a `[part]` section.
 
 mod assemble;
+pub mod at_stroke;
 mod checks;
 mod depiction;
 pub mod description;
@@ -16,6 +17,7 @@ mod on_axis;
 pub mod part;
 pub mod ports;
 mod scaling;
+pub mod stroke;
 pub mod structure;
 mod supports;
 

@@ -160,6 +160,15 @@ pub struct NetworkModel {
     roles: Vec<Role>,
 }
 
+/// The linear network at one design (see [`NetworkModel::linear_at`]).
+pub(super) struct LinearAt {
+    pub network: Network<f64>,
+    pub ports: Vec<Load<f64>>,
+    pub dims: Vec<Vec<f64>>,
+    pub read: Vec<f64>,
+    pub share: Vec<f64>,
+}
+
 /// The network at one design, with its ports.
 #[derive(Debug)]
 struct Evaluated<D> {
@@ -257,6 +266,26 @@ fn give<D: 'static>(work: Box<Work<D>>) {
 
 impl NetworkModel {
     /// The description it was built from.
+    /// The linear network at the design `x` (SI), its ports (input first, each a unit load
+    /// along its direction), each flexure's dimensions (SI), and the ports' read factors and
+    /// load shares: what the structure at stroke is built from ([`super::stroke`]).
+    pub(super) fn linear_at(&self, x: &[f64]) -> Result<LinearAt, String> {
+        let mut work = Work::<f64>::default();
+        self.at(x, None, false, &mut work)?;
+        let e = work.evaluated;
+        Ok(LinearAt {
+            network: e.network,
+            ports: e.ports,
+            dims: e.dims,
+            read: self.read.clone(),
+            share: self.share.clone(),
+        })
+    }
+
+    pub(super) fn material_and_actuator(&self) -> (&Material, &Actuator) {
+        (&self.material, &self.actuator)
+    }
+
     pub(super) fn description(&self) -> &Description {
         &self.description
     }

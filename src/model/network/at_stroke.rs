@@ -1,0 +1,238 @@
+//! The network's outputs at its working stroke ([`LargeDeflection`]): the structure of
+//! [`super::stroke`] followed from the unloaded part to the full stroke by Newton with load
+//! continuation ([`crate::model::large::solve::continuation`]), each point measured as the
+//! linear model measures its design, and the linear solution of the same load beside it.
+//!
+//! The stiffnesses are tangent: the compliance among the ports from the tangent stiffness
+//! of the mechanism alone (the actuator taken away, its force on the input left as a load
+//! of fixed direction at the input's master node, where it has no offset and so no share
+//! in the tangent), `W_ij = read_i C_ij share_j` as the linear model's. A hinge's stress is
+//! the hinge library's from the loads at its end on `to` (its last element's end forces in
+//! the frame of that end, turned with it), as the linear model states it from its loads.
+
+use faer::Mat;
+
+use super::model::NetworkModel;
+use super::stroke::{build, Built, Drive};
+use crate::model::hinge::HingeLoads;
+use crate::model::large::assemble::System;
+use crate::model::large::critical::critical_load_factor;
+use crate::model::large::element::beam;
+use crate::model::large::report::{
+    LargeDeflection, Parasitic, StrokeOptions, StrokePoint, StrokeReport,
+};
+use crate::model::large::solve::{continuation, solve_each, Options};
+use crate::model::large::LargeError;
+
+impl LargeDeflection for NetworkModel {
+    fn at_stroke(&self, x: &[f64], options: &StrokeOptions) -> Result<StrokeReport, String> {
+        let drive = options.force.map_or(Drive::Stack, Drive::Force);
+        solve_stroke(self, x, options, drive)
+    }
+}
+
+fn large(err: LargeError) -> String {
+    format!("the large-deflection solve: {err}")
+}
+
+/// The network `model` at the design `x` over the stroke `drive` gives.
+pub fn solve_stroke(
+    model: &NetworkModel,
+    x: &[f64],
+    options: &StrokeOptions,
+    drive: Drive,
+) -> Result<StrokeReport, String> {
+    let d = model.description();
+    let solve = |elements: usize, steps: usize| -> Result<(Built, Vec<StrokePoint>), String> {
+        let built = build(model, x, elements, drive)?;
+        let opts = Options {
+            steps,
+            ..Options::default()
+        };
+        let path = continuation(&built.driven, 1.0, &opts).map_err(large)?;
+        let curve = path
+            .points
+            .iter()
+            .map(|p| measure(&built, &p.displacement, p.lambda, None))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok((built, curve))
+    };
+    let (built, curve) = solve(options.elements, options.steps)?;
+    let linear = linear(&built)?;
+    let finer = solve(2 * options.elements, options.steps)?
+        .1
+        .pop()
+        .expect("a path has its end");
+    let critical = if options.critical_up_to > 1.0 {
+        let opts = Options {
+            steps: (2.0 * options.critical_up_to).ceil() as usize,
+            ..Options::default()
+        };
+        match critical_load_factor(&built.driven, options.critical_up_to, &opts) {
+            Ok(c) => Some(c.lambda),
+            Err(LargeError::NoCriticalPoint { .. }) => None,
+            // a limit point: past it the path has no equilibrium to re-solve
+            Err(LargeError::NotConverged { lambda, .. }) => Some(lambda),
+            Err(e) => return Err(large(e)),
+        }
+    } else {
+        None
+    };
+    Ok(StrokeReport {
+        elements: options.elements,
+        flexures: d
+            .hinges
+            .iter()
+            .map(|h| h.name.clone())
+            .chain(d.beams.iter().map(|b| b.name.clone()))
+            .collect(),
+        outputs: d.outputs.iter().map(|o| o.name.clone()).collect(),
+        curve,
+        linear,
+        critical_load_factor: critical,
+        finer: Some(finer),
+    })
+}
+
+/// The linear solution of the driven structure's full load: the unloaded tangent's, with
+/// the slaves carried by the linear rigid transfer.
+fn linear(built: &Built) -> Result<StrokePoint, String> {
+    let system = System::new(&built.driven).map_err(large)?;
+    let zero = vec![0.0; 3 * built.driven.nodes.len()];
+    let a = system.assemble(&zero, 0.0);
+    let du = solve_each(&a.tangent, &[&a.load])
+        .ok_or_else(|| large(LargeError::Singular { lambda: 0.0 }))?
+        .remove(0);
+    let mut u = zero.clone();
+    for (&i, &v) in system.free.iter().zip(&du) {
+        u[i] = v;
+    }
+    for &(i, v) in &system.held {
+        u[i] = v;
+    }
+    for (p, m) in system.master.iter().enumerate() {
+        if let Some(b) = *m {
+            let (xp, xb) = (built.driven.nodes[p], built.driven.nodes[b]);
+            let theta = u[3 * b + 2];
+            u[3 * p] = u[3 * b] - theta * (xp[1] - xb[1]);
+            u[3 * p + 1] = u[3 * b + 1] + theta * (xp[0] - xb[0]);
+            u[3 * p + 2] = theta;
+        }
+    }
+    measure(built, &u, 1.0, Some(&zero))
+}
+
+/// The outputs at the displacement `u` (every node's) at load factor `lambda`; with
+/// `linear_about` the elements' forces are their unloaded stiffness times `u` (the linear
+/// solution's) and the stiffnesses the unloaded ones.
+fn measure(
+    built: &Built,
+    u: &[f64],
+    lambda: f64,
+    linear_about: Option<&[f64]>,
+) -> Result<StrokePoint, String> {
+    let at = linear_about.unwrap_or(u);
+    let along = |i: usize| {
+        let p = &built.ports[i];
+        p.read * (u[3 * p.node] * p.direction[0] + u[3 * p.node + 1] * p.direction[1])
+    };
+    let (stroke_in, stroke_out) = (along(0), along(1));
+    let w = port_compliance(built, at)?;
+    let amplification_tangent = w[1][0] / w[0][0];
+    let amplification = if lambda == 0.0 {
+        amplification_tangent
+    } else {
+        stroke_out / stroke_in
+    };
+    let st = &built.driven;
+    let stresses: Vec<f64> = built
+        .flexures
+        .iter()
+        .map(|f| {
+            let b = &st.beams[f.beam];
+            let (xa, xb) = (st.nodes[b.a], st.nodes[b.b]);
+            let idx = [
+                3 * b.a,
+                3 * b.a + 1,
+                3 * b.a + 2,
+                3 * b.b,
+                3 * b.b + 1,
+                3 * b.b + 2,
+            ];
+            let local = b.local((xb[0] - xa[0]).hypot(xb[1] - xa[1]));
+            let force = match linear_about {
+                None => beam(xa, xb, local, &idx.map(|i| u[i])).force,
+                Some(zero) => {
+                    let k = beam(xa, xb, local, &idx.map(|i| zero[i])).stiffness;
+                    std::array::from_fn(|r| (0..6).map(|c| k[r][c] * u[idx[c]]).sum())
+                }
+            };
+            // the frame of the flexure's end on `to`, turned with it
+            let (s, c) = if linear_about.is_some() {
+                (0.0, 1.0)
+            } else {
+                u[idx[5]].sin_cos()
+            };
+            let e = [c * f.axis[0] - s * f.axis[1], s * f.axis[0] + c * f.axis[1]];
+            let loads = HingeLoads {
+                axial: force[3] * e[0] + force[4] * e[1],
+                shear: -force[3] * e[1] + force[4] * e[0],
+                moment: force[5],
+            };
+            let (to, from) = f.kind.end_stresses(&f.dims, built.width, &loads);
+            to.max(from)
+        })
+        .collect();
+    let parasitic = built.ports[1..]
+        .iter()
+        .map(|p| Parasitic {
+            across: -u[3 * p.node] * p.direction[1] + u[3 * p.node + 1] * p.direction[0],
+            rotation: u[3 * p.node + 2],
+        })
+        .collect();
+    Ok(StrokePoint {
+        fraction: lambda,
+        stroke_in,
+        stroke_out,
+        amplification,
+        amplification_tangent,
+        k_in: 1.0 / w[0][0],
+        k_out: 1.0 / w[1][1],
+        stress_max: stresses.iter().copied().fold(0.0, f64::max),
+        stresses,
+        parasitic,
+    })
+}
+
+/// `W_ij = read_i C_ij share_j` for the input and the first output, `C` from the tangent of
+/// the mechanism alone at `u`.
+fn port_compliance(built: &Built, u: &[f64]) -> Result<[[f64; 2]; 2], String> {
+    let system = System::new(&built.alone).map_err(large)?;
+    let a = system.assemble(u, 0.0);
+    let column = |i: usize| -> Vec<f64> {
+        let p = &built.ports[i];
+        // the unit force at the port carried to its master at the current offset
+        let (node, n) = (p.node, p.direction);
+        let master = system.master[node].unwrap_or(node);
+        let theta = u[3 * master + 2];
+        let (xp, xb) = (built.alone.nodes[node], built.alone.nodes[master]);
+        let r0 = [xp[0] - xb[0], xp[1] - xb[1]];
+        let (s, c) = theta.sin_cos();
+        let r = [c * r0[0] - s * r0[1], s * r0[0] + c * r0[1]];
+        let full = [n[0], n[1], -r[1] * n[0] + r[0] * n[1]];
+        system
+            .free
+            .iter()
+            .map(|&i| if i / 3 == master { full[i % 3] } else { 0.0 })
+            .collect()
+    };
+    let e = [column(0), column(1)];
+    let k: &Mat<f64> = &a.tangent;
+    let x = solve_each(k, &[&e[0], &e[1]])
+        .ok_or_else(|| large(LargeError::Singular { lambda: 0.0 }))?;
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let p = &built.ports;
+    Ok(std::array::from_fn(|i| {
+        std::array::from_fn(|j| p[i].read * dot(&e[i], &x[j]) * p[j].share)
+    }))
+}
