@@ -31,4 +31,5 @@ mod report_html;
 mod report_integrity;
 mod report_review;
 mod sets;
+mod specification;
 mod step;
