@@ -20,12 +20,25 @@ use super::{Problem, ProblemError};
 /// whose content differs from the one the report was written for. A UTF-8 byte-order mark
 /// at its start is read past, as the TOML reader does for problem files.
 pub fn design_from_optimum(problem: &Problem, path: &Path) -> Result<ParsedDesign, ProblemError> {
-    let err = |key: &str, message: String| ProblemError {
+    let json = read_report(path)?;
+    check_identity(problem, path, &json)?;
+    let mut parsed = design_of(problem, path, &json)?;
+    add_warnings(problem, path, &json, &mut parsed);
+    Ok(parsed)
+}
+
+fn error(path: &Path, key: &str, message: String) -> ProblemError {
+    ProblemError {
         file: path.to_path_buf(),
         key: key.to_string(),
         position: None,
         message,
-    };
+    }
+}
+
+/// The report at `path` as JSON, each key once in each object.
+fn read_report(path: &Path) -> Result<Value, ProblemError> {
+    let err = |key: &str, message: String| error(path, key, message);
     let text = crate::vocab::input::read_text(
         path,
         crate::vocab::input::MAX_SET_FILE_BYTES,
@@ -40,6 +53,12 @@ pub fn design_from_optimum(problem: &Problem, path: &Path) -> Result<ParsedDesig
     .deserialize(&mut de)
     .and_then(|v| de.end().map(|()| v))
     .map_err(|e| err("", format!("not a report of flexopt: {e}")))?;
+    Ok(json)
+}
+
+/// Refuses a report of another model or problem.
+fn check_identity(problem: &Problem, path: &Path, json: &Value) -> Result<(), ProblemError> {
+    let err = |key: &str, message: String| error(path, key, message);
     let report = |key: &str| json.get(key);
     let text_of = |key: &str| -> Result<&str, ProblemError> {
         report(key).and_then(Value::as_str).ok_or_else(|| {
@@ -71,6 +90,13 @@ pub fn design_from_optimum(problem: &Problem, path: &Path) -> Result<ParsedDesig
             ),
         ));
     }
+    Ok(())
+}
+
+/// The report's design, its exact SI values in place.
+fn design_of(problem: &Problem, path: &Path, json: &Value) -> Result<ParsedDesign, ProblemError> {
+    let err = |key: &str, message: String| error(path, key, message);
+    let report = |key: &str| json.get(key);
     let Some(design) = report("design_si").and_then(Value::as_object) else {
         return Err(err(
             "design_si",
@@ -109,6 +135,13 @@ pub fn design_from_optimum(problem: &Problem, path: &Path) -> Result<ParsedDesig
             *x = value;
         }
     }
+    Ok(parsed)
+}
+
+/// The warnings a report's design carries: a changed problem file, an infeasible or
+/// unconverged design.
+fn add_warnings(problem: &Problem, path: &Path, json: &Value, parsed: &mut ParsedDesign) {
+    let report = |key: &str| json.get(key);
     let warning = |what: String| format!("{}: {what}", path.display());
     let hash = format!("{:016x}", problem.fingerprint);
     match report("problem_fnv1a64").and_then(Value::as_str) {
@@ -147,7 +180,6 @@ pub fn design_from_optimum(problem: &Problem, path: &Path) -> Result<ParsedDesig
                 .to_string(),
         ));
     }
-    Ok(parsed)
 }
 
 /// A JSON value read so that each object holds each key once: a key given twice is an
