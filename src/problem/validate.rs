@@ -193,91 +193,7 @@ impl Validator<'_, '_> {
                     format!("variable \"{}\" is defined twice", v.name),
                 ));
             }
-            let dim = params[p].dimension;
-            let unit = Unit::parse(&v.unit, dim).map_err(|m| self.err(&path("unit"), m))?;
-            let must_be_positive = positive_only(dim);
-            let check = |key: &str, n: Number| -> Res<f64> {
-                let x = self.finite(&path(key), n)?;
-                let limit = model.angle_limit().filter(|_| dim == Dimension::Angle);
-                if limit.is_some_and(|limit| unit.to_si(x).abs() >= limit) {
-                    return Err(self.err(
-                        &path(key),
-                        format!("{} is an angle: it must lie strictly between -90 and 90 deg, got {} {}", v.name, short(x), unit.name),
-                    ));
-                }
-                if must_be_positive && x <= 0.0 {
-                    return Err(self.err(
-                        &path(key),
-                        format!(
-                            "{} is a {}: it must be positive, got {} {}",
-                            v.name,
-                            params[p].description,
-                            short(x),
-                            unit.name
-                        ),
-                    ));
-                }
-                let si = unit.to_si(x);
-                units::physical(si, dim).map_err(|why| {
-                    self.err(
-                        &path(key),
-                        format!("{} = {} {} {why}", v.name, short(x), unit.name),
-                    )
-                })?;
-                Ok(si)
-            };
-            let var = match (v.value, v.lower, v.upper) {
-                (Some(val), None, None) => {
-                    let x = check("value", val)?;
-                    Variable {
-                        name: v.name.clone(),
-                        parameter: p,
-                        unit: unit.clone(),
-                        lower: x,
-                        upper: x,
-                        fixed: true,
-                    }
-                }
-                (None, Some(lo), Some(hi)) => {
-                    let (lower, upper) = (check("lower", lo)?, check("upper", hi)?);
-                    if lower >= upper {
-                        return Err(self.err(
-                            &path("lower"),
-                            format!(
-                                "lower bound {} is not below upper bound {} (for a fixed variable write `value`)",
-                                lo.get(),
-                                hi.get()
-                            ),
-                        ));
-                    }
-                    Variable {
-                        name: v.name.clone(),
-                        parameter: p,
-                        unit: unit.clone(),
-                        lower,
-                        upper,
-                        fixed: false,
-                    }
-                }
-                (Some(_), _, _) => {
-                    return Err(self.err(
-                        &path("value"),
-                        "a variable has either `value` (fixed) or `lower` and `upper`, not both",
-                    ))
-                }
-                (None, None, _) => {
-                    return Err(self.err(
-                        &path("lower"),
-                        "missing: a free variable needs `lower` and `upper`",
-                    ))
-                }
-                (None, _, None) => {
-                    return Err(self.err(
-                        &path("upper"),
-                        "missing: a free variable needs `lower` and `upper`",
-                    ))
-                }
-            };
+            let var = self.variable(model, i, v, p)?;
             found[p] = Some(var);
         }
         let vars: Vec<Variable> = found
@@ -308,6 +224,110 @@ impl Validator<'_, '_> {
             return Err(self.err(&[k("variables"), Segment::Index(i), k(key)], why));
         }
         Ok(vars)
+    }
+
+    /// The file's `i`-th variable `v`, the model's parameter `p`: its unit, and its value
+    /// or bounds checked (positive, within an angle's limits, physical).
+    fn variable(
+        &self,
+        model: &dyn Model,
+        i: usize,
+        v: &schema::RawVariable,
+        p: usize,
+    ) -> Res<Variable> {
+        let params = model.parameters();
+        let path = |key: &str| [k("variables"), Segment::Index(i), k(key)];
+        let dim = params[p].dimension;
+        let unit = Unit::parse(&v.unit, dim).map_err(|m| self.err(&path("unit"), m))?;
+        let must_be_positive = positive_only(dim);
+        let check = |key: &str, n: Number| -> Res<f64> {
+            let x = self.finite(&path(key), n)?;
+            let limit = model.angle_limit().filter(|_| dim == Dimension::Angle);
+            if limit.is_some_and(|limit| unit.to_si(x).abs() >= limit) {
+                return Err(self.err(
+                    &path(key),
+                    format!(
+                        "{} is an angle: it must lie strictly between -90 and 90 deg, got {} {}",
+                        v.name,
+                        short(x),
+                        unit.name
+                    ),
+                ));
+            }
+            if must_be_positive && x <= 0.0 {
+                return Err(self.err(
+                    &path(key),
+                    format!(
+                        "{} is a {}: it must be positive, got {} {}",
+                        v.name,
+                        params[p].description,
+                        short(x),
+                        unit.name
+                    ),
+                ));
+            }
+            let si = unit.to_si(x);
+            units::physical(si, dim).map_err(|why| {
+                self.err(
+                    &path(key),
+                    format!("{} = {} {} {why}", v.name, short(x), unit.name),
+                )
+            })?;
+            Ok(si)
+        };
+        let var = match (v.value, v.lower, v.upper) {
+            (Some(val), None, None) => {
+                let x = check("value", val)?;
+                Variable {
+                    name: v.name.clone(),
+                    parameter: p,
+                    unit: unit.clone(),
+                    lower: x,
+                    upper: x,
+                    fixed: true,
+                }
+            }
+            (None, Some(lo), Some(hi)) => {
+                let (lower, upper) = (check("lower", lo)?, check("upper", hi)?);
+                if lower >= upper {
+                    return Err(self.err(
+                        &path("lower"),
+                        format!(
+                            "lower bound {} is not below upper bound {} (for a fixed variable write `value`)",
+                            lo.get(),
+                            hi.get()
+                        ),
+                    ));
+                }
+                Variable {
+                    name: v.name.clone(),
+                    parameter: p,
+                    unit: unit.clone(),
+                    lower,
+                    upper,
+                    fixed: false,
+                }
+            }
+            (Some(_), _, _) => {
+                return Err(self.err(
+                    &path("value"),
+                    "a variable has either `value` (fixed) or `lower` and `upper`, not both",
+                ))
+            }
+            (None, None, _) => {
+                return Err(self.err(
+                    &path("lower"),
+                    "missing: a free variable needs `lower` and `upper`",
+                ))
+            }
+            (None, _, None) => {
+                return Err(self.err(
+                    &path("upper"),
+                    "missing: a free variable needs `lower` and `upper`",
+                ))
+            }
+        };
+        Ok(var)
     }
 
     fn output(&self, model: &dyn Model, path: &[Segment], name: &str) -> Res<usize> {

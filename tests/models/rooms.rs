@@ -435,7 +435,6 @@ const OVER_THE_LIMITS: &[&str] = &[
     "src/optim/qp/direct.rs fn solve_on_active_set",
     "src/optim/qp/mod.rs fn solve_with_hint",
     "src/optim/sqp/mod.rs fn run",
-    "src/problem/validate.rs fn variables",
     "src/refine/mod.rs fn refine",
     "src/report/summary.rs fn fmt",
     "src/report/verify.rs fn fmt",
