@@ -178,6 +178,7 @@ impl Bridge {
             stresses: None,
             mode: None,
             mass: None,
+            extent: None,
         };
         for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
             *slot = e.output(BridgeOutput::ALL[k]);
@@ -201,6 +202,8 @@ struct Evaluation<'a, D> {
     /// The output mode and its equivalent mass, computed on demand.
     mode: Option<QuarterMode<D>>,
     mass: Option<D>,
+    /// The part's width and height, computed on demand once for both.
+    extent: Option<[D; 2]>,
 }
 
 impl<D: Scalar> Evaluation<'_, D> {
@@ -286,6 +289,15 @@ impl<D: Scalar> Evaluation<'_, D> {
             .insert(dynamics::equivalent_mass(&mode, &masses, dynamics))
     }
 
+    fn extent(&mut self) -> [D; 2] {
+        if let Some(e) = self.extent {
+            return e;
+        }
+        *self
+            .extent
+            .insert(footprint::extent(&self.s.part, self.layout, self.g))
+    }
+
     fn natural_frequency(&mut self) -> D {
         let k = self.mode().stiffness;
         dynamics::natural_frequency(k, self.equivalent_mass())
@@ -326,8 +338,8 @@ impl<D: Scalar> Evaluation<'_, D> {
             ForceInMax => self.force_in_max(),
             SpanX => self.g.span_x_with(self.trig),
             SpanY => self.g.span_y_with(self.trig),
-            PartWidth => footprint::extent(&self.s.part, self.layout, self.g)[0],
-            PartHeight => footprint::extent(&self.s.part, self.layout, self.g)[1],
+            PartWidth => self.extent()[0],
+            PartHeight => self.extent()[1],
             PocketLength => footprint::pocket_length(&self.s.part, self.layout, self.g),
             StrokeIn => self.stroke_in(),
             StrokeOut => {
