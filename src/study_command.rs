@@ -16,7 +16,7 @@ use flexopt::report::pareto::write_pareto;
 use flexopt::report::refine::{RefineSummary, RefinedReport};
 use flexopt::report::study::{write_all_refined, RefinedFiles};
 use flexopt::report::summary::{infeasible_message, ParetoSummary, StudySummary};
-use flexopt::report::verify::VerifyTable;
+use flexopt::report::verify::{VerifyReport, VerifyTable};
 use flexopt::study::{self, Overrides, Study, StudyOptions};
 
 /// Loads the problem and applies the command line's overrides of its `[search]`.
@@ -173,15 +173,19 @@ pub(crate) fn run_study(
         problem,
         study: &study,
         part: part.as_ref(),
+        verdict: verified.map(|(report, _)| &report.verdict),
         files: &files,
     })?;
     if let Some((report, _)) = &refined {
         emit(&RefineSummary(report))?;
     }
-    match checked {
-        Some(Ok((report, _))) => emit(&VerifyTable(&report))?,
+    let checked = match checked {
+        Some(Ok(c)) => Some(c),
         Some(Err(e)) => return Err(e),
-        None => {}
+        None => None,
+    };
+    if let Some((report, _)) = &checked {
+        emit(&VerifyTable(report))?;
     }
     if problem.search.robust.is_some() && study.any_feasible && !study.interrupted {
         crate::tolerance_command::compare_robust(problem, options, &study, dir)?;
@@ -244,11 +248,30 @@ pub(crate) fn run_study(
             code: what.0,
             message: format!("{}: {}", problem.file.display(), what.1),
         })
+    } else if let Some((report, _)) = checked.as_ref().filter(|_| study.any_feasible) {
+        part_verdict(problem, report)
     } else if study.any_feasible {
         Ok(())
     } else {
         Err(Failure::no_feasible(infeasible_message(problem, &study)))
     }
+}
+
+/// Exit 3 when the FE check of the optimum (`--verify`) finds its part failing a limit the
+/// model met: the verdict is the highest fidelity's.
+fn part_verdict(problem: &Problem, report: &VerifyReport) -> Result<(), Failure> {
+    let fails = &report.verdict.fails;
+    if fails.is_empty() {
+        return Ok(());
+    }
+    let shown: Vec<&str> = fails.iter().map(|f| f.shown.as_str()).collect();
+    Err(Failure::no_feasible(format!(
+        "{}: the optimum meets every constraint in the model, but its part fails by the {} \
+         finite elements: {}",
+        problem.file.display(),
+        report.verdict.fidelity.name(),
+        shown.join("; ")
+    )))
 }
 
 /// Why the feasible starts' best design is no optimum: the model gives no value there for an

@@ -12,7 +12,7 @@ use super::folder::OutputSet;
 use super::html::{self, ProblemText};
 use super::part::{write_part, PartOf, PART_FILES};
 use super::study_plots::zones_png;
-use super::verify::{write_verify, VerifyReport, VERIFY_FILES, VERIFY_FOLDER};
+use super::verify::{write_verify, Verdict, VerifyReport, VERIFY_FILES, VERIFY_FOLDER};
 use super::{write_atomic, write_json, DesignReport, WriteError};
 use crate::fe::verify::Verification;
 use crate::optim::Status;
@@ -56,6 +56,10 @@ pub struct OptimumReport {
     /// then no part files are written.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub part_problems: Option<Vec<String>>,
+    /// The verdict of the part's FE check (`run --verify`), in the highest fidelity that
+    /// ran: `feasible` above is the model's; this is the part's. Absent when no check ran.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub verdict: Option<Verdict>,
 }
 
 /// One line of `starts.json`.
@@ -158,6 +162,7 @@ pub fn optimum_report(
             Some(Err(e)) => Some(e.problems.clone()),
             _ => None,
         },
+        verdict: None,
     }
 }
 
@@ -313,7 +318,8 @@ pub fn write_all_refined(
 ) -> Result<Vec<PathBuf>, WriteError> {
     let set = OutputSet::begin(dir)?;
     let written = set.write(|set| {
-        let mut written = write_study(set, problem, study, part)?;
+        let verdict = verified.map(|(report, _)| &report.verdict);
+        let mut written = write_study(set, problem, study, part, verdict)?;
         if let Some(r) = refined {
             write_json(&set.path("refined.json"), r.report)?;
             written.push("refined.json");
@@ -368,11 +374,13 @@ fn write_study(
     problem: &Problem,
     study: &Study,
     part: Option<&Result<Part, PartError>>,
+    verdict: Option<&Verdict>,
 ) -> Result<Vec<&'static str>, WriteError> {
     let records = start_records(problem, study);
     let files = STUDY_FILES;
     let path = |name: &str| set.path(name);
-    let optimum = optimum_report(problem, study, part);
+    let mut optimum = optimum_report(problem, study, part);
+    optimum.verdict = verdict.cloned();
     write_json(&path(files[0]), &optimum)?;
     write_json(&path(files[1]), &records)?;
     write_atomic(&path(files[2]), csv(problem, &records).as_bytes())?;

@@ -7,6 +7,7 @@ use crate::pareto::Pareto;
 use crate::part::{Part, PartError};
 use crate::problem::nlp::ACTIVE_TOLERANCE;
 use crate::problem::{Problem, Solver};
+use crate::report::verify::Verdict;
 use crate::study::Study;
 
 /// The summary of a study: starts, the best design and the zones, then the files written.
@@ -15,6 +16,8 @@ pub struct StudySummary<'a> {
     pub study: &'a Study,
     /// The optimum's part, where the model has one and the optimum is feasible.
     pub part: Option<&'a Result<Part, PartError>>,
+    /// The verdict of the optimum's FE check (`run --verify`), where it ran.
+    pub verdict: Option<&'a Verdict>,
     pub files: &'a [PathBuf],
 }
 
@@ -114,6 +117,9 @@ impl Display for StudySummary<'_> {
                     active.join(", ")
                 }
             )?;
+        }
+        if study.any_feasible {
+            writeln!(s, "  {}", judged_by(self.verdict))?;
         }
         // the ranges of fit the design reaches or leaves; the others say nothing
         let at_edge: Vec<_> = report
@@ -322,4 +328,32 @@ pub fn infeasible_message(problem: &Problem, study: &Study) -> String {
         },
         unmet.join("; ")
     )
+}
+
+/// Which fidelity the optimum's constraints are judged by: the model's alone, or its part's
+/// FE check where `run --verify` ran, with what the part fails.
+fn judged_by(verdict: Option<&Verdict>) -> String {
+    let Some(v) = verdict else {
+        return "judged by the model (closed form); --verify checks its part by finite elements"
+            .into();
+    };
+    let mut line = match v.fails.as_slice() {
+        [] => format!(
+            "judged by the part's {} FE: it meets every constraint the FE measures",
+            v.fidelity.name()
+        ),
+        fails => format!(
+            "judged by the part's {} FE: the part FAILS {}",
+            v.fidelity.name(),
+            fails
+                .iter()
+                .map(|f| f.shown.as_str())
+                .collect::<Vec<_>>()
+                .join("; ")
+        ),
+    };
+    if !v.model_only.is_empty() {
+        line += &format!("; by the model only: {}", v.model_only.join(", "));
+    }
+    line
 }

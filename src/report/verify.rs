@@ -28,7 +28,9 @@ use compare::{analytic, displacements_at, value};
 
 mod compare;
 mod stress;
+mod verdict;
 use stress::stress_png;
+pub use verdict::{PartFailure, Verdict};
 
 /// The files a verification writes, in order.
 pub const VERIFY_FILES: [&str; 5] = [
@@ -117,6 +119,8 @@ pub struct VerifyReport {
     /// The outputs the problem's constraints name that the part's check does not measure
     /// (nor the part's drawing give): a check with any is no verification of the design.
     pub not_measured_on_the_part: Vec<String>,
+    /// The constraints judged on the part, in the highest fidelity that ran.
+    pub verdict: Verdict,
 }
 
 fn key(f: Fidelity) -> &'static str {
@@ -181,6 +185,7 @@ impl VerifyReport {
             outputs.insert(key(fidelity), map);
         }
         let thinnest = v.thinnest_hinge();
+        let read = Fidelity::for_plate(v.width, thinnest);
         VerifyReport {
             problem: problem.name.clone(),
             design: problem.design_in_file_units(x),
@@ -202,8 +207,9 @@ impl VerifyReport {
             whole_part: v.whole_part,
             modal_note: v.modal_note.clone(),
             width_over_thickness: v.width / thinnest,
-            read: Fidelity::for_plate(v.width, thinnest),
+            read,
             not_measured_on_the_part: not_measured(problem, v),
+            verdict: Verdict::new(problem, x, v, read),
         }
     }
 }
@@ -506,7 +512,11 @@ impl Display for VerifyTable<'_> {
             writeln!(s, "{line} {analytic:>10} {deviation:>20}")?;
         }
         for name in &r.not_measured_on_the_part {
-            writeln!(s, "{name:<21} {:>24}", "not measured on the part")?;
+            writeln!(
+                s,
+                "{name:<21} {:>24}",
+                "not measured on the part (model only)"
+            )?;
         }
         let forces: Vec<String> = r
             .actuation_force
@@ -544,6 +554,23 @@ impl Display for VerifyTable<'_> {
                  name",
                 r.not_measured_on_the_part.join(", ")
             )?;
+        }
+        match r.verdict.fails.as_slice() {
+            [] => writeln!(
+                s,
+                "verdict by the {} FE: the part meets every constraint it measures",
+                r.verdict.fidelity.name()
+            )?,
+            fails => {
+                writeln!(
+                    s,
+                    "verdict by the {} FE: the part FAILS",
+                    r.verdict.fidelity.name()
+                )?;
+                for f in fails {
+                    writeln!(s, "  {}", f.shown)?;
+                }
+            }
         }
         writeln!(
             s,

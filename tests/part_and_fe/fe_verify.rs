@@ -276,18 +276,48 @@ fn the_command_line_checks_a_design_and_a_runs_optimum() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--tolerance"));
     let _ = std::fs::remove_dir_all(&dir);
 
-    // run --verify checks the optimum into DIR/verify
-    flexopt_ok(&[
+    // run --verify checks the optimum into DIR/verify; the optimum meets k_out >= 38 N/mm in
+    // the model, its part gives 33.6 N/mm in 3D: exit 3, the failure named everywhere
+    let out = flexopt(&[
         "run",
         "problems/wei2017.toml",
         "--starts",
         "10",
-        "--quiet",
         "--verify",
+        "--report",
         "--out",
         dir.to_str().unwrap(),
     ]);
-    assert!(dir.join("verify/verify.json").is_file());
+    assert_eq!(out.status.code(), Some(3));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("k_out = ") && stderr.contains("(3D), limit >= 38"),
+        "{stderr}"
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("verdict by the 3D FE: the part FAILS"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("judged by the part's 3D FE: the part FAILS k_out = "),
+        "{stdout}"
+    );
+    let optimum: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("optimum.json")).unwrap()).unwrap();
+    assert_eq!(optimum["feasible"], true);
+    assert_eq!(optimum["verdict"]["fails"][0]["constraint"], "k_out");
+    let verify: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("verify/verify.json")).unwrap())
+            .unwrap();
+    let fails = verify["verdict"]["fails"].as_array().unwrap();
+    assert_eq!(fails.len(), 1);
+    assert_eq!(fails[0]["constraint"], "k_out");
+    assert_eq!(fails[0]["fidelity"], "3d");
+    assert!(fails[0]["value"].as_f64().unwrap() < fails[0]["limit"].as_f64().unwrap());
+    let html = std::fs::read_to_string(dir.join("report.html")).unwrap();
+    assert!(html.contains("its part fails by the 3D finite elements"));
+    assert!(html.contains("k_out = "));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -31,8 +31,43 @@ fn within(value: f64, expected: f64, relative: f64, what: &str) {
 fn the_chapters_amplifier_from_its_specification_to_its_part() {
     let out = folder("run");
     let o = out.to_str().unwrap();
-    flexopt_ok(&["run", FILE, "--quiet", "--out", o, "--verify"]);
+    // the model's optimum meets every limit; its part, under the stack by 3D FE, does not:
+    // exit 3, and the verdict names the part's shortfalls with the fidelity that found them
+    let ran = flexopt(&["run", FILE, "--quiet", "--out", o, "--verify"]);
+    assert_eq!(ran.status.code(), Some(3), "{ran:?}");
+    let err = String::from_utf8_lossy(&ran.stderr);
+    assert!(
+        err.contains("its part fails by the 3D finite elements") && err.contains("stroke_out = "),
+        "{err}"
+    );
     let optimum = json(&out.join("optimum.json"));
+    assert_eq!(optimum["feasible"], true);
+    let verdict = &optimum["verdict"];
+    assert_eq!(verdict["fidelity"], "3d");
+    let failed: Vec<&str> = verdict["fails"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["constraint"].as_str().unwrap())
+        .collect();
+    for short in ["stroke_out", "k_out_actuated"] {
+        assert!(failed.contains(&short), "{failed:?}");
+    }
+    // the footprint is a size of the drawn part: judged on it, met
+    assert!(!failed.contains(&"part_width"), "{failed:?}");
+    assert!(verdict["model_only"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|n| n != "part_width" && n != "part_height"));
+    // the stroke and the stiffness are lower limits (SI in the verdict): the part's value
+    // under them
+    for f in verdict["fails"].as_array().unwrap() {
+        if f["constraint"] == "stroke_out" || f["constraint"] == "k_out_actuated" {
+            let (value, limit) = (f["value"].as_f64().unwrap(), f["limit"].as_f64().unwrap());
+            assert!(value < limit, "{f}");
+        }
+    }
     let outputs = &optimum["outputs"];
     // the model's optimum: 713.3 Hz, on the stroke's limit, inside 60 x 40 mm
     within(

@@ -36,6 +36,44 @@ fn objective_line(o: &Value) -> String {
     format!("{} {output}", text(o, "sense"))
 }
 
+/// The fidelity of the optimum's FE check (`run --verify`) and what its part fails there, if
+/// it fails anything.
+fn part_fails(set: &Set) -> Option<(String, Vec<String>)> {
+    let verdict = set.verify.as_ref()?.0.get("verdict")?;
+    let fails: Vec<String> = list(Some(verdict), "fails")
+        .iter()
+        .map(|f| text(f, "shown").to_string())
+        .collect();
+    (!fails.is_empty()).then(|| (fidelity_name(verdict), fails))
+}
+
+fn fidelity_name(verdict: &Value) -> String {
+    match text(verdict, "fidelity") {
+        "3d" => "3D".into(),
+        f => f.replace('_', " "),
+    }
+}
+
+/// What a feasible optimum's verdict is judged by: the model, or the model and its part's FE
+/// check, naming the constraints that check does not measure.
+fn judged_by(set: &Set) -> String {
+    let Some(verdict) = set.verify.as_ref().and_then(|(v, _)| v.get("verdict")) else {
+        return "judged by the model".into();
+    };
+    let model_only: Vec<&str> = list(Some(verdict), "model_only")
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    let mut s = format!(
+        "in the model and on its part by the {} finite elements",
+        fidelity_name(verdict)
+    );
+    if !model_only.is_empty() {
+        s += &format!("; model only: {}", model_only.join(", "));
+    }
+    s
+}
+
 pub(super) fn heading(set: &Set) -> Markup {
     let o = &set.optimum;
     let feasible = o.get("feasible").and_then(Value::as_bool) == Some(true);
@@ -44,8 +82,16 @@ pub(super) fn heading(set: &Set) -> Markup {
             h1 { "Design report: " (text(o, "problem")) }
             p.lead {
                 "Model " strong { (text(o, "model")) } ". "
-                @if feasible {
-                    "The optimum meets every constraint: " (objective_line(o)) " = "
+                @if let Some((fidelity, fails)) = part_fails(set).filter(|_| feasible) {
+                    "The optimum meets every constraint in the model, but "
+                    strong.bad { "its part fails by the " (fidelity) " finite elements" } ": "
+                    @for (i, f) in fails.iter().enumerate() {
+                        @if i > 0 { "; " }
+                        (f)
+                    }
+                    ". " (objective_line(o)) " = " strong { (objective_value(o)) } " (model)."
+                } @else if feasible {
+                    "The optimum meets every constraint (" (judged_by(set)) "): " (objective_line(o)) " = "
                     strong { (objective_value(o)) } ", zone " (num(o.get("zone")))
                     ", configuration " (text(o, "configuration")) "."
                 } @else {

@@ -1,0 +1,107 @@
+//! The verdict on a design from the highest fidelity of its FE check that ran: each
+//! constraint read on the part, the ones it fails listed with their value, limit and
+//! fidelity, the ones the part's check does not measure marked "model only".
+
+use serde::Serialize;
+
+use super::{fidelities, significant, value as model_value};
+use crate::fe::verify::Verification;
+use crate::fe::Fidelity;
+use crate::part::analysis::FeCounterpart;
+use crate::problem::Problem;
+
+/// A constraint the part fails.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct PartFailure {
+    pub constraint: String,
+    /// The value on the part, in the model's (SI) units.
+    pub value: f64,
+    /// The limit it breaks, in the same units.
+    pub limit: f64,
+    pub fidelity: Fidelity,
+    /// The same in the file's units: `stroke_out = 142.8 µm on the part (3D), limit >= 150 µm`.
+    pub shown: String,
+}
+
+/// How the check judges the design.
+#[derive(Debug, Clone, Serialize)]
+pub struct Verdict {
+    /// The fidelity the constraints are read in: 3D where it ran, else the one the plate's
+    /// width over its thinnest hinge calls for.
+    pub fidelity: Fidelity,
+    /// The constraints the part fails, each read in the highest fidelity that measures it
+    /// (its own `fidelity`: a section stress, which 3D does not give, in 2D).
+    pub fails: Vec<PartFailure>,
+    /// The constraints the part's check does not measure: judged by the model only.
+    pub model_only: Vec<String>,
+}
+
+impl Verdict {
+    /// The verdict on design `x` (SI) from check `v`; `read` is the idealization the plate
+    /// calls for. A size of the part as drawn (`part_width`) is read from the model, which
+    /// gives the drawn part's own size.
+    pub fn new(problem: &Problem, x: &[f64], v: &Verification, read: Fidelity) -> Self {
+        // highest first: 3D, the idealization the plate calls for, then the other one; an
+        // output the higher ones do not measure (a section stress, which 3D has not) is
+        // read in the highest that does
+        let ran: Vec<Fidelity> = fidelities(v).iter().map(|(f, _, _)| *f).collect();
+        let mut order: Vec<Fidelity> = [Fidelity::Solid, read]
+            .into_iter()
+            .filter(|f| ran.contains(f))
+            .collect();
+        let rest: Vec<Fidelity> = ran.into_iter().filter(|f| !order.contains(f)).collect();
+        order.extend(rest);
+        let fidelity = order.first().copied().unwrap_or(read);
+        let mechanism = problem.mechanism();
+        let measured = |output: usize, f: Fidelity| match mechanism.fe_counterpart(output)? {
+            FeCounterpart::ActuationForce => v.actuation_force_of(f),
+            FeCounterpart::Output(id) => v
+                .outputs(f)?
+                .iter()
+                .find(|o| o.id == id)
+                .map(|o| o.estimate.value),
+        };
+        let value = |output: usize| {
+            if mechanism.fe_counterpart(output).is_none() && mechanism.drawn(output) {
+                return model_value(problem.model(), x, output).map(|x| (x, fidelity));
+            }
+            order
+                .iter()
+                .find_map(|&f| measured(output, f).map(|x| (x, f)))
+        };
+        let mut fails = Vec::new();
+        let mut model_only: Vec<String> = Vec::new();
+        for c in &problem.constraints {
+            let Some((x, fidelity)) = value(c.index) else {
+                if !model_only.contains(&c.output) {
+                    model_only.push(c.output.clone());
+                }
+                continue;
+            };
+            let broken = [c.lower.filter(|&lo| x < lo), c.upper.filter(|&hi| x > hi)];
+            if let Some(limit) = broken.into_iter().flatten().next() {
+                let scale = c.unit.to_si;
+                let sense = if x < limit { ">=" } else { "<=" };
+                fails.push(PartFailure {
+                    constraint: c.output.clone(),
+                    value: x,
+                    limit,
+                    fidelity,
+                    shown: format!(
+                        "{} = {} {unit} on the part ({}), limit {sense} {} {unit}",
+                        c.output,
+                        significant(x / scale, 4),
+                        fidelity.name(),
+                        significant(limit / scale, 4),
+                        unit = c.unit.name
+                    ),
+                });
+            }
+        }
+        Verdict {
+            fidelity,
+            fails,
+            model_only,
+        }
+    }
+}
