@@ -60,21 +60,33 @@ impl<'a> FeFidelity<'a> {
         }
     }
 
-    /// What of the check `analysis` stands for the model's output `output`: with the
-    /// section stress asked for, the section stress in place of the peak stress.
+    /// What of the check `analysis` stands for the model's output `output`
+    /// ([`counterpart`]).
     pub fn counterpart(&self, analysis: &Analysis, output: usize) -> Option<FeCounterpart> {
-        match self.mechanism.fe_counterpart(output)? {
-            FeCounterpart::Output(id)
-                if self.stress == StressMeasure::Section
-                    && analysis.outputs.get(id.0)?.quantity == Quantity::PeakStress =>
-            {
-                analysis
-                    .find(Quantity::SectionStress)
-                    .map(FeCounterpart::Output)
-            }
-            c => Some(c),
-        }
+        counterpart(self.mechanism, analysis, self.stress, output)
     }
+}
+
+/// What of the check `analysis` stands for the model's output `output`, a stress read as
+/// `stress` asks (`[refine] stress`): the peak or the section stress, whichever of the two
+/// the mechanism names, when the check measures the other. The refinement and `verify`'s
+/// verdict read the part through this one function, so both judge the same stress.
+pub fn counterpart(
+    mechanism: &Mechanism,
+    analysis: &Analysis,
+    stress: StressMeasure,
+    output: usize,
+) -> Option<FeCounterpart> {
+    let named = mechanism.fe_counterpart(output)?;
+    let FeCounterpart::Output(id) = named else {
+        return Some(named);
+    };
+    let wanted = match (stress, analysis.outputs.get(id.0)?.quantity) {
+        (StressMeasure::Section, Quantity::PeakStress) => Quantity::SectionStress,
+        (StressMeasure::Peak, Quantity::SectionStress) => Quantity::PeakStress,
+        _ => return Some(named),
+    };
+    Some(analysis.find(wanted).map_or(named, FeCounterpart::Output))
 }
 
 /// The value and estimated relative error of `what` in `fidelity`.

@@ -30,7 +30,7 @@ mod compare;
 mod stress;
 mod verdict;
 use stress::stress_png;
-pub use verdict::{PartFailure, Verdict};
+pub use verdict::{Judged, PartFailure, Verdict};
 
 /// The files a verification writes, in order.
 pub const VERIFY_FILES: [&str; 5] = [

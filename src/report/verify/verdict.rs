@@ -9,6 +9,7 @@ use crate::fe::verify::Verification;
 use crate::fe::Fidelity;
 use crate::part::analysis::FeCounterpart;
 use crate::problem::Problem;
+use crate::refine::fe::counterpart;
 
 /// A constraint the part fails.
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -23,12 +24,24 @@ pub struct PartFailure {
     pub shown: String,
 }
 
+/// A constraint read on the part.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Judged {
+    pub constraint: String,
+    /// The value on the part (SI): measured, or for a drawn size the drawing's own.
+    pub value: f64,
+    pub fidelity: Fidelity,
+    pub met: bool,
+}
+
 /// How the check judges the design.
 #[derive(Debug, Clone, Serialize)]
 pub struct Verdict {
     /// The fidelity the constraints are read in: 3D where it ran, else the one the plate's
     /// width over its thinnest hinge calls for.
     pub fidelity: Fidelity,
+    /// Every constraint the part's check reads, in the problem's order.
+    pub judged: Vec<Judged>,
     /// The constraints the part fails, each read in the highest fidelity that measures it
     /// (its own `fidelity`: a section stress, which 3D does not give, in 2D).
     pub fails: Vec<PartFailure>,
@@ -53,14 +66,18 @@ impl Verdict {
         order.extend(rest);
         let fidelity = order.first().copied().unwrap_or(read);
         let mechanism = problem.mechanism();
-        let measured = |output: usize, f: Fidelity| match mechanism.fe_counterpart(output)? {
-            FeCounterpart::ActuationForce => v.actuation_force_of(f),
-            FeCounterpart::Output(id) => v
-                .outputs(f)?
-                .iter()
-                .find(|o| o.id == id)
-                .map(|o| o.estimate.value),
-        };
+        // the stress the refinement reads ([refine] stress), so that both judge the same
+        let stress = problem.refine.stress;
+        let measured =
+            |output: usize, f: Fidelity| match counterpart(mechanism, &v.analysis, stress, output)?
+            {
+                FeCounterpart::ActuationForce => v.actuation_force_of(f),
+                FeCounterpart::Output(id) => v
+                    .outputs(f)?
+                    .iter()
+                    .find(|o| o.id == id)
+                    .map(|o| o.estimate.value),
+            };
         let value = |output: usize| {
             if mechanism.fe_counterpart(output).is_none() && mechanism.drawn(output) {
                 return model_value(problem.model(), x, output).map(|x| (x, fidelity));
@@ -70,6 +87,7 @@ impl Verdict {
                 .find_map(|&f| measured(output, f).map(|x| (x, f)))
         };
         let mut fails = Vec::new();
+        let mut judged = Vec::new();
         let mut model_only: Vec<String> = Vec::new();
         for c in &problem.constraints {
             let Some((x, fidelity)) = value(c.index) else {
@@ -79,6 +97,12 @@ impl Verdict {
                 continue;
             };
             let broken = [c.lower.filter(|&lo| x < lo), c.upper.filter(|&hi| x > hi)];
+            judged.push(Judged {
+                constraint: c.output.clone(),
+                value: x,
+                fidelity,
+                met: broken.iter().all(Option::is_none),
+            });
             if let Some(limit) = broken.into_iter().flatten().next() {
                 let scale = c.unit.to_si;
                 let sense = if x < limit { ">=" } else { "<=" };
@@ -100,6 +124,7 @@ impl Verdict {
         }
         Verdict {
             fidelity,
+            judged,
             fails,
             model_only,
         }
