@@ -20,7 +20,7 @@ pub struct FeOutputId(pub usize);
 pub enum FeCounterpart {
     /// One of the analysis's outputs.
     Output(FeOutputId),
-    /// The force of the actuation case (`nominal_stroke * k + preload` on each loaded
+    /// The force of the actuation case ([`super::Actuation::largest_force`] on each loaded
     /// face), which is no output of its own: it carries the error of its stiffness.
     ActuationForce,
 }
@@ -279,8 +279,8 @@ pub struct FeOutput {
 }
 
 /// Which load case gives the stress fields: scaled so that a face of share 1 carries
-/// `nominal_stroke * stiffness + preload` ([`super::Actuation`]), the largest force the
-/// actuator exerts on the part.
+/// [`super::Actuation::largest_force`] at the case's stiffness, the largest force the
+/// actuator exerts on the part (at the stroke it makes against the part).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ActuationCase {
     /// What the actuation force is reported as.

@@ -109,7 +109,7 @@ pub struct Actuator {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Actuation {
     /// The actuator's nominal stroke (m) and preload (N): the largest force on the part is
-    /// `nominal_stroke * k + preload`, `k` the stiffness its analysis's actuation case names
+    /// [`Actuation::largest_force`] at the stiffness its analysis's actuation case names
     /// ([`analysis::ActuationCase`]).
     pub nominal_stroke: f64,
     pub preload: f64,
@@ -117,6 +117,19 @@ pub struct Actuation {
     pub stiffness: Option<f64>,
     /// The mass the output face carries (kg).
     pub payload_mass: f64,
+}
+
+impl Actuation {
+    /// The largest force on the part whose input stiffness is `k`: the stroke the actuator
+    /// makes against it (paper 004, Eq. 13: `X_nl k_a / (k + k_a)`, the nominal stroke for
+    /// a rigid actuator) times `k`, plus the preload. The models state the same force.
+    pub fn largest_force(&self, k: f64) -> f64 {
+        let stroke = match self.stiffness {
+            None => self.nominal_stroke,
+            Some(k_a) => self.nominal_stroke * k_a / (k + k_a),
+        };
+        stroke * k + self.preload
+    }
 }
 
 /// What a model gives to build its part.

@@ -66,7 +66,8 @@ pub struct OutputReport {
     /// `(analytic - FE) / FE`, in percent: how far the analytic model is from the FE.
     pub deviation_percent: Option<f64>,
     /// For the stresses: the value at the model's actuation force, the FE's own force being
-    /// `nominal_stroke * (FE stiffness) + preload`.
+    /// the actuator's largest force on the part of the FE's own stiffness
+    /// ([`crate::part::Actuation::largest_force`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub at_analytic_force: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -69,6 +69,28 @@ fn the_chapters_amplifier_from_its_specification_to_its_part() {
         }
     }
     let outputs = &optimum["outputs"];
+    // the stress at full stroke is under the force the stack exerts at the stroke it makes
+    // against the part (Eq. 13: 15 um free, 120 N/um), not at its free stroke: in the model
+    // and on the part alike
+    let (free, k_a, preload) = (15e-6, 120e6, 50.0);
+    let value = |name: &str| outputs[name].as_f64().unwrap();
+    let true_stroke = |k: f64| free * k_a / (k + k_a);
+    assert!((value("stroke_in") - true_stroke(value("k_in"))).abs() < 1e-12 * free);
+    assert!(value("stroke_in") < 0.98 * free, "{}", value("stroke_in"));
+    within(
+        value("force_in_max"),
+        value("k_in") * value("stroke_in") + preload,
+        1e-12,
+        "force_in_max",
+    );
+    let check = json(&out.join("verify/verify.json"));
+    let fe_k_in = check["outputs"]["3d"]["fe_k_in"]["value"].as_f64().unwrap();
+    within(
+        check["actuation_force"]["3d"].as_f64().unwrap(),
+        fe_k_in * true_stroke(fe_k_in) + preload,
+        1e-12,
+        "the 3D FE's force at full stroke",
+    );
     // the model's optimum: 713.3 Hz, on the stroke's limit, inside 60 x 40 mm
     within(
         outputs["output_frequency"].as_f64().unwrap(),

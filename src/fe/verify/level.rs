@@ -223,7 +223,7 @@ pub(super) fn solve_level(
     let act = &setup.actuation_case;
     let stiffness =
         static_value(quantity(act.stiffness.0), &measured, force, a).unwrap_or(f64::NAN);
-    let actuation_force = a.nominal_stroke * stiffness + a.preload;
+    let actuation_force = a.largest_force(stiffness);
     let scale = actuation_force / force;
     let u_act: Vec<f64> = fields[act.case].iter().map(|v| v * scale).collect();
     let dm = mat.d_matrix(idealization);

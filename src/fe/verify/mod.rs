@@ -518,7 +518,7 @@ pub fn verify(
                 .iter()
                 .find(|o| o.id == setup.actuation_case.stiffness)
                 .map_or(f64::NAN, |o| o.estimate.value);
-            actuation.nominal_stroke * k + actuation.preload
+            actuation.largest_force(k)
         })
         .collect();
     let (solid, solid_note) = if settings.solid {

@@ -73,7 +73,7 @@ pub(super) fn solve_solid(
     let a = &setup.actuation;
     let stiffness =
         static_value(quantity(act.stiffness.0), &measured, force, a).unwrap_or(f64::NAN);
-    let scale = (a.nominal_stroke * stiffness + a.preload) / force;
+    let scale = a.largest_force(stiffness) / force;
     let u_act: Vec<f64> = fields[act.case].iter().map(|v| v * scale).collect();
     let von_mises = solid::nodal_von_mises(&ext, &setup.material, &u_act);
     // through the width at the 2D peak: the same place on every solve, so that the ratio
@@ -260,6 +260,6 @@ pub(super) fn check(
         layers: layers(SOLID_LAYERS),
         solves,
         outputs,
-        actuation_force: a.nominal_stroke * stiffness + a.preload,
+        actuation_force: a.largest_force(stiffness),
     }))
 }

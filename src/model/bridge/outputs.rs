@@ -232,11 +232,13 @@ impl<D: Scalar> Evaluation<'_, D> {
         }
     }
 
-    /// Eq. 12 and 14: `F_X,max = X_nl k_in + F_preload`.
+    /// Eq. 12 and 14 at the stroke the actuator makes: `F_X,max = X_tr k_in + F_preload`,
+    /// `X_tr` of Eq. 13. The paper writes `X_nl`, the same for its rigid actuator; a stack
+    /// of finite stiffness extends the part by `X_tr` only, and the force on the part at full
+    /// stroke is the part's own stiffness times that (plus the preload it carries anyway).
     fn force_in_max(&mut self) -> D {
-        let act = &self.s.actuator;
-        let (stroke, preload) = (act.nominal_stroke, act.preload);
-        self.input().2 * stroke + preload
+        let preload = self.s.actuator.preload;
+        self.input().2 * self.stroke_in() + preload
     }
 
     /// Eq. 15-17 for hinges b and d, each quarter carrying half the actuator force.

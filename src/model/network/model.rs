@@ -10,8 +10,9 @@
 //! meet and `W = C`, which is paper 004's Eq. 8-11 (the quarter's `a11 = X / F` with the
 //! stroke `X` and the actuator's force `F`).
 //!
-//! The stresses and rotations are under the actuator's largest force, `F = X_nl k_in +
-//! F_preload` (paper 004, Eq. 12 and 14), as the bridge's: each hinge's end loads
+//! The stresses and rotations are under the actuator's largest force, `F = X_tr k_in +
+//! F_preload` (paper 004, Eq. 12 and 14 at the true stroke `X_tr` of Eq. 13, which is the
+//! paper's `X_nl` for a rigid actuator), as the bridge's: each hinge's end loads
 //! ([`Network::flexure_loads`]) into the hinge library's peak stresses with the notch's
 //! concentration. The actuator's true stroke is Eq. 13; the blocked force is the free
 //! output stroke times the output stiffness with the actuator in place (Thevenin's
@@ -960,9 +961,9 @@ impl NetworkModel {
             let c_ii = w(u_in, 0, 0) + actuator.map_or(0.0, f64::recip);
             (c_oo - c_oi * c_io / c_ii).recip()
         };
-        // the hinges' loads and stresses under the largest actuator force, found once
-        let largest =
-            w_ii.map(|w| w.recip() * self.actuator.nominal_stroke + self.actuator.preload);
+        // the hinges' loads and stresses under the largest actuator force, found once: at
+        // the true stroke (Eq. 13), which a stack of finite stiffness makes under the part
+        let largest = w_ii.map(|w| w.recip() * stroke_in() + self.actuator.preload);
         // the described part's share of it, once for every flexure
         let shared = largest.map(|f| f * self.share[0]);
         let loads = |h: usize| {

@@ -1,7 +1,8 @@
 //! The bridge's finite-element check (paper 004, Sec. 4.1), stated on its part: the lower
 //! output block's clamping face held, the test force on each input face along the
 //! actuator's axis, the test force on the output face with the input faces free, the
-//! stresses under the actuation `nominal_stroke * k_in + preload`; the payload on the output
+//! stresses under the actuation `true stroke * k_in + preload` (the stroke the actuator
+//! makes against the part's `k_in`, paper 004's Eq. 13); the payload on the output
 //! face and the actuator between the input faces for the modes. Each output is comparable
 //! with the analytic output of the same meaning:
 //!
