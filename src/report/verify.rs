@@ -30,7 +30,7 @@ mod compare;
 mod stress;
 mod verdict;
 use stress::stress_png;
-pub use verdict::{Judged, PartFailure, Verdict};
+pub use verdict::{model_gaps, Judged, ModelGap, PartFailure, Verdict, VerdictLines, MODEL_GAP};
 
 /// The files a verification writes, in order.
 pub const VERIFY_FILES: [&str; 5] = [
@@ -187,6 +187,8 @@ impl VerifyReport {
         }
         let thinnest = v.thinnest_hinge();
         let read = Fidelity::for_plate(v.width, thinnest);
+        let mut verdict = Verdict::new(problem, x, v, read);
+        verdict.model_off = model_gaps(outputs.get(key(verdict.fidelity)));
         VerifyReport {
             problem: problem.name.clone(),
             design: problem.design_in_file_units(x),
@@ -210,7 +212,7 @@ impl VerifyReport {
             width_over_thickness: v.width / thinnest,
             read,
             not_measured_on_the_part: not_measured(problem, v),
-            verdict: Verdict::new(problem, x, v, read),
+            verdict,
         }
     }
 }
@@ -556,23 +558,7 @@ impl Display for VerifyTable<'_> {
                 r.not_measured_on_the_part.join(", ")
             )?;
         }
-        match r.verdict.fails.as_slice() {
-            [] => writeln!(
-                s,
-                "verdict by the {} FE: the part meets every constraint it measures",
-                r.verdict.fidelity.name()
-            )?,
-            fails => {
-                writeln!(
-                    s,
-                    "verdict by the {} FE: the part FAILS",
-                    r.verdict.fidelity.name()
-                )?;
-                for f in fails {
-                    writeln!(s, "  {}", f.shown)?;
-                }
-            }
-        }
+        write!(s, "{}", VerdictLines(&r.verdict))?;
         writeln!(
             s,
             "{solid}; the plate is {:.3} times as wide as its thinnest hinge is thick: read {} \

@@ -137,6 +137,36 @@ const IDEALIZATIONS: [(&str, &str); 3] = [
     ("3d", "3D"),
 ];
 
+/// The outputs whose model value is off the part's by more than 5 % beyond the FE's error
+/// (`verdict.model_off` of verify.json), as one sentence.
+fn model_off(v: &Value) -> Option<String> {
+    let gaps = v.get("verdict")?.get("model_off")?.as_array()?;
+    if gaps.is_empty() {
+        return None;
+    }
+    let each: Vec<String> = gaps
+        .iter()
+        .map(|g| {
+            let d = g
+                .get("deviation_percent")
+                .and_then(Value::as_f64)
+                .unwrap_or(f64::NAN);
+            format!("{} {:+.1} %", text(g, "output"), d)
+        })
+        .collect();
+    Some(format!(
+        "(model − FE) / FE is {} in the {} column, more than 5 % beyond the FE's error. The \
+         model's rigid links and blocks and its hinge formulas (within their ranges of fit) \
+         are its idealization; here the part departs from it: judge by the FE, or refine \
+         against it (run --refine fe).",
+        each.join(", "),
+        match text(v.get("verdict")?, "fidelity") {
+            "3d" => "3D".to_string(),
+            f => f.replace('_', " "),
+        }
+    ))
+}
+
 pub(super) fn fe_check(set: &Set) -> Markup {
     let Some((v, _)) = &set.verify else {
         return html! {
@@ -211,6 +241,9 @@ pub(super) fn fe_check(set: &Set) -> Markup {
                         }
                     }
                 }
+            }
+            @if let Some(off) = model_off(v) {
+                p { strong.bad { "The model does not hold on this part: " } (off) }
             }
             (figure(set, &format!("{VERIFY}/stress.png"), "Von Mises stress under the actuation"))
             (figure(set, &format!("{VERIFY}/deformed.png"), "The part deformed under the test force"))

@@ -2,9 +2,12 @@
 //! constraint read on the part, the ones it fails listed with their value, limit and
 //! fidelity, the ones the part's check does not measure marked "model only".
 
+use std::fmt::{self, Display};
+
+use indexmap::IndexMap;
 use serde::Serialize;
 
-use super::{fidelities, significant, value as model_value};
+use super::{fidelities, significant, value as model_value, OutputReport};
 use crate::fe::verify::Verification;
 use crate::fe::Fidelity;
 use crate::part::analysis::FeCounterpart;
@@ -47,6 +50,83 @@ pub struct Verdict {
     pub fails: Vec<PartFailure>,
     /// The constraints the part's check does not measure: judged by the model only.
     pub model_only: Vec<String>,
+    /// The outputs (in `fidelity`) whose model value is off the part's by more than
+    /// [`MODEL_GAP`] beyond the FE's own error: where the model's idealization fails.
+    pub model_off: Vec<ModelGap>,
+}
+
+/// How far beyond the FE's error a model output may be off its part before the check says
+/// that the model does not hold there: 5 %, well above the FE's errors (below 0.1 % on the
+/// shipped parts) and the hinge formulas' accuracy within their ranges of fit.
+pub const MODEL_GAP: f64 = 0.05;
+
+/// A model output off its part.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct ModelGap {
+    pub output: String,
+    /// `(model - FE) / FE`, in percent.
+    pub deviation_percent: f64,
+    /// The FE value's estimated relative error, in percent.
+    pub fe_error_percent: f64,
+}
+
+/// The outputs of one fidelity whose model value is off by more than [`MODEL_GAP`] beyond
+/// their FE error.
+pub fn model_gaps(outputs: Option<&IndexMap<&'static str, OutputReport>>) -> Vec<ModelGap> {
+    let Some(outputs) = outputs else {
+        return Vec::new();
+    };
+    outputs
+        .iter()
+        .filter_map(|(name, o)| {
+            let d = o.deviation_percent?;
+            let e = 100.0 * o.estimate.relative_error.unwrap_or(0.0);
+            (d.abs() > 100.0 * MODEL_GAP + e).then(|| ModelGap {
+                output: name.to_string(),
+                deviation_percent: d,
+                fe_error_percent: e,
+            })
+        })
+        .collect()
+}
+
+/// The verdict's lines of `verify`'s table.
+pub struct VerdictLines<'a>(pub &'a Verdict);
+
+impl Display for VerdictLines<'_> {
+    fn fmt(&self, s: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let v = self.0;
+        let fidelity = v.fidelity.name();
+        match v.fails.as_slice() {
+            [] => writeln!(
+                s,
+                "verdict by the {fidelity} FE: the part meets every constraint it measures"
+            )?,
+            fails => {
+                writeln!(s, "verdict by the {fidelity} FE: the part FAILS")?;
+                for f in fails {
+                    writeln!(s, "  {}", f.shown)?;
+                }
+            }
+        }
+        if !v.model_off.is_empty() {
+            let off: Vec<String> = v
+                .model_off
+                .iter()
+                .map(|g| format!("{} {:+.1} %", g.output, g.deviation_percent))
+                .collect();
+            writeln!(
+                s,
+                "the model is off its part by more than {:.0} % beyond the FE's error ({fidelity}): \
+                 {}; its idealization (rigid links and blocks, each hinge formula within its \
+                 range of fit) does not hold here: judge by the FE, or refine against it \
+                 (run --refine fe)",
+                100.0 * MODEL_GAP,
+                off.join(", ")
+            )?;
+        }
+        Ok(())
+    }
 }
 
 impl Verdict {
@@ -127,6 +207,7 @@ impl Verdict {
             judged,
             fails,
             model_only,
+            model_off: Vec::new(),
         }
     }
 }
