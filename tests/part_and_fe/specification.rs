@@ -155,13 +155,26 @@ fn the_chapters_amplifier_from_its_specification_to_its_part() {
 fn the_chapters_refinement_meets_the_specification_or_names_what_it_cannot() {
     let out = folder("refine");
     let o = out.to_str().unwrap();
-    let run = flexopt(&["run", FILE, "--quiet", "--out", o, "--refine", "fe"]);
+    let run = flexopt(&[
+        "run", FILE, "--quiet", "--out", o, "--refine", "fe", "--report",
+    ]);
     let err = String::from_utf8_lossy(&run.stderr);
     let refined = json(&out.join("refined.json"));
+    // the report's headline says what refined.json says
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let headline = &html[html.find("class=\"lead\"").unwrap()..];
+    let headline = &headline[..headline.find("</p>").unwrap()];
+    let fails = "no design the refinement checked meets every constraint on the part";
+    assert_eq!(
+        headline.contains(fails),
+        refined["feasible"] == false,
+        "{headline}"
+    );
     match run.status.code() {
         Some(0) => assert_eq!(refined["feasible"], true, "{err}"),
         Some(3) => {
             assert_eq!(refined["feasible"], false);
+            assert!(headline.contains("stroke_out = "), "{headline}");
             assert!(err.contains("finite elements"), "{err}");
             // what it could not meet is measured on the part: below its limit there
             let short: Vec<&str> = refined["refined"]["outputs"]

@@ -74,6 +74,38 @@ fn judged_by(set: &Set) -> String {
     s
 }
 
+/// The refinement's verdict (`refined.json`), where the set holds one: what its refined
+/// design meets on the part, or what the least violating one misses there, as refined.json
+/// says.
+fn refinement_line(set: &Set) -> Option<Markup> {
+    let r = set.refined.as_ref()?;
+    let fidelity = text(r, "fidelity");
+    let misses: Vec<String> = list(r.get("refined"), "constraints")
+        .iter()
+        .filter(|c| c.get("satisfied").and_then(Value::as_bool) == Some(false))
+        .map(|c| {
+            format!(
+                "{} = {} {}",
+                text(c, "output"),
+                num(c.get("value")),
+                text(c, "unit")
+            )
+        })
+        .collect();
+    let feasible = r.get("feasible").and_then(Value::as_bool) == Some(true);
+    Some(html! {
+        "Refined against its part (" (fidelity) "): "
+        @if feasible {
+            "the refined design meets every constraint as measured"
+            @if r.get("converged").and_then(Value::as_bool) != Some(true) { " (not converged)" }
+            "."
+        } @else {
+            strong.bad { "no design the refinement checked meets every constraint on the part" }
+            "; the least violating one (refined.json) misses " (misses.join(", ")) "."
+        }
+    })
+}
+
 pub(super) fn heading(set: &Set) -> Markup {
     let o = &set.optimum;
     let feasible = o.get("feasible").and_then(Value::as_bool) == Some(true);
@@ -98,6 +130,7 @@ pub(super) fn heading(set: &Set) -> Markup {
                     strong.bad { "No start ended feasible" }
                     ": the design below is the least violating one."
                 }
+                @if let Some(line) = refinement_line(set) { " " (line) }
             }
             p.small {
                 "Written by flexopt " (env!("CARGO_PKG_VERSION")) " from the set's files; seed " (num(o.get("seed"))) ", " (num(o.get("starts"))) " starts, solver "
