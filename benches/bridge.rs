@@ -72,6 +72,7 @@ fn gradient_backends(c: &mut Criterion) {
             nominal_stroke: 17.4e-6,
             preload: 40.0,
             stiffness: None,
+            mass: None,
         },
         dynamics: None,
         part: flexopt::model::bridge::part::PartSettings::default(),

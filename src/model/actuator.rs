@@ -5,7 +5,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::vocab::reader::{k, Res};
-use crate::vocab::schema::{Measured, NonNegativeForce, PositiveLength, PositiveStiffness};
+use crate::vocab::schema::{
+    Measured, NonNegativeForce, NonNegativeMass, PositiveLength, PositiveStiffness,
+};
 use crate::vocab::sections::Sections;
 
 /// The piezo actuator that drives the input (paper 004, Eq. 12-14).
@@ -17,6 +19,10 @@ pub struct Actuator {
     pub preload: f64,
     /// Stiffness k_pzt (N/m); `None` for an actuator much stiffer than the mechanism.
     pub stiffness: Option<f64>,
+    /// The stack's own mass (kg), where the file gives it: the natural modes carry its
+    /// Rayleigh share on the faces it pushes ([`crate::part::stack_mass_share`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
 }
 
 /// `[actuator]` as the file writes it.
@@ -28,6 +34,7 @@ pub(crate) struct RawActuator {
     pub(crate) stiffness: Option<Measured<PositiveStiffness>>,
     pub(crate) length: Option<Measured<PositiveLength>>,
     pub(crate) height: Option<Measured<PositiveLength>>,
+    pub(crate) mass: Option<Measured<NonNegativeMass>>,
 }
 
 impl Actuator {
@@ -40,6 +47,10 @@ impl Actuator {
             preload: s.measured(&path("preload"), &a.preload)?,
             stiffness: match &a.stiffness {
                 Some(q) => Some(s.measured(&path("stiffness"), q)?),
+                None => None,
+            },
+            mass: match &a.mass {
+                Some(q) => Some(s.measured(&path("mass"), q)?),
                 None => None,
             },
         })

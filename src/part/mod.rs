@@ -117,6 +117,9 @@ pub struct Actuation {
     pub stiffness: Option<f64>,
     /// The mass the output face carries (kg).
     pub payload_mass: f64,
+    /// The stack's own mass (kg; 0 where the file gives none), carried on the faces it
+    /// pushes by [`stack_mass_share`].
+    pub stack_mass: f64,
 }
 
 impl Actuation {
@@ -129,6 +132,28 @@ impl Actuation {
             Some(k_a) => self.nominal_stroke * k_a / (k + k_a),
         };
         stroke * k + self.preload
+    }
+}
+
+/// The share of a stack's mass `m` that a face it pushes carries in a natural mode, along
+/// the stack's axis and across it: `(along, across)`. The stack is a uniform rod whose
+/// velocity varies linearly from one end to the other, as its own axial mode lies far above
+/// the part's (Rayleigh's method, as for a spring's effective mass `m/3`: Thomson and Dahleh,
+/// "Theory of Vibration with Applications", 5th ed., 1998, Sec. 2.4): its kinetic energy is
+/// `m/6 (v1^2 + v1.v2 + v2^2)` for end velocities `v1`, `v2`, exactly for that field.
+///
+/// - `mirrored == false`: the far end stands on the ground, so the face carries `m/3`
+///   whether the stack stretches or turns about its foot.
+/// - `mirrored == true`: the stack runs from the face to its mirror image, and the face
+///   carries the half it holds. In a mode symmetric about the mirror (`stretched`) the
+///   stack's middle stays put along its axis, so the face carries `m/6` along it, and the
+///   whole half `m/2` across it (both ends move alike). In an antisymmetric mode the roles
+///   swap: `m/2` along the axis (it translates), `m/6` across (it turns about its middle).
+pub fn stack_mass_share(m: f64, mirrored: bool, stretched: bool) -> (f64, f64) {
+    match (mirrored, stretched) {
+        (false, _) => (m / 3.0, m / 3.0),
+        (true, true) => (m / 6.0, m / 2.0),
+        (true, false) => (m / 2.0, m / 6.0),
     }
 }
 

@@ -26,6 +26,7 @@ pub fn wei2017_settings() -> BridgeSettings {
             nominal_stroke: 17.4e-6,
             preload: 40.0,
             stiffness: None,
+            mass: None,
         },
         // the stage of problems/wei2017_dynamic.toml, so that every output has a value
         dynamics: Some(DynamicsSettings::new(10e-3, 3e-3, 3e-3, 3e-3, 0.02)),

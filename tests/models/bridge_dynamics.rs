@@ -172,6 +172,7 @@ fn mass_grows_and_frequency_falls_with_every_added_mass() {
         DynamicsSettings::new(base.payload_mass, 3e-3 + added, 3e-3, 3e-3, 0.02),
         DynamicsSettings::new(base.payload_mass, 3e-3, 3e-3 + added, 3e-3, 0.02),
         DynamicsSettings::new(base.payload_mass, 3e-3, 3e-3, 4e-3, 0.02),
+        base.clone().with_stack_mass(added),
     ] {
         let [m, fr] = f(d)[..] else { unreachable!() };
         assert!(m > m0 && fr < f0, "{m} {fr} vs {m0} {f0}");
@@ -188,6 +189,13 @@ fn mass_grows_and_frequency_falls_with_every_added_mass() {
         rel(gains[1], added * (1.0 + xin * xin) / 2.0, 0.0) < 1e-9,
         "{}",
         gains[1]
+    );
+    // the stack is a rod between the input links: its ends move by +-Xin along x, its
+    // middle stays, and it rides up by q/2 with them: a gram of it counts (1 + Xin^2/3) / 4
+    assert!(
+        rel(gains[4], added * (1.0 + xin * xin / 3.0) / 4.0, 0.0) < 1e-9,
+        "{}",
+        gains[4]
     );
     // the whole bridge is below its total mass plus the payload
     let s = wei2017_settings();
@@ -410,4 +418,40 @@ fn the_links_masses_default_to_the_parts_blocks() {
         );
         assert!(off.abs() < 0.03, "{}: {off}", spec.solids[k].name);
     }
+}
+
+/// `[actuator] mass` is the stack's own mass: the file's bridge is the one built with
+/// [`DynamicsSettings::with_stack_mass`], and a mass below zero is refused by its key.
+#[test]
+fn the_files_stack_mass_is_the_dynamics_stack_mass() {
+    let text = std::fs::read_to_string("problems/wei2017_dynamic.toml").unwrap();
+    let with = |mass: &str| {
+        text.replacen(
+            "[actuator]\n",
+            &format!("[actuator]\nmass = \"{mass}\"\n"),
+            1,
+        )
+    };
+    let p = Problem::parse(Path::new("stack.toml"), &with("14 g")).unwrap();
+    let x = table1_optimum();
+    let from_file = outputs(p.model(), &x, &[MASS, FREQUENCY]);
+    let by_hand = outputs(
+        &bridge(stage().with_stack_mass(14e-3), None),
+        &x,
+        &[MASS, FREQUENCY],
+    );
+    let bare = outputs(&bridge(stage(), None), &x, &[MASS, FREQUENCY]);
+    for (a, b) in from_file.iter().zip(&by_hand) {
+        assert!(rel(*a, *b, 0.0) < 1e-14, "{a} vs {b}");
+    }
+    assert!(
+        from_file[0] > bare[0] + 14e-3 / 4.0 * 0.999,
+        "{from_file:?} {bare:?}"
+    );
+    let e = Problem::parse(Path::new("stack.toml"), &with("-1 g")).expect_err("refused");
+    let message = e.to_string();
+    assert!(
+        message.contains("stack.toml") && message.contains("actuator.mass"),
+        "{message}"
+    );
 }

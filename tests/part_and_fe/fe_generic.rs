@@ -56,7 +56,7 @@ fn face(name: &str, a: [f64; 2], b: [f64; 2]) -> Face {
     }
 }
 
-fn output(name: &'static str, dimension: Dimension, quantity: Quantity) -> FeOutput {
+pub(crate) fn output(name: &'static str, dimension: Dimension, quantity: Quantity) -> FeOutput {
     FeOutput {
         name,
         dimension,
@@ -129,6 +129,7 @@ fn stroke() -> Actuation {
         preload: 0.0,
         stiffness: None,
         payload_mass: 0.0,
+        stack_mass: 0.0,
     }
 }
 

@@ -32,4 +32,5 @@ mod report_integrity;
 mod report_review;
 mod sets;
 mod specification;
+mod stack_mass;
 mod step;

@@ -8,9 +8,11 @@ use crate::fe::stress::{nodal_stresses, peak_von_mises, section, Locator};
 use crate::fe::{loads, modal, FeError};
 use crate::part::analysis::{ActuationCase, Analysis, Quantity};
 use crate::part::half::SYMMETRY;
-use crate::part::Actuation;
+use crate::part::{stack_mass_share, Actuation};
 
-use super::statement::{case_forces, measure, output_values, static_value, Edges, Stated};
+use super::statement::{
+    case_forces, measure, output_values, static_value, Edges, HalfSpring, Stated,
+};
 
 /// What the part gives the analysis.
 #[derive(Debug, Clone)]
@@ -145,6 +147,38 @@ pub(super) struct LevelResult {
     pub(super) section_point: [f64; 2],
     pub(super) displacement: Vec<f64>,
     pub(super) von_mises: Vec<f64>,
+}
+
+/// The stack's mass `mass` on the degrees of freedom of its face in one family of modes
+/// (`stretched` where the stack stretches: every mode of a stack on the ground, the
+/// symmetric ones of a stack between a face and its mirror image): each node its share as a
+/// uniform load spreads it, the share along the stack's axis on the degree of freedom along
+/// it and the share across it on the other ([`stack_mass_share`]; exact for a stack along x
+/// or y, as the actuator's springs are).
+fn stack_masses(
+    m: &Mesh,
+    face: &[EdgeNodes],
+    width: f64,
+    spring: &HalfSpring,
+    mass: f64,
+    stretched: bool,
+) -> Vec<(usize, f64)> {
+    let (along, across) = stack_mass_share(mass, spring.factor > 1.0, stretched);
+    let [nx, ny] = spring.direction;
+    let length = nx.hypot(ny);
+    let (cx, cy) = ((nx / length).powi(2), (ny / length).powi(2));
+    loads::uniform_force(m, face, width, [1.0, 0.0])
+        .iter()
+        .enumerate()
+        .step_by(2)
+        .filter(|(_, &share)| share != 0.0)
+        .flat_map(|(dof, &share)| {
+            [
+                (dof, share * (along * cx + across * cy)),
+                (dof + 1, share * (along * cy + across * cx)),
+            ]
+        })
+        .collect()
 }
 
 fn column(x: &faer::Mat<f64>, j: usize) -> Vec<f64> {
@@ -301,7 +335,18 @@ pub(super) fn solve_level(
                 .map(|(dof, &v)| (dof, s.factor * ka * v * s.direction[dof % 2]))
                 .collect(),
         };
-        let lowest = |springs: Vec<(usize, f64)>, load: &[f64]| -> Result<f64, FeError> {
+        // the stack's mass on its face, its share by the family ([`stack_mass_share`])
+        let mass_of = |stretched: bool| match &stated.spring {
+            Some(s) if a.stack_mass > 0.0 => std::borrow::Cow::Owned(p.with_diagonal(
+                mass,
+                &stack_masses(m, edges.get(&s.face), w, s, a.stack_mass, stretched),
+            )),
+            _ => std::borrow::Cow::Borrowed(mass),
+        };
+        let lowest = |springs: Vec<(usize, f64)>,
+                      load: &[f64],
+                      mass: &faer::sparse::SparseColMat<usize, f64>|
+         -> Result<f64, FeError> {
             let factor = p.factor(&p.with_diagonal(&k0, &springs))?;
             let mut r = faer::Mat::<f64>::zeros(n, 1);
             for (dof, &v) in load.iter().enumerate() {
@@ -314,14 +359,14 @@ pub(super) fn solve_level(
             Ok(modes[0].frequency)
         };
         let symmetric = [held(&holds.cut_x), actuator].concat();
-        f_output = lowest(symmetric, &loads[modal.start])?;
+        f_output = lowest(symmetric, &loads[modal.start], &mass_of(true))?;
         let payload = stated.payload.as_ref().map_or(&modal.payload, |p| &p.0);
         let sideways = loads::uniform_force(m, edges.get(payload), w, [force, 0.0]);
         // a part solved whole has one family, found above
         f_first = if holds.cut_y.is_empty() {
             f_output
         } else {
-            f_output.min(lowest(held(&holds.cut_y), &sideways)?)
+            f_output.min(lowest(held(&holds.cut_y), &sideways, &mass_of(false))?)
         };
     }
     let values = output_values(&setup.analysis, &measured, force, a, |q| match q {

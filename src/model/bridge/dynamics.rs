@@ -74,6 +74,9 @@ pub struct DynamicsSettings {
     pub link_thickness: f64,
     /// Damping ratio zeta of the output mode.
     pub damping_ratio: f64,
+    /// The stack's own mass (kg; `[actuator] mass`, 0 where not given), a rod between the
+    /// input links ([`DynamicsSettings::with_stack_mass`]).
+    pub stack_mass: f64,
     /// `omega_n * ts` of an oscillator with this damping ratio.
     settling_scale: f64,
 }
@@ -95,7 +98,20 @@ impl DynamicsSettings {
             output_link_mass,
             link_thickness,
             damping_ratio,
+            stack_mass: 0.0,
             settling_scale: settling_scale(damping_ratio),
+        }
+    }
+
+    /// With the stack's own mass `m`: a uniform rod whose ends move with the input links.
+    /// In the symmetric motion its ends move apart by `+-Xin` and its middle stays, so it
+    /// adds `m/3 Xin^2` to `mu_sym` (twice its kinetic energy per unit `Yout'^2`); it
+    /// translates with the whole bridge, adding `m` to `M_all`
+    /// ([`crate::part::stack_mass_share`]: `m/6` on each input face along the stack).
+    pub fn with_stack_mass(self, m: f64) -> Self {
+        DynamicsSettings {
+            stack_mass: m,
+            ..self
         }
     }
 
@@ -234,9 +250,11 @@ pub fn equivalent_mass<D: Scalar>(
         + mc * (s.link_thickness * s.link_thickness / 12.0) * mode.rotation * mode.rotation
         + link_mass(md, n[2], n[3]);
     let input = n[0][0];
-    let symmetric =
-        quarter * 4.0 + input * input * (2.0 * s.input_link_mass) + 2.0 * s.output_link_mass;
-    let whole = (mb + mc + md) * 4.0 + 2.0 * (s.input_link_mass + s.output_link_mass);
+    let symmetric = quarter * 4.0
+        + input * input * (2.0 * s.input_link_mass + s.stack_mass / 3.0)
+        + 2.0 * s.output_link_mass;
+    let whole =
+        (mb + mc + md) * 4.0 + 2.0 * (s.input_link_mass + s.output_link_mass) + s.stack_mass;
     (symmetric + whole) * 0.25 + s.payload_mass
 }
 

@@ -168,16 +168,19 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
     let part = part_settings(s, &p, actuator_size)?;
     let width = s.measured(&[k("hinge"), k("width")], &h.width)?;
     let blocks = part.block_masses(width, material.density);
+    let actuator = Actuator::read(s, &a)?;
+    let stack_mass = actuator.mass.unwrap_or(0.0);
     let settings = BridgeSettings {
         hinge_b,
         hinge_d,
         width,
         material,
-        actuator: Actuator::read(s, &a)?,
+        actuator,
         dynamics: d
             .as_ref()
             .map(|d| dynamics(s, d, part.link_thickness, blocks))
-            .transpose()?,
+            .transpose()?
+            .map(|d| d.with_stack_mass(stack_mass)),
         part,
     };
     let bridge = Bridge::new(settings);

@@ -41,6 +41,7 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         preload: actuator.preload,
         stiffness: actuator.stiffness,
         payload_mass: description.outputs[0].payload,
+        stack_mass: actuator.mass.unwrap_or(0.0),
     };
     let drawn = part.map(|settings| (settings, description.clone()));
     let model = NetworkModel::new(description, material, actuator);

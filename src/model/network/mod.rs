@@ -11,6 +11,7 @@ mod checks;
 mod depiction;
 pub mod description;
 pub mod file;
+mod inertia;
 pub mod model;
 pub mod modes;
 mod on_axis;

@@ -24,7 +24,7 @@ use std::cell::RefCell;
 use std::convert::Infallible;
 
 use super::description::{Axis, Description, HingeDescription, Keyed, Point};
-use super::modes::{described_piece, Inertia, ModeError};
+use super::modes::{described_piece, DirectedMass, Inertia, ModeError};
 use super::on_axis::flexure_on_mirror_axis;
 use super::structure::{beam_compliance, end_of};
 use super::structure::{
@@ -1277,6 +1277,7 @@ impl NetworkModel {
             let held = axis_holds(d, line, &anti);
             let stretched = !d.input.across.is_some_and(|a| anti.contains(&a));
             network.springs.extend(stack.filter(|_| stretched));
+            let mut directed = self.stack_masses(e, stretched);
             let mut inertia = inertia.clone();
             let mut payload_share = self.share[1];
             let mut images = Vec::new();
@@ -1295,6 +1296,7 @@ impl NetworkModel {
                 if across[d.outputs[0].body] {
                     payload_share *= 2.0;
                 }
+                directed = DirectedMass::unfolded(&directed, &image, flip_y);
                 network = whole;
                 images = image;
             } else {
@@ -1313,21 +1315,26 @@ impl NetworkModel {
                     )
                 }
             };
-            let modes = network.modes(&inertia, count).map_err(|err| match err {
-                ModeError::Network(err) => format!("{}{}", self.network_error(err), family()),
-                ModeError::Massless { body } => {
-                    // an image is named by the body it images
-                    let b = (0..d.bodies.len())
-                        .find(|&b| body == b || images.get(b) == Some(&Body::Rigid(body)))
-                        .unwrap_or(0);
-                    format!(
-                        "body \"{}\" ({}) has no mass where it can move{}",
-                        d.bodies[b].name,
-                        d.bodies[b].key,
-                        family()
-                    )
-                }
-            })?;
+            let modes =
+                network
+                    .modes_with(&inertia, &directed, count)
+                    .map_err(|err| match err {
+                        ModeError::Network(err) => {
+                            format!("{}{}", self.network_error(err), family())
+                        }
+                        ModeError::Massless { body } => {
+                            // an image is named by the body it images
+                            let b = (0..d.bodies.len())
+                                .find(|&b| body == b || images.get(b) == Some(&Body::Rigid(body)))
+                                .unwrap_or(0);
+                            format!(
+                                "body \"{}\" ({}) has no mass where it can move{}",
+                                d.bodies[b].name,
+                                d.bodies[b].key,
+                                family()
+                            )
+                        }
+                    })?;
             found.extend(modes.into_iter().map(|m| m.frequency));
         }
         if found.len() < count {
@@ -1341,6 +1348,25 @@ impl NetworkModel {
         found.sort_by(|a, b| a.re().total_cmp(&b.re()));
         found.truncate(count);
         Ok(found)
+    }
+
+    /// The stack's own mass (`[actuator] mass`) on the input port, the described part's
+    /// share of it, in the family of modes where the stack is `stretched` or not
+    /// ([`DirectedMass::stack`]).
+    fn stack_masses<D: Scalar>(&self, e: &Evaluated<D>, stretched: bool) -> Vec<DirectedMass<D>> {
+        let Some(mass) = self.actuator.mass.filter(|&m| m > 0.0) else {
+            return Vec::new();
+        };
+        let port = &e.ports[0];
+        let mirrored = self.read[0] > 1.0;
+        DirectedMass::stack(
+            mass * self.share[0],
+            (mirrored, stretched),
+            port.body,
+            port.point,
+            port.force,
+        )
+        .to_vec()
     }
 
     fn gradients<const N: usize>(

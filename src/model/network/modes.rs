@@ -13,163 +13,9 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
+pub use super::inertia::{described_piece, DirectedMass, Inertia};
 use super::structure::{Body, Dof, Flexure, Network, NetworkError, Spring};
 use crate::model::scalar::Scalar;
-
-/// A body's mass (kg), its centroid (m) and its moment of inertia about the centroid
-/// (kg m^2), for motion in the plane.
-#[derive(Debug, Clone, Copy)]
-pub struct Inertia<D> {
-    pub mass: D,
-    pub centroid: [D; 2],
-    pub moment: D,
-}
-
-impl<D: Scalar> Inertia<D> {
-    /// A plate of `density` and thickness `width` cut to the polygon `points` (either
-    /// winding), by the polygon's area moments from its edges (Green's theorem; Steger, "On
-    /// the calculation of arbitrary moments of polygons", TU Munich report FGBV-96-05, 1996,
-    /// Eq. 6-8): with `c_i = x_i y_{i+1} - x_{i+1} y_i`,
-    ///
-    /// ```text
-    /// A = 1/2 sum c_i,   A x_c = 1/6 sum (x_i + x_{i+1}) c_i,   A y_c likewise,
-    /// J_O = 1/12 sum (x_i^2 + x_i x_{i+1} + x_{i+1}^2 + y_i^2 + y_i y_{i+1} + y_{i+1}^2) c_i
-    /// ```
-    ///
-    /// and the moment about the centroid `J_O - A |c|^2` (Steiner).
-    pub fn polygon(points: &[[D; 2]], density: f64, width: f64) -> Self {
-        let zero = D::from(0.0);
-        let (mut a, mut sx, mut sy, mut j) = (zero, zero, zero, zero);
-        // about the first vertex, so that the sums do not cancel far from the origin
-        let o = points[0];
-        for (i, p) in points.iter().enumerate() {
-            let q = points[(i + 1) % points.len()];
-            let (x0, y0, x1, y1) = (p[0] - o[0], p[1] - o[1], q[0] - o[0], q[1] - o[1]);
-            let c = x0 * y1 - x1 * y0;
-            a = a + c;
-            sx = sx + (x0 + x1) * c;
-            sy = sy + (y0 + y1) * c;
-            j = j + (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1) * c;
-        }
-        let area = a * 0.5;
-        let (cx, cy) = (sx / (area * 6.0), sy / (area * 6.0));
-        let polar = j / 12.0 - area * (cx * cx + cy * cy);
-        // a clockwise polygon has its area and moments negative alike
-        let sign = if area.re() < 0.0 { -1.0 } else { 1.0 };
-        Inertia {
-            mass: area * (sign * density * width),
-            centroid: [cx + o[0], cy + o[1]],
-            moment: polar * (sign * density * width),
-        }
-    }
-
-    /// A link: the rectangle `thickness` wide around the segment `a b`, `J = m (L^2 + h^2)
-    /// / 12` about its middle.
-    pub fn link(a: [D; 2], b: [D; 2], thickness: D, density: f64, width: f64) -> Self {
-        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let l2 = dx * dx + dy * dy;
-        let mass = l2.sqrt() * thickness * (density * width);
-        Inertia {
-            mass,
-            centroid: [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5],
-            moment: mass * (l2 + thickness * thickness) / 12.0,
-        }
-    }
-
-    /// Its image in the line `y = 0` (`flip_y`) or `x = 0`.
-    pub fn reflected(self, flip_y: bool) -> Self {
-        let [x, y] = self.centroid;
-        Inertia {
-            centroid: if flip_y { [x, -y] } else { [-x, y] },
-            ..self
-        }
-    }
-
-    /// This body joined to its image in the line `y = 0` (`flip_y`) or `x = 0`: twice the
-    /// mass, the centroid on the line, the moment by Steiner's rule from each half's.
-    pub fn doubled(self, flip_y: bool) -> Self {
-        let k = usize::from(flip_y);
-        let d = self.centroid[k];
-        let mut centroid = self.centroid;
-        centroid[k] = D::from(0.0);
-        Inertia {
-            mass: self.mass * 2.0,
-            centroid,
-            moment: (self.moment + self.mass * d * d) * 2.0,
-        }
-    }
-
-    /// This body with a point mass `m` added at `at`: a constant (a payload) or one of the
-    /// design (a beam's end's share).
-    pub fn with_point_mass(self, m: impl Into<D>, at: [D; 2]) -> Self {
-        let m: D = m.into();
-        if m.re() == 0.0 {
-            return self;
-        }
-        let mass = self.mass + m;
-        let c = [
-            (self.centroid[0] * self.mass + at[0] * m) / mass,
-            (self.centroid[1] * self.mass + at[1] * m) / mass,
-        ];
-        let d2 = |p: [D; 2]| {
-            let (x, y) = (p[0] - c[0], p[1] - c[1]);
-            x * x + y * y
-        };
-        Inertia {
-            mass,
-            centroid: c,
-            moment: self.moment + self.mass * d2(self.centroid) + d2(at) * m,
-        }
-    }
-}
-
-/// The piece of a body's outline that the described part holds of it, for a body that lies
-/// across mirror axes: about each axis (`true` the line `y = 0`, `false` the line `x = 0`),
-/// the larger of the outline's two sides. The whole body is the outline joined to its
-/// images about those axes, of which the described part carries one share per axis: half of
-/// an outline drawn across the axis (symmetric about it), all of one drawn to the axis.
-/// Each side is cut by the Sutherland-Hodgman rule (Sutherland and Hodgman, "Reentrant
-/// polygon clipping", Comm. ACM 17 (1974) 32-42), generic over the scalar so that the mass
-/// keeps its derivatives.
-pub fn described_piece<D: Scalar>(points: &[[D; 2]], across_y0: &[bool]) -> Vec<[D; 2]> {
-    let mut piece = points.to_vec();
-    for &y0 in across_y0 {
-        let k = usize::from(y0);
-        let sides = [1.0, -1.0].map(|sign| clip(&piece, k, sign));
-        let area = |p: &[[D; 2]]| {
-            let mut a = 0.0;
-            for (i, u) in p.iter().enumerate() {
-                let v = p[(i + 1) % p.len()];
-                a += u[0].re() * v[1].re() - v[0].re() * u[1].re();
-            }
-            a.abs()
-        };
-        let [a, b] = sides;
-        piece = if area(&b) > area(&a) { b } else { a };
-    }
-    piece
-}
-
-/// The part of the polygon where `sign * p[k] >= 0`.
-fn clip<D: Scalar>(points: &[[D; 2]], k: usize, sign: f64) -> Vec<[D; 2]> {
-    let mut out = Vec::with_capacity(points.len() + 2);
-    for (i, &p) in points.iter().enumerate() {
-        let q = points[(i + 1) % points.len()];
-        let (cp, cq) = (p[k] * sign, q[k] * sign);
-        if cp.re() >= 0.0 {
-            out.push(p);
-        }
-        // only an edge that crosses the line strictly adds a point: a vertex on it is kept
-        // as a vertex, not doubled
-        if (cp.re() > 0.0 && cq.re() < 0.0) || (cp.re() < 0.0 && cq.re() > 0.0) {
-            let t = cp / (cp - cq);
-            let mut x = [p[0] + (q[0] - p[0]) * t, p[1] + (q[1] - p[1]) * t];
-            x[k] = D::from(0.0);
-            out.push(x);
-        }
-    }
-    out
-}
 
 /// One mode: its frequency (Hz) and its shape, each body's `(u, v, theta)` at its
 /// reference point (held ones zero), scaled to unit modal mass.
@@ -207,8 +53,29 @@ impl<D: Scalar> Network<D> {
     /// row-major `3n x 3n`: each body's mass and inertia carried from its centroid by the
     /// rigid transfer.
     pub fn mass_matrix(&self, inertia: &[Inertia<D>]) -> Vec<D> {
+        self.mass_matrix_with(inertia, &[])
+    }
+
+    /// The same with `directed` masses: each adds `m g g^T` to its body's block, `g` the
+    /// velocity of its point along its direction per unit `(u, v, theta)` of the body,
+    /// `[n_x, n_y, n_y r_x - n_x r_y]` for the point `r` from the reference.
+    pub fn mass_matrix_with(&self, inertia: &[Inertia<D>], directed: &[DirectedMass<D>]) -> Vec<D> {
         let n = 3 * self.references.len();
         let mut m = vec![D::from(0.0); n * n];
+        for d in directed {
+            let r = [
+                d.point[0] - self.references[d.body][0],
+                d.point[1] - self.references[d.body][1],
+            ];
+            let [nx, ny] = d.direction;
+            let g = [nx, ny, ny * r[0] - nx * r[1]];
+            let o = 3 * d.body;
+            for p in 0..3 {
+                for q in 0..3 {
+                    m[(o + p) * n + o + q] = m[(o + p) * n + o + q] + g[p] * g[q] * d.mass;
+                }
+            }
+        }
         for (b, body) in inertia.iter().enumerate() {
             let r = [
                 body.centroid[0] - self.references[b][0],
@@ -224,8 +91,10 @@ impl<D: Scalar> Network<D> {
                 (2, 2, body.moment + mass * (r[0] * r[0] + r[1] * r[1])),
             ];
             for (p, q, v) in entries {
-                m[(o + p) * n + o + q] = v;
-                m[(o + q) * n + o + p] = v;
+                m[(o + p) * n + o + q] = m[(o + p) * n + o + q] + v;
+                if p != q {
+                    m[(o + q) * n + o + p] = m[(o + q) * n + o + p] + v;
+                }
             }
         }
         m
@@ -314,9 +183,19 @@ impl<D: Scalar> Network<D> {
 
     /// The `count` lowest modes (fewer where the network has fewer degrees of freedom).
     pub fn modes(&self, inertia: &[Inertia<D>], count: usize) -> Result<Vec<Mode<D>>, ModeError> {
+        self.modes_with(inertia, &[], count)
+    }
+
+    /// The same with `directed` masses besides the bodies' ([`Self::mass_matrix_with`]).
+    pub fn modes_with(
+        &self,
+        inertia: &[Inertia<D>],
+        directed: &[DirectedMass<D>],
+        count: usize,
+    ) -> Result<Vec<Mode<D>>, ModeError> {
         let n = 3 * self.references.len();
         let k = self.stiffness().map_err(ModeError::Network)?;
-        let m = self.mass_matrix(inertia);
+        let m = self.mass_matrix_with(inertia, directed);
         // the degrees of freedom not held
         let free: Vec<usize> = (0..n)
             .filter(|&j| !self.held.iter().any(|&(b, d)| 3 * b + d as usize == j))
@@ -419,6 +298,80 @@ mod tests {
                 close(mode.frequency, f, 1e-10),
                 "{} against {f}",
                 mode.frequency
+            );
+        }
+    }
+
+    /// A point mass is the same mass moving along any two perpendicular directions: the
+    /// directed pair equals `Inertia::with_point_mass` entry by entry, wherever the point
+    /// and the reference, whichever the direction.
+    #[test]
+    fn two_perpendicular_directed_masses_are_a_point_mass() {
+        let net = Network::<f64> {
+            references: vec![[0.0, 0.0], [0.004, -0.003]],
+            flexures: vec![],
+            springs: vec![],
+            held: vec![],
+            guides: Vec::new(),
+        };
+        let body = Inertia {
+            mass: 0.05,
+            centroid: [0.002, 0.001],
+            moment: 2e-5,
+        };
+        let (m, at) = (0.012, [-0.007, 0.009]);
+        let point = net.mass_matrix(&[body, body.with_point_mass(m, at)]);
+        for angle in [0.0, 0.3, 1.0, 2.5] {
+            let n = [f64::cos(angle), f64::sin(angle)];
+            let pair = [(n, m), ([-n[1], n[0]], m)].map(|(direction, mass)| DirectedMass {
+                body: 1,
+                point: at,
+                direction,
+                mass,
+            });
+            let directed = net.mass_matrix_with(&[body, body], &pair);
+            for (a, b) in point.iter().zip(&directed) {
+                assert!((a - b).abs() < 1e-15, "{a} against {b} at angle {angle}");
+            }
+        }
+    }
+
+    /// A body on a spring along x, the stack's mass on it: along the stack it moves with
+    /// the stack's share `m/3` (a stack on the ground), `sqrt(k / (M + m/3))`; a mirrored
+    /// stack in its stretched family adds `m/6` along it. Across, it adds the other share.
+    #[test]
+    fn a_stacks_mass_lowers_the_mode_along_it_by_its_share() {
+        let (mass, k, stack) = (0.05, 3e5, 0.015);
+        let net = Network {
+            references: vec![[0.0, 0.0]],
+            flexures: vec![],
+            springs: vec![Spring {
+                body: 0,
+                point: [0.0, 0.0],
+                direction: [1.0, 0.0],
+                stiffness: k,
+            }],
+            held: vec![(0, Dof::Y), (0, Dof::Rotation)],
+            guides: Vec::new(),
+        };
+        let inertia = [Inertia {
+            mass,
+            centroid: [0.0, 0.0],
+            moment: 1e-5,
+        }];
+        let f = |m: f64| (k / m).sqrt() / (2.0 * std::f64::consts::PI);
+        for ((mirrored, stretched), share) in [
+            ((false, true), stack / 3.0),
+            ((true, true), stack / 6.0),
+            ((true, false), stack / 2.0),
+        ] {
+            let directed =
+                DirectedMass::stack(stack, (mirrored, stretched), 0, [0.0, 0.0], [2.0, 0.0]);
+            let got = net.modes_with(&inertia, &directed, 1).unwrap()[0].frequency;
+            assert!(
+                close(got, f(mass + share), 1e-12),
+                "{got} against {}",
+                f(mass + share)
             );
         }
     }

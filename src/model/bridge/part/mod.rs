@@ -428,6 +428,7 @@ pub fn spec(
             preload: settings.actuator.preload,
             stiffness: settings.actuator.stiffness,
             payload_mass: settings.dynamics.as_ref().map_or(0.0, |d| d.payload_mass),
+            stack_mass: settings.actuator.mass.unwrap_or(0.0),
         }),
         analysis: Some(fe_cases::analysis()),
         caption: if rb.max(rd) > 0.0 {
