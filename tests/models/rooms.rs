@@ -450,7 +450,6 @@ const OVER_THE_LIMITS: &[&str] = &[
     "src/model/network/model.rs fn frequencies",
     "src/model/network/model.rs fn new",
     "src/model/network/part/mod.rs fn spec",
-    "src/model/network/part/rules.rs",
     "src/model/network/part/rules.rs fn shapes_from",
     "src/model/network/structure.rs",
     "src/model/network/structure.rs fn solve_cases_in",
