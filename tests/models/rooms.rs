@@ -427,7 +427,6 @@ fn functions(text: &str) -> Vec<(String, usize, usize)> {
 const OVER_THE_LIMITS: &[&str] = &[
     "src/fe/mesh/triangles.rs fn first_mesh",
     "src/fe/verify/level.rs fn solve_level",
-    "src/fe/verify/mod.rs",
     "src/fe/verify/mod.rs fn verify",
     "src/main.rs fn run",
     "src/model/bridge/part/fe_cases.rs fn analysis",
@@ -442,7 +441,6 @@ const OVER_THE_LIMITS: &[&str] = &[
     "src/study_command.rs fn run_study",
     "src/sweep.rs fn sweep",
     // src/model/network/: the long pieces still to divide (issue 45)
-    "src/model/network/file.rs",
     "src/model/network/file.rs fn describe",
     "src/model/network/model.rs",
     "src/model/network/model.rs fn build",

@@ -4,9 +4,10 @@
 //! direction only.
 
 use super::checks;
-use super::file::{describe, RawNetwork};
+use super::file::describe;
 use super::model::NetworkModel;
 use super::part::{Counterparts, NetworkPart, PartSettings, RawNetworkPart};
+use super::raw::RawNetwork;
 use crate::model::actuator::{Actuator, RawActuator};
 use crate::model::material::{Material, RawMaterial};
 use crate::model::Mechanism;

@@ -31,7 +31,7 @@
 //!   signed span, as the bridge's).
 //! - `[[network.supports]]`: `body`, `at`, `direction`, `hold_rotation`: a guide or a
 //!   roller ([`super::supports`]).
-//! - `[actuator]`: `nominal_stroke`, `preload`, optional `stiffness`, the bridge's section
+//! - `[actuator]`: `nominal_stroke`, `preload`, optional `stiffness` and `mass`, the bridge's section
 //!   (its `length` and `height`, the stack's size, are for the part, still to come).
 //!
 //! - `[[network.beams]]`: `name`, `from`, `to` (bodies or `"ground"`), `start` and `end`
@@ -40,140 +40,21 @@
 //!   ends, not by a start, an angle and a length: a frame member between two bodies is
 //!   drawn from point to point, and its length and direction follow.
 
-use indexmap::IndexMap;
-use serde::Deserialize;
-
 use super::checks::{self, Two};
 use super::description::{
     Axis, BeamDescription, BodyDescription, Description, HingeDescription, Keyed,
     MeasureDescription, Point, PortDescription, DEG, GROUND,
 };
-use super::part::RawNetworkPart;
-use super::supports::{self, RawNetworkSupport};
-use crate::model::actuator::RawActuator;
-use crate::model::entry::SectionSchema;
+pub use super::raw::{schema, SECTIONS};
+use super::raw::{RawNetwork, RawNetworkPort};
+use super::supports;
 use crate::model::expression::Expression;
 use crate::model::hinge::HingeKind;
-use crate::model::material::RawMaterial;
 use crate::model::{Dimension, ParameterInfo};
 use crate::vocab::error::Segment;
 use crate::vocab::reader::{k, quoted, Res};
-use crate::vocab::schema::{Measured, NonNegativeMass, PositiveLength};
 use crate::vocab::sections::Sections;
 use crate::vocab::units::{self, Unit};
-
-/// The sections the network reads.
-pub const SECTIONS: &[&str] = &["material", "network", "actuator", "part"];
-
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub(super) struct RawNetwork {
-    width: Measured<PositiveLength>,
-    unit: Option<String>,
-    /// Each parameter as `[name, dimension]`: a list, as a table's keys come in no order.
-    #[schemars(with = "Vec<[String; 2]>")]
-    parameters: Vec<Two>,
-    mirror: Option<Vec<String>>,
-    #[serde(default)]
-    bodies: Vec<RawNetworkBody>,
-    #[serde(default)]
-    hinges: Vec<RawNetworkHinge>,
-    #[serde(default)]
-    beams: Vec<RawNetworkBeam>,
-    input: RawNetworkPort,
-    outputs: Vec<RawNetworkPort>,
-    #[serde(default)]
-    measures: Vec<RawNetworkMeasure>,
-    #[serde(default)]
-    supports: Vec<RawNetworkSupport>,
-}
-
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-struct RawNetworkBody {
-    name: String,
-    #[schemars(with = "Option<Vec<[String; 2]>>")]
-    outline: Option<Vec<Two>>,
-    link: Option<RawNetworkLink>,
-    on_axis: Option<Vec<String>>,
-}
-
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-struct RawNetworkLink {
-    #[schemars(with = "[String; 2]")]
-    from: Two,
-    #[schemars(with = "[String; 2]")]
-    to: Two,
-    width: String,
-}
-
-/// A hinge: its named keys, and the kind's dimensions among the rest (not denied: they are
-/// checked against the kind, with a message that lists the kind's own).
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-struct RawNetworkHinge {
-    name: String,
-    #[schemars(extend("enum" = HingeKind::NAMES))]
-    kind: String,
-    from: String,
-    to: String,
-    #[schemars(with = "[String; 2]")]
-    start: Two,
-    angle: String,
-    #[serde(flatten)]
-    #[schemars(with = "std::collections::BTreeMap<String, String>")]
-    dimensions: IndexMap<String, String>,
-}
-
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-struct RawNetworkBeam {
-    name: String,
-    from: String,
-    to: String,
-    #[schemars(with = "[String; 2]")]
-    start: Two,
-    #[schemars(with = "[String; 2]")]
-    end: Two,
-    thickness: String,
-}
-
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-struct RawNetworkPort {
-    /// The output's name (outputs only).
-    name: Option<String>,
-    body: String,
-    #[schemars(with = "[String; 2]")]
-    at: Two,
-    #[schemars(with = "[String; 2]")]
-    direction: Two,
-    across: Option<String>,
-    /// The mass the output carries (outputs only), for the natural frequencies.
-    payload: Option<Measured<NonNegativeMass>>,
-}
-
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-struct RawNetworkMeasure {
-    name: String,
-    dimension: String,
-    value: String,
-}
-
-/// The JSON Schema of each of the network's sections.
-pub fn schema(g: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
-    let one = SectionSchema::new;
-    vec![
-        SectionSchema {
-            rules: crate::model::material::strength_rules("material"),
-            ..one("material", g.subschema_for::<RawMaterial>(), true)
-        },
-        one("network", g.subschema_for::<RawNetwork>(), true),
-        one("actuator", g.subschema_for::<RawActuator>(), true),
-        one("part", g.subschema_for::<RawNetworkPart>(), false),
-    ]
-}
 
 fn net(rest: &[Segment]) -> Vec<Segment> {
     let mut p = vec![k("network")];

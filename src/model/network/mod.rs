@@ -17,6 +17,7 @@ pub mod modes;
 mod on_axis;
 pub mod part;
 pub mod ports;
+mod raw;
 mod scaling;
 pub mod stroke;
 pub mod structure;
