@@ -111,22 +111,7 @@ pub(crate) fn run_study(
     let part = (study.any_feasible || (!study.interrupted && rule_broken()))
         .then(|| problem.mechanism().part(study.reported_design()))
         .flatten();
-    // the FE steps asked for and skipped are said, whatever the exit code says already
-    if let Some(why) = no_fe_step(problem, &study, part.as_ref()) {
-        if problem.refine.enabled {
-            eprintln!(
-                "warning: {}: the optimum is not refined against finite elements: {why}",
-                problem.file.display()
-            );
-        }
-        if verify {
-            eprintln!(
-                "warning: {}: --verify: the optimum's part is not checked by finite elements: \
-                 {why}",
-                problem.file.display()
-            );
-        }
-    }
+    warn_skipped_fe(problem, &study, part.as_ref(), verify);
     // the refinement by the finite elements, of a feasible optimum with a part
     let refined = (problem.refine.enabled && matches!(part, Some(Ok(_))) && !study.interrupted)
         .then(|| {
@@ -194,6 +179,54 @@ pub(crate) fn run_study(
             flexopt::report::html::write_report(dir, text.as_ref())?;
         }
     }
+    exit_status(
+        problem,
+        options,
+        &study,
+        part.as_ref(),
+        refined.as_ref().map(|(r, _)| r),
+        checked.as_ref().map(|(r, _)| r),
+    )
+}
+
+/// The FE steps asked for (`[refine]`, `--verify`) and skipped, said whatever the exit code
+/// says already.
+fn warn_skipped_fe(
+    problem: &Problem,
+    study: &Study,
+    part: Option<&Result<Part, PartError>>,
+    verify: bool,
+) {
+    let Some(why) = no_fe_step(problem, study, part) else {
+        return;
+    };
+    if problem.refine.enabled {
+        eprintln!(
+            "warning: {}: the optimum is not refined against finite elements: {why}",
+            problem.file.display()
+        );
+    }
+    if verify {
+        eprintln!(
+            "warning: {}: --verify: the optimum's part is not checked by finite elements: \
+             {why}",
+            problem.file.display()
+        );
+    }
+}
+
+/// What the run ends with, the first that holds: interrupted; feasible but not converged
+/// (4); no makeable end, or an optimum whose part cannot be made (5); a refinement that did
+/// not converge or found nothing feasible on the part (4, 3); the part failing a limit by
+/// the FE check (3); no feasible design (3); else success.
+fn exit_status(
+    problem: &Problem,
+    options: &StudyOptions,
+    study: &Study,
+    part: Option<&Result<Part, PartError>>,
+    refined: Option<&RefinedReport>,
+    checked: Option<&VerifyReport>,
+) -> Result<(), Failure> {
     if study.interrupted {
         Err(Failure::interrupted(format!(
             "{}: interrupted: {} of {} starts finished; the files written hold those \
@@ -212,24 +245,21 @@ pub(crate) fn run_study(
                 problem.file.display()
             ),
         })
-    } else if let (false, Some(Err(e))) = (study.any_feasible, &part) {
+    } else if let (false, Some(Err(e))) = (study.any_feasible, part) {
         Err(Failure::cannot_be_made(format!(
             "{}: no start ended at a design whose part can be made with the [part] sizes; \
              optimum.json holds the least violating one, whose part breaks the rules the \
              study keeps to: {e}",
             problem.file.display()
         )))
-    } else if let Some(Err(e)) = &part {
+    } else if let Some(Err(e)) = part {
         Err(Failure::cannot_be_made(format!(
             "{}: the optimum gives no part that can be made with the [part] sizes: {e}; its \
              analytic results are written, its part files are not (optimum.json: \
              part_problems)",
             problem.file.display()
         )))
-    } else if let Some((r, _)) = refined
-        .as_ref()
-        .filter(|(r, _)| !r.converged || !r.feasible)
-    {
+    } else if let Some(r) = refined.filter(|r| !r.converged || !r.feasible) {
         let what = if r.feasible {
             (
                 4,
@@ -248,12 +278,12 @@ pub(crate) fn run_study(
             code: what.0,
             message: format!("{}: {}", problem.file.display(), what.1),
         })
-    } else if let Some((report, _)) = checked.as_ref().filter(|_| study.any_feasible) {
+    } else if let Some(report) = checked.filter(|_| study.any_feasible) {
         part_verdict(problem, report)
     } else if study.any_feasible {
         Ok(())
     } else {
-        Err(Failure::no_feasible(infeasible_message(problem, &study)))
+        Err(Failure::no_feasible(infeasible_message(problem, study)))
     }
 }
 
