@@ -149,12 +149,26 @@ pub(super) struct LevelResult {
     pub(super) von_mises: Vec<f64>,
 }
 
-/// The stack's mass `mass` on the degrees of freedom of its face in one family of modes
-/// (`stretched` where the stack stretches: every mode of a stack on the ground, the
-/// symmetric ones of a stack between a face and its mirror image): each node its share as a
-/// uniform load spreads it, the share along the stack's axis on the degree of freedom along
-/// it and the share across it on the other ([`stack_mass_share`]; exact for a stack along x
-/// or y, as the actuator's springs are).
+/// Masses spread over a face as a uniform load spreads a force (kg per degree of freedom):
+/// each node its share of `mass[0]` along x and of `mass[1]` along y.
+pub(super) fn face_masses(
+    m: &Mesh,
+    face: &[EdgeNodes],
+    width: f64,
+    mass: [f64; 2],
+) -> Vec<(usize, f64)> {
+    loads::uniform_force(m, face, width, mass)
+        .into_iter()
+        .enumerate()
+        .filter(|&(_, v)| v != 0.0)
+        .collect()
+}
+
+/// The stack's mass `mass` on its face in one family of modes (`stretched` where the stack
+/// stretches: every mode of a stack on the ground, the symmetric ones of a stack between a
+/// face and its mirror image): the share along the stack's axis on the degree of freedom
+/// along it and the share across it on the other ([`stack_mass_share`]; exact for a stack
+/// along x or y, as the actuator's springs are).
 fn stack_masses(
     m: &Mesh,
     face: &[EdgeNodes],
@@ -167,18 +181,12 @@ fn stack_masses(
     let [nx, ny] = spring.direction;
     let length = nx.hypot(ny);
     let (cx, cy) = ((nx / length).powi(2), (ny / length).powi(2));
-    loads::uniform_force(m, face, width, [1.0, 0.0])
-        .iter()
-        .enumerate()
-        .step_by(2)
-        .filter(|(_, &share)| share != 0.0)
-        .flat_map(|(dof, &share)| {
-            [
-                (dof, share * (along * cx + across * cy)),
-                (dof + 1, share * (along * cy + across * cx)),
-            ]
-        })
-        .collect()
+    face_masses(
+        m,
+        face,
+        width,
+        [along * cx + across * cy, along * cy + across * cx],
+    )
 }
 
 fn column(x: &faer::Mat<f64>, j: usize) -> Vec<f64> {

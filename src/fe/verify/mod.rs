@@ -44,7 +44,6 @@ use serde::Serialize;
 
 use super::element::{Elastic, Fidelity, Idealization};
 use super::geometry::Domain;
-use super::loads;
 use super::mesh::{mesh_within, Mesh};
 use super::richardson::{estimate, Estimate};
 use super::FeError;
@@ -52,7 +51,7 @@ use crate::part::analysis::{Analysis, FeOutputId, Quantity};
 use crate::part::{Part, PartSpec};
 pub use grading::PER_RADIUS;
 pub use level::size_function;
-use level::{face_edges, holds, solve_level, LevelResult, Setup};
+use level::{face_edges, face_masses, holds, solve_level, LevelResult, Setup};
 
 /// One mesh of the sequence.
 #[derive(Debug, Clone, Serialize)]
@@ -325,19 +324,8 @@ pub fn verify(
         let mass = match &setup.stated.payload {
             Some((face, share)) if modal => {
                 let payload = face_edges(&m, &setup.domain, face)?;
-                let share = loads::uniform_force(
-                    &m,
-                    &payload,
-                    setup.width,
-                    [share * actuation.payload_mass, 0.0],
-                );
-                let points: Vec<(usize, f64)> = share
-                    .iter()
-                    .enumerate()
-                    .step_by(2)
-                    .filter(|(_, &v)| v != 0.0)
-                    .flat_map(|(dof, &v)| [(dof, v), (dof + 1, v)])
-                    .collect();
+                let each = share * actuation.payload_mass;
+                let points = face_masses(&m, &payload, setup.width, [each, each]);
                 Some(
                     h.pattern
                         .mass_with(&m, &setup.material, setup.width, &points)?,
