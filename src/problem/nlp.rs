@@ -444,10 +444,16 @@ impl<'p> DesignNlp<'p> {
     }
 
     /// The mirror image of a scaled design by the model's own map ([`Model::mirror`]), if
-    /// the model has one, it leaves the fixed variables as they are, and it lies within the
-    /// bounds; `None` otherwise.
+    /// the model has one, it leaves the fixed variables as they are, the problem's outputs
+    /// are the same there up to sign, and it lies within the bounds; `None` otherwise.
+    ///
+    /// The model's map is the mechanism's: a network's quarter drawn off the axes has a
+    /// mirror image with every mechanical output the same but another part (wei2017's
+    /// network: `part_height` 25.0 mm against 17.0 mm), which is no image for a problem that
+    /// bounds the part's size.
     pub fn mirror(&self, u: &[f64]) -> Option<Vec<f64>> {
-        let mut x = self.full_design(u);
+        let original = self.full_design(u);
+        let mut x = original.clone();
         let fixed_moved = |x: &[f64]| {
             self.problem
                 .variables
@@ -455,7 +461,10 @@ impl<'p> DesignNlp<'p> {
                 .zip(x)
                 .any(|(v, &xi)| v.fixed && xi != v.lower)
         };
-        if !self.problem.model().mirror(&mut x) || fixed_moved(&x) {
+        if !self.problem.model().mirror(&mut x)
+            || fixed_moved(&x)
+            || !self.same_wanted(&original, &x)
+        {
             return None;
         }
         let free: Vec<f64> = self.free.iter().map(|&p| x[p]).collect();
@@ -463,6 +472,19 @@ impl<'p> DesignNlp<'p> {
         m.iter()
             .all(|v| (-1e-12..=1.0 + 1e-12).contains(v))
             .then_some(m)
+    }
+
+    /// Whether the wanted outputs at `x` and at `y` are the same up to sign (relative
+    /// 1e-10, the model's own test of a mirror image), or both have none.
+    fn same_wanted(&self, x: &[f64], y: &[f64]) -> bool {
+        let n = self.wanted.len();
+        let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+        self.model.evaluate(x, &self.wanted, &mut a);
+        self.model.evaluate(y, &self.wanted, &mut b);
+        a.iter().zip(&b).all(|(&a, &b)| {
+            let (a, b) = (a.abs(), b.abs());
+            a == b || (a - b).abs() <= 1e-10 * a.max(b) || (a.is_nan() && b.is_nan())
+        })
     }
 
     /// The constraint rows from the wanted outputs `values`.

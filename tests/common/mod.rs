@@ -71,6 +71,20 @@ pub fn random_design(rng: &mut ChaCha8Rng) -> [f64; 8] {
     table1_bounds().map(|(lo, hi)| rng.random_range(lo..hi))
 }
 
+/// A design drawn uniformly from a problem file's bounds (SI, every parameter in model
+/// order; a fixed variable at its value).
+pub fn design_within_bounds(p: &flexopt::problem::Problem, r: &mut ChaCha8Rng) -> Vec<f64> {
+    let mut x = vec![0.0; p.variables.len()];
+    for v in &p.variables {
+        x[v.parameter] = if v.fixed {
+            v.lower
+        } else {
+            r.random_range(v.lower..v.upper)
+        };
+    }
+    x
+}
+
 pub fn geometry(x: [f64; 8]) -> Geometry<f64> {
     Geometry::from_array(x)
 }

@@ -5,13 +5,11 @@
 
 use std::path::Path;
 
-use crate::common::rng;
+use crate::common::{self, rng};
 use flexopt::model::part_rules::TOLERANCE;
 use flexopt::model::PartMaker;
 use flexopt::part::checks::before_union;
 use flexopt::problem::Problem;
-use rand::Rng;
-use rand_chacha::ChaCha8Rng;
 
 const NETWORKS: [&str; 6] = [
     "problems/lever_network.toml",
@@ -31,19 +29,6 @@ fn part(p: &Problem) -> &dyn PartMaker {
         .part_maker
         .as_deref()
         .expect("a network with a part")
-}
-
-/// A design drawn uniformly from the file's bounds (SI, every parameter).
-fn random_design(p: &Problem, r: &mut ChaCha8Rng) -> Vec<f64> {
-    let mut x = vec![0.0; p.variables.len()];
-    for v in &p.variables {
-        x[v.parameter] = if v.fixed {
-            v.lower
-        } else {
-            r.random_range(v.lower..v.upper)
-        };
-    }
-    x
 }
 
 fn margins(part: &dyn PartMaker, x: &[f64]) -> Vec<f64> {
@@ -72,7 +57,10 @@ fn the_rules_change_sign_where_the_check_of_the_solids_flips_to_1e_9_mm() {
         assert!(part.enforces_rules() && !part.rules().is_empty(), "{file}");
         let (mut met, mut broken, mut flips) = (0, 0, 0);
         for _ in 0..1000 {
-            let (a, b) = (random_design(&p, &mut r), random_design(&p, &mut r));
+            let (a, b) = (
+                common::design_within_bounds(&p, &mut r),
+                common::design_within_bounds(&p, &mut r),
+            );
             let Some((ma, ta)) = clearance_and_check(part, &a) else {
                 continue;
             };
@@ -139,7 +127,7 @@ fn each_rules_gradient_agrees_with_central_differences() {
         let (n, rules) = (p.variables.len(), part.rules().len());
         let (mut compared, mut kinks) = (0, 0);
         for _ in 0..100 {
-            let x = random_design(&p, &mut r);
+            let x = common::design_within_bounds(&p, &mut r);
             let (mut m, mut jac) = (vec![0.0; rules], vec![0.0; rules * n]);
             part.rule_margins_with_gradient(&x, &mut m, &mut jac);
             assert_eq!(

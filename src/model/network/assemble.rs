@@ -6,7 +6,7 @@
 use super::checks;
 use super::file::describe;
 use super::model::NetworkModel;
-use super::part::{Counterparts, NetworkPart, PartSettings, RawNetworkPart};
+use super::part::{Counterparts, Drawing, NetworkPart, PartSettings, RawNetworkPart};
 use super::raw::RawNetwork;
 use crate::model::actuator::{Actuator, RawActuator};
 use crate::model::material::{Material, RawMaterial};
@@ -15,6 +15,7 @@ use crate::model::Model;
 use crate::part::Actuation;
 use crate::vocab::reader::{k, Res};
 use crate::vocab::sections::Sections;
+use std::sync::Arc;
 
 /// Reads the network's sections and builds the model.
 pub fn build(s: &mut Sections) -> Res<Mechanism> {
@@ -44,8 +45,11 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         payload_mass: description.outputs[0].payload,
         stack_mass: actuator.mass.unwrap_or(0.0),
     };
-    let drawn = part.map(|settings| (settings, description.clone()));
-    let model = NetworkModel::new(description, material, actuator);
+    let drawing = part.map(|settings| Arc::new(Drawing::new(description.clone(), settings)));
+    let mut model = NetworkModel::new(description, material, actuator);
+    if let Some(drawing) = &drawing {
+        model = model.with_drawing(drawing.clone());
+    }
     let names: Vec<&str> = model.outputs().iter().map(|o| o.name.as_ref()).collect();
     if let Some((path, why)) = checks::name_error(model.description())
         .or_else(|| checks::output_clash(&names, model.description()))
@@ -59,24 +63,24 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         stress_max: model.output_index("stress_max"),
         f1: model.output_index("f1"),
         actuated: super::part::ACTUATED_OUTPUTS.map(|name| model.output_index(name)),
-        // the spans and the described measures are sizes of the part as drawn
-        drawn: ["span_x", "span_y"]
+        // the spans, the outline's box and the described measures are sizes of the part
+        // as drawn
+        drawn: ["span_x", "span_y", "part_width", "part_height"]
             .into_iter()
             .chain(model.description().measures.iter().map(|m| m.name.as_str()))
             .filter_map(|name| model.output_index(name))
             .collect(),
     };
-    let model = std::sync::Arc::new(model);
+    let model = Arc::new(model);
     let mut mechanism = Mechanism::physics_only(model.clone()).with_modulus_scaling(model.clone());
     mechanism.large = Some(model.clone());
     mechanism.depiction = Some(model);
-    if let Some((settings, description)) = drawn {
-        mechanism.part_maker = Some(std::sync::Arc::new(NetworkPart::new(
-            description,
-            settings,
+    if let Some(drawing) = drawing {
+        mechanism.part_maker = Some(Arc::new(NetworkPart {
+            drawing,
             actuation,
             counterparts,
-        )));
+        }));
     }
     Ok(mechanism)
 }

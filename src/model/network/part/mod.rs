@@ -60,6 +60,7 @@ use crate::part::analysis::{
 use crate::part::mm::length as mm;
 use crate::part::{convex_hull, Actuation, Annotation, Face, HingeSite, PartSpec, Solid};
 
+mod drawing;
 mod faces;
 mod flexures;
 mod images;
@@ -68,12 +69,14 @@ mod rules;
 mod settings;
 mod values;
 
+pub use drawing::Drawing;
 use faces::{port_face, ports_check, FaceProblem, PlacedPort};
 use faces::{FE_ACTUATED, FE_AMPLIFICATION, FE_F1, FE_K_IN, FE_K_OUT, FE_STRESS_SECTION};
 use flexures::{CutHinge, Named};
 use images::Image;
 use plane::{band, convex_pieces, exposed, scale, sub, P};
 pub use settings::{PartSettings, RawNetworkPart};
+use std::sync::Arc;
 use values::Values;
 
 /// The model's outputs the check measures, by their indices among the model's outputs.
@@ -101,39 +104,13 @@ pub const ACTUATED_OUTPUTS: [&str; 5] = [
     "blocked_force",
 ];
 
-/// A network's part: the description, the settings, the actuator, and its rules' layout.
+/// A network's part: its drawing (shared with the model, whose footprint outputs read it),
+/// the actuator, and the model's outputs its check measures.
 #[derive(Debug, Clone)]
 pub struct NetworkPart {
-    pub description: Description,
-    pub settings: PartSettings,
+    pub drawing: Arc<Drawing>,
     pub actuation: Actuation,
     pub counterparts: Counterparts,
-    layout: rules::Layout,
-}
-
-impl NetworkPart {
-    pub fn new(
-        mut description: Description,
-        settings: PartSettings,
-        actuation: Actuation,
-        counterparts: Counterparts,
-    ) -> Self {
-        NetworkPart {
-            layout: rules::Layout::new(&mut description),
-            description,
-            settings,
-            actuation,
-            counterparts,
-        }
-    }
-
-    fn rules_at(&self) -> rules::Rules<'_> {
-        rules::Rules {
-            layout: &self.layout,
-            d: &self.description,
-            s: &self.settings,
-        }
-    }
 }
 
 impl PartMaker for NetworkPart {
@@ -168,27 +145,27 @@ impl PartMaker for NetworkPart {
     }
 
     fn rules(&self) -> &[PartRule] {
-        self.layout.rules()
+        self.drawing.layout.rules()
     }
 
     fn first_rules(&self) -> usize {
-        self.layout.first_rules()
+        self.drawing.layout.first_rules()
     }
 
     fn enforces_rules(&self) -> bool {
-        self.settings.enforce
+        self.drawing.settings.enforce
     }
 
     fn rule_margins(&self, x: &[f64], out: &mut [f64]) {
-        self.rules_at().margins(x, out);
+        self.drawing.rules().margins(x, out);
     }
 
     fn rule_margins_with_gradient(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
-        self.rules_at().margins_with_gradient(x, out, jacobian);
+        self.drawing.rules().margins_with_gradient(x, out, jacobian);
     }
 
     fn rule_witnesses(&self, x: &[f64], out: &mut [Option<Witness>]) {
-        self.rules_at().witnesses(x, out);
+        self.drawing.rules().witnesses(x, out);
     }
 }
 
@@ -252,8 +229,8 @@ type BodyKey = (usize, Image);
 
 /// The part of design `x`: the described part, then its images about the mirror axes.
 fn spec(part: &NetworkPart, x: &[f64]) -> Result<PartSpec, Vec<String>> {
-    let d = &part.description;
-    let s = &part.settings;
+    let d = &part.drawing.description;
+    let s = &part.drawing.settings;
     let v = Values::new(d, x);
     let one = |r: Result<P, String>| r.map_err(|e| vec![e]);
     let slot = |b: Option<usize>| b.map_or(0, |b| b + 1);

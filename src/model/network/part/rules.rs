@@ -242,6 +242,26 @@ impl Layout {
         }
     }
 
+    /// The bounding box of the part's solids at the design `x` over `D` (m): the least x
+    /// and y of a corner, then the largest; `None` where an expression has no value there.
+    /// The outline is the union of the solids, whose fillets at the flexures' roots are
+    /// concave and lie inside the pieces' hull: its box is the corners' box. Each side is a
+    /// maximum over corners, continuous, with the gradient of the corner that attains it.
+    pub fn extent<D: Scalar>(&self, d: &Description, s: &PartSettings, x: &[D]) -> Option<[D; 4]> {
+        let shapes = self.shapes(d, s, x, |_| true)?;
+        let first = *shapes.corners.first()?;
+        let mut bb = [first[0], first[1], first[0], first[1]];
+        for p in &shapes.corners[1..] {
+            bb = [
+                min(bb[0], p[0]),
+                min(bb[1], p[1]),
+                max(bb[2], p[0]),
+                max(bb[3], p[1]),
+            ];
+        }
+        Some(bb)
+    }
+
     fn shapes_from<D: Scalar>(
         &self,
         d: &Description,

@@ -1,0 +1,288 @@
+//! The network's outputs at a design: the load cases the wanted outputs need solved on one
+//! factorization, and each output read from them, over `f64` or over dual numbers for the
+//! exact gradients.
+
+use super::*;
+
+thread_local! {
+    /// The thread's spare [`Work`]s, one per scalar type it evaluated with, each with its
+    /// type's id: compared here, where asking each box for its type was a virtual call.
+    static SPARE: RefCell<Vec<(TypeId, Box<dyn Any>)>> = const { RefCell::new(Vec::new()) };
+}
+
+/// The thread's spare [`Work`] for `D`, or a new one. Taken out rather than borrowed, so
+/// that an evaluation inside another (none today) would only allocate its own.
+fn take<D: 'static>() -> Box<Work<D>> {
+    let id = TypeId::of::<Work<D>>();
+    SPARE
+        .with(|spare| {
+            let mut spare = spare.borrow_mut();
+            let i = spare.iter().position(|(t, _)| *t == id)?;
+            spare.swap_remove(i).1.downcast().ok()
+        })
+        .unwrap_or_default()
+}
+
+/// `work` back among the thread's spares.
+fn give<D: 'static>(work: Box<Work<D>>) {
+    SPARE.with(|spare| spare.borrow_mut().push((TypeId::of::<Work<D>>(), work)));
+}
+
+impl NetworkModel {
+    /// The wanted outputs at `x` into `out`, or why the design has none.
+    pub fn evaluate_generic<D: Scalar + 'static>(
+        &self,
+        x: &[D],
+        modulus: Option<D>,
+        wanted: &[usize],
+        out: &mut [D],
+    ) -> Result<(), String> {
+        let mut work = take::<D>();
+        let result = self.evaluate_in(x, modulus, wanted, out, &mut work);
+        give(work);
+        result
+    }
+
+    /// [`NetworkModel::evaluate_generic`] in the buffers of `work`.
+    pub(super) fn evaluate_in<D: Scalar>(
+        &self,
+        x: &[D],
+        modulus: Option<D>,
+        wanted: &[usize],
+        out: &mut [D],
+        work: &mut Work<D>,
+    ) -> Result<(), String> {
+        let Needs {
+            modes,
+            extent,
+            footprint,
+            input: needs_input,
+            output: needs_output,
+            condenses,
+            stresses: needs_stresses,
+        } = self.needs(wanted);
+        self.at(x, modulus, extent, work)?;
+        let Work {
+            evaluated: e,
+            solve,
+            stresses,
+            ..
+        } = work;
+        let e = &*e;
+        let free = |err| self.network_error(err);
+        use Quantity::*;
+        // read in place: a port copied out of the list, or into a load, was a `memcpy`
+        let along = |u: &Displacements<D>, i: usize| {
+            let p = &e.ports[i];
+            u.along_ref(Body::Rigid(p.body), &p.point, &p.force)
+        };
+        // the load cases wanted, from one factorization: the input's, the first output's
+        let (load_in, load_out) = (
+            std::slice::from_ref(&e.ports[0]),
+            std::slice::from_ref(&e.ports[1]),
+        );
+        // the output's case is read at the output alone, or at the input too where the
+        // input's compliance is condensed out
+        let port_bodies = [e.ports[1].body, e.ports[0].body];
+        let read_out = &port_bodies[..if condenses { 2 } else { 1 }];
+        let mut cases = [Case {
+            loads: &[],
+            read: None,
+        }; 2];
+        let mut count = 0;
+        for (needed, loads, read) in [
+            (needs_input, load_in, None),
+            (needs_output, load_out, Some(read_out)),
+        ] {
+            if needed {
+                cases[count] = Case { loads, read };
+                count += 1;
+            }
+        }
+        let solved = if count == 0 {
+            None
+        } else {
+            Some(
+                e.network
+                    .solve_cases_in(&cases[..count], solve)
+                    .map_err(free)?,
+            )
+        };
+        let case = |c: usize| solved.as_ref().map(|s| s.case(c));
+        let input: Option<Displacements<D>> = if needs_input { case(0) } else { None };
+        let output: Option<Displacements<D>> = if needs_output { case(count - 1) } else { None };
+        // W_ij = read_i C_ij share_j
+        let w =
+            |u: &Displacements<D>, i: usize, j: usize| along(u, i) * (self.read[i] * self.share[j]);
+        let w_ii = input.as_ref().map(|u| w(u, 0, 0));
+        let k_in = || w_ii.expect("listed").recip();
+        let stroke_in = || match self.actuator.stiffness {
+            None => D::from(self.actuator.nominal_stroke),
+            Some(k_a) => {
+                let ka = w_ii.expect("listed") * k_a;
+                ka * self.actuator.nominal_stroke / (ka + 1.0)
+            }
+        };
+        let amplification = |o: usize| {
+            let u = input.as_ref().expect("listed");
+            w(u, o + 1, 0) / w_ii.expect("listed")
+        };
+        // the first output's stiffnesses: the input free, on the actuator, held
+        let condensed = |actuator: Option<f64>| {
+            let (u_in, u_out) = (
+                input.as_ref().expect("listed"),
+                output.as_ref().expect("listed"),
+            );
+            let (c_oo, c_oi, c_io) = (w(u_out, 1, 1), w(u_in, 1, 0), w(u_out, 0, 1));
+            let c_ii = w(u_in, 0, 0) + actuator.map_or(0.0, f64::recip);
+            (c_oo - c_oi * c_io / c_ii).recip()
+        };
+        // the hinges' loads and stresses under the largest actuator force, found once: at
+        // the true stroke (Eq. 13), which a stack of finite stiffness makes under the part
+        let largest = w_ii.map(|w| w.recip() * stroke_in() + self.actuator.preload);
+        // the described part's share of it, once for every flexure
+        let shared = largest.map(|f| f * self.share[0]);
+        let loads = |h: usize| {
+            let u = input.as_ref().expect("listed");
+            let l = e.network.flexure_loads(h, u);
+            let f = shared.expect("listed");
+            HingeLoads {
+                axial: l.axial * f,
+                shear: l.shear * f,
+                moment: l.moment * f,
+            }
+        };
+        let flexures = e.network.flexures.len();
+        let ends = |h: usize| {
+            // a beam's stresses are a strip's: the same beam, the same linear moment
+            let kind = self
+                .description
+                .hinges
+                .get(h)
+                .map_or(HingeKind::Strip, |hinge| hinge.kind);
+            // (loaded end, clamped end): the loads are at its end on `to`
+            let (to, from) = kind.end_stresses(&e.dims[h], self.description.width, &loads(h));
+            (from, to)
+        };
+        // each hinge's two end stresses once, however many outputs read them
+        stresses.clear();
+        if needs_stresses {
+            stresses.extend((0..flexures).map(ends));
+        }
+        let stresses = &*stresses;
+        // read in place: the pair copied out was two `Jet<8>`s for one
+        let ends = |h: usize| &stresses[h];
+        let extent = |i: usize| {
+            let hi = e
+                .points
+                .iter()
+                .skip(1)
+                .fold(e.points[0][i], |m, p| max(m, p[i]));
+            let lo = e
+                .points
+                .iter()
+                .skip(1)
+                .fold(-e.points[0][i], |m, p| max(m, -p[i]));
+            hi + lo
+        };
+        let frequencies = match modes {
+            Some(count) => self.frequencies(e, count)?,
+            None => Vec::new(),
+        };
+        let footprint = match (footprint, &self.drawing) {
+            (true, Some(drawing)) => drawing
+                .footprint(x)
+                .ok_or("the part's outline has no value at this design")?,
+            _ => [D::from(f64::NAN); 2],
+        };
+        for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
+            *slot = match self.quantities[k] {
+                Amplification(o) => amplification(o),
+                KIn => k_in(),
+                KOut => w(output.as_ref().expect("listed"), 1, 1).recip(),
+                KOutActuated => condensed(self.actuator.stiffness),
+                KOutBlocked => condensed(None),
+                StrokeIn => stroke_in(),
+                StrokeOut => amplification(0) * stroke_in(),
+                BlockedForce => amplification(0) * stroke_in() * condensed(self.actuator.stiffness),
+                StressMax => (0..flexures)
+                    .map(|h| {
+                        let (a, b) = *ends(h);
+                        max(a, b)
+                    })
+                    .reduce(max)
+                    .unwrap_or(D::from(0.0)),
+                Stress(h) => {
+                    let (a, b) = *ends(h);
+                    max(a, b)
+                }
+                StressEnd(h, to) => {
+                    let (a, b) = ends(h);
+                    if to {
+                        *b
+                    } else {
+                        *a
+                    }
+                }
+                Rotation(h) => {
+                    let u = input.as_ref().expect("listed");
+                    let f = &e.network.flexures[h];
+                    let turn = u.at(f.to, f.end)[2] - u.at(f.from, f.start)[2];
+                    turn * shared.expect("listed")
+                }
+                SpanX => extent(0),
+                SpanY => extent(1),
+                PartWidth => footprint[0],
+                PartHeight => footprint[1],
+                Measure(m) => e.measures[m],
+                Frequency(i) => frequencies[i],
+            };
+            if !slot.re().is_finite() {
+                return Err(format!(
+                    "output \"{}\" is not finite at this design",
+                    self.outputs[k].name
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// What the `wanted` outputs need.
+    pub(super) fn needs(&self, wanted: &[usize]) -> Needs {
+        let mut n = wanted
+            .iter()
+            .fold(Needs::default(), |n, &w| n.or(self.needs[w]));
+        n.extent |= n.modes.is_some();
+        n
+    }
+
+    pub(super) fn gradients<const N: usize>(
+        &self,
+        x: &[f64],
+        wanted: &[usize],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        let seeded: [Jet<N>; N] = std::array::from_fn(|i| Jet::variable(x[i], i));
+        let mut work = take::<Jet<N>>();
+        // the outputs' buffer is the thread's too: allocated for each evaluation, it cost
+        // about as much as the seeding and the unseeding together
+        let mut y = std::mem::take(&mut work.outputs);
+        // zeroed only when the count changes: the evaluation writes every slot it returns
+        if y.len() != wanted.len() {
+            y.clear();
+            y.resize(wanted.len(), Jet::from(0.0));
+        }
+        if self
+            .evaluate_in(&seeded, None, wanted, &mut y, &mut work)
+            .is_ok()
+        {
+            unseed(&y, out, jacobian);
+        } else {
+            out.fill(f64::NAN);
+            jacobian.fill(f64::NAN);
+        }
+        work.outputs = y;
+        give(work);
+    }
+}
