@@ -67,33 +67,12 @@ impl NetworkModel {
             .or(d.input.across.map(|a| (0, a)))
     }
 
-    /// The `count` lowest natural frequencies of the network `e` (Hz): each body a plate of
-    /// the material's density and the part's width cut to its outline or its link, the
-    /// first output's payload at its point, the actuator a spring to the ground at the
-    /// input along its direction (the stack's far end on the base), the flexures massless
-    /// ([`super::modes`]). [`Model::unavailable`] has checked that every body has a shape
-    /// and that the part has a mounting.
-    ///
-    /// With mirror axes the described part carries its share of each body across an axis
-    /// ([`described_piece`]), and the modes are found family by family ([`families`]): those
-    /// symmetric about every axis, then those antisymmetric about one or both, each family
-    /// its own holds on the bodies across the axes ([`axis_holds`]); the lowest `count` of
-    /// all are the whole part's. The stack, between the input's face and its image across
-    /// `network.input.across`, is not stretched in a mode antisymmetric about that axis (the
-    /// two faces move alike), and is left out of those families. A grounded part's payload
-    /// rides on each image of the first output's face. A part without ground stands on the
-    /// image of a port across an axis ([`Self::mounting`]), which breaks the symmetry about
-    /// that axis: the described part is joined to its image across it, that port's image the
-    /// ground ([`Network::unfolded`]), the payload on the port's face alone, and the
-    /// families are those about the other axis.
-    pub(super) fn frequencies<D: Scalar>(
-        &self,
-        e: &Evaluated<D>,
-        count: usize,
-    ) -> Result<Vec<D>, String> {
+    /// Each body's mass, centroid and moment of inertia at the evaluated design: its plate
+    /// (its outline's or its link's, the described piece where it lies across an axis),
+    /// with each beam's mass lumped at its ends.
+    fn body_inertia<D: Scalar>(&self, e: &Evaluated<D>) -> Vec<Inertia<D>> {
         let d = &self.description;
         let (density, width) = (self.material.density, d.width);
-        let mounting = self.mounting();
         let mut inertia: Vec<Inertia<D>> = d
             .bodies
             .iter()
@@ -132,6 +111,63 @@ impl NetworkModel {
                 }
             }
         }
+        inertia
+    }
+
+    /// The message of a failed modal solve in the family of modes antisymmetric about
+    /// `anti`, a massless body named by the body it images (`images`, on a part unfolded).
+    fn mode_error(&self, err: ModeError, images: &[Body], anti: &[Axis]) -> String {
+        let d = &self.description;
+        let family = if anti.is_empty() {
+            String::new()
+        } else {
+            let names: Vec<&str> = anti.iter().map(|a| a.name()).collect();
+            format!(
+                " in the modes antisymmetric about the {} axis",
+                names.join(" and ")
+            )
+        };
+        match err {
+            ModeError::Network(err) => format!("{}{family}", self.network_error(err)),
+            ModeError::Massless { body } => {
+                let b = (0..d.bodies.len())
+                    .find(|&b| body == b || images.get(b) == Some(&Body::Rigid(body)))
+                    .unwrap_or(0);
+                format!(
+                    "body \"{}\" ({}) has no mass where it can move{family}",
+                    d.bodies[b].name, d.bodies[b].key
+                )
+            }
+        }
+    }
+
+    /// The `count` lowest natural frequencies of the network `e` (Hz): each body a plate of
+    /// the material's density and the part's width cut to its outline or its link, the
+    /// first output's payload at its point, the actuator a spring to the ground at the
+    /// input along its direction (the stack's far end on the base), the flexures massless
+    /// ([`super::modes`]). [`Model::unavailable`] has checked that every body has a shape
+    /// and that the part has a mounting.
+    ///
+    /// With mirror axes the described part carries its share of each body across an axis
+    /// ([`described_piece`]), and the modes are found family by family ([`families`]): those
+    /// symmetric about every axis, then those antisymmetric about one or both, each family
+    /// its own holds on the bodies across the axes ([`axis_holds`]); the lowest `count` of
+    /// all are the whole part's. The stack, between the input's face and its image across
+    /// `network.input.across`, is not stretched in a mode antisymmetric about that axis (the
+    /// two faces move alike), and is left out of those families. A grounded part's payload
+    /// rides on each image of the first output's face. A part without ground stands on the
+    /// image of a port across an axis ([`Self::mounting`]), which breaks the symmetry about
+    /// that axis: the described part is joined to its image across it, that port's image the
+    /// ground ([`Network::unfolded`]), the payload on the port's face alone, and the
+    /// families are those about the other axis.
+    pub(super) fn frequencies<D: Scalar>(
+        &self,
+        e: &Evaluated<D>,
+        count: usize,
+    ) -> Result<Vec<D>, String> {
+        let d = &self.description;
+        let mounting = self.mounting();
+        let inertia = self.body_inertia(e);
         let stack = self.actuator.stiffness.map(|k| {
             let port = &e.ports[0];
             Spring {
@@ -188,37 +224,9 @@ impl NetworkModel {
             }
             let (body, at) = (e.ports[1].body, e.ports[1].point);
             inertia[body] = inertia[body].with_point_mass(d.outputs[0].payload * payload_share, at);
-            let family = || {
-                if anti.is_empty() {
-                    String::new()
-                } else {
-                    let names: Vec<&str> = anti.iter().map(|a| a.name()).collect();
-                    format!(
-                        " in the modes antisymmetric about the {} axis",
-                        names.join(" and ")
-                    )
-                }
-            };
-            let modes =
-                network
-                    .modes_with(&inertia, &directed, count)
-                    .map_err(|err| match err {
-                        ModeError::Network(err) => {
-                            format!("{}{}", self.network_error(err), family())
-                        }
-                        ModeError::Massless { body } => {
-                            // an image is named by the body it images
-                            let b = (0..d.bodies.len())
-                                .find(|&b| body == b || images.get(b) == Some(&Body::Rigid(body)))
-                                .unwrap_or(0);
-                            format!(
-                                "body \"{}\" ({}) has no mass where it can move{}",
-                                d.bodies[b].name,
-                                d.bodies[b].key,
-                                family()
-                            )
-                        }
-                    })?;
+            let modes = network
+                .modes_with(&inertia, &directed, count)
+                .map_err(|err| self.mode_error(err, &images, &anti))?;
             found.extend(modes.into_iter().map(|m| m.frequency));
         }
         if found.len() < count {
