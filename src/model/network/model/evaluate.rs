@@ -43,39 +43,17 @@ impl NetworkModel {
         result
     }
 
-    /// [`NetworkModel::evaluate_generic`] in the buffers of `work`.
-    pub(super) fn evaluate_in<D: Scalar>(
+    /// The load cases the wanted outputs need, solved on one factorization of the evaluated
+    /// network `e`: the input's where `input`, the first output's where `output` (read at
+    /// the input too where its compliance is `condensed` out of the output's).
+    fn solve_wanted<'a, D: Scalar>(
         &self,
-        x: &[D],
-        modulus: Option<D>,
-        wanted: &[usize],
-        out: &mut [D],
-        work: &mut Work<D>,
-    ) -> Result<(), String> {
-        let Needs {
-            modes,
-            extent,
-            footprint,
-            input: needs_input,
-            output: needs_output,
-            condenses,
-            stresses: needs_stresses,
-        } = self.needs(wanted);
-        self.at(x, modulus, extent, work)?;
-        let Work {
-            evaluated: e,
-            solve,
-            stresses,
-            ..
-        } = work;
-        let e = &*e;
-        let free = |err| self.network_error(err);
-        use Quantity::*;
-        // read in place: a port copied out of the list, or into a load, was a `memcpy`
-        let along = |u: &Displacements<D>, i: usize| {
-            let p = &e.ports[i];
-            u.along_ref(Body::Rigid(p.body), &p.point, &p.force)
-        };
+        e: &'a Evaluated<D>,
+        needs_input: bool,
+        needs_output: bool,
+        condenses: bool,
+        solve: &'a mut SolveBuffers<D>,
+    ) -> Result<[Option<Displacements<'a, D>>; 2], String> {
         // the load cases wanted, from one factorization: the input's, the first output's
         let (load_in, load_out) = (
             std::slice::from_ref(&e.ports[0]),
@@ -105,12 +83,78 @@ impl NetworkModel {
             Some(
                 e.network
                     .solve_cases_in(&cases[..count], solve)
-                    .map_err(free)?,
+                    .map_err(|err| self.network_error(err))?,
             )
         };
         let case = |c: usize| solved.as_ref().map(|s| s.case(c));
-        let input: Option<Displacements<D>> = if needs_input { case(0) } else { None };
-        let output: Option<Displacements<D>> = if needs_output { case(count - 1) } else { None };
+        let input = if needs_input { case(0) } else { None };
+        let output = if needs_output { case(count - 1) } else { None };
+        Ok([input, output])
+    }
+
+    /// Each flexure's stresses at its ends on `from` and on `to` under the loads the input's
+    /// case `input` gives, times `shared`, the described part's share of the largest
+    /// actuator force.
+    fn end_stresses<D: Scalar>(
+        &self,
+        e: &Evaluated<D>,
+        input: &Displacements<D>,
+        shared: D,
+        out: &mut Vec<(D, D)>,
+    ) {
+        let ends = |h: usize| {
+            let l = e.network.flexure_loads(h, input);
+            let loads = HingeLoads {
+                axial: l.axial * shared,
+                shear: l.shear * shared,
+                moment: l.moment * shared,
+            };
+            // a beam's stresses are a strip's: the same beam, the same linear moment
+            let kind = self
+                .description
+                .hinges
+                .get(h)
+                .map_or(HingeKind::Strip, |hinge| hinge.kind);
+            // (loaded end, clamped end): the loads are at its end on `to`
+            let (to, from) = kind.end_stresses(&e.dims[h], self.description.width, &loads);
+            (from, to)
+        };
+        out.extend((0..e.network.flexures.len()).map(ends));
+    }
+
+    /// [`NetworkModel::evaluate_generic`] in the buffers of `work`.
+    pub(super) fn evaluate_in<D: Scalar>(
+        &self,
+        x: &[D],
+        modulus: Option<D>,
+        wanted: &[usize],
+        out: &mut [D],
+        work: &mut Work<D>,
+    ) -> Result<(), String> {
+        let Needs {
+            modes,
+            extent,
+            footprint,
+            input: needs_input,
+            output: needs_output,
+            condenses,
+            stresses: needs_stresses,
+        } = self.needs(wanted);
+        self.at(x, modulus, extent, work)?;
+        let Work {
+            evaluated: e,
+            solve,
+            stresses,
+            ..
+        } = work;
+        let e = &*e;
+        use Quantity::*;
+        // read in place: a port copied out of the list, or into a load, was a `memcpy`
+        let along = |u: &Displacements<D>, i: usize| {
+            let p = &e.ports[i];
+            u.along_ref(Body::Rigid(p.body), &p.point, &p.force)
+        };
+        let [input, output] = self.solve_wanted(e, needs_input, needs_output, condenses, solve)?;
         // W_ij = read_i C_ij share_j
         let w =
             |u: &Displacements<D>, i: usize, j: usize| along(u, i) * (self.read[i] * self.share[j]);
@@ -142,49 +186,15 @@ impl NetworkModel {
         let largest = w_ii.map(|w| w.recip() * stroke_in() + self.actuator.preload);
         // the described part's share of it, once for every flexure
         let shared = largest.map(|f| f * self.share[0]);
-        let loads = |h: usize| {
-            let u = input.as_ref().expect("listed");
-            let l = e.network.flexure_loads(h, u);
-            let f = shared.expect("listed");
-            HingeLoads {
-                axial: l.axial * f,
-                shear: l.shear * f,
-                moment: l.moment * f,
-            }
-        };
-        let flexures = e.network.flexures.len();
-        let ends = |h: usize| {
-            // a beam's stresses are a strip's: the same beam, the same linear moment
-            let kind = self
-                .description
-                .hinges
-                .get(h)
-                .map_or(HingeKind::Strip, |hinge| hinge.kind);
-            // (loaded end, clamped end): the loads are at its end on `to`
-            let (to, from) = kind.end_stresses(&e.dims[h], self.description.width, &loads(h));
-            (from, to)
-        };
         // each hinge's two end stresses once, however many outputs read them
         stresses.clear();
         if needs_stresses {
-            stresses.extend((0..flexures).map(ends));
+            let u = input.as_ref().expect("listed");
+            self.end_stresses(e, u, shared.expect("listed"), stresses);
         }
         let stresses = &*stresses;
-        // read in place: the pair copied out was two `Jet<8>`s for one
-        let ends = |h: usize| &stresses[h];
-        let extent = |i: usize| {
-            let hi = e
-                .points
-                .iter()
-                .skip(1)
-                .fold(e.points[0][i], |m, p| max(m, p[i]));
-            let lo = e
-                .points
-                .iter()
-                .skip(1)
-                .fold(-e.points[0][i], |m, p| max(m, -p[i]));
-            hi + lo
-        };
+        // each read in place: the pair copied out was two `Jet<8>`s for one
+        let extent = |i: usize| span(&e.points, i);
         let frequencies = match modes {
             Some(count) => self.frequencies(e, count)?,
             None => Vec::new(),
@@ -205,25 +215,12 @@ impl NetworkModel {
                 StrokeIn => stroke_in(),
                 StrokeOut => amplification(0) * stroke_in(),
                 BlockedForce => amplification(0) * stroke_in() * condensed(self.actuator.stiffness),
-                StressMax => (0..flexures)
-                    .map(|h| {
-                        let (a, b) = *ends(h);
-                        max(a, b)
-                    })
+                StressMax => (stresses.iter().map(|&(a, b)| max(a, b)))
                     .reduce(max)
                     .unwrap_or(D::from(0.0)),
-                Stress(h) => {
-                    let (a, b) = *ends(h);
-                    max(a, b)
-                }
-                StressEnd(h, to) => {
-                    let (a, b) = ends(h);
-                    if to {
-                        *b
-                    } else {
-                        *a
-                    }
-                }
+                Stress(h) => max(stresses[h].0, stresses[h].1),
+                StressEnd(h, true) => stresses[h].1,
+                StressEnd(h, false) => stresses[h].0,
                 Rotation(h) => {
                     let u = input.as_ref().expect("listed");
                     let f = &e.network.flexures[h];
@@ -285,4 +282,18 @@ impl NetworkModel {
         work.outputs = y;
         give(work);
     }
+}
+
+/// The extent of the described `points` along axis `i` (m): the largest coordinate less
+/// the least.
+fn span<D: Scalar>(points: &[[D; 2]], i: usize) -> D {
+    let hi = points
+        .iter()
+        .skip(1)
+        .fold(points[0][i], |m, p| max(m, p[i]));
+    let lo = points
+        .iter()
+        .skip(1)
+        .fold(-points[0][i], |m, p| max(m, -p[i]));
+    hi + lo
 }

@@ -5,6 +5,51 @@
 
 use super::*;
 
+/// The description's expressions at a design as [`NetworkModel::build`] reads them: `raw`
+/// gives each expression's value (the tape's, which cannot fail, or the trees'), lengths
+/// in the description's `unit`.
+pub(super) struct Read<'a, F> {
+    raw: &'a F,
+    unit: f64,
+}
+
+impl<D: Scalar, E: Message, F: Fn(&Keyed) -> Result<D, E>> Read<'_, F> {
+    fn eval(&self, e: &Keyed) -> Result<D, String> {
+        (self.raw)(e).map_err(Message::message)
+    }
+
+    fn length(&self, e: &Keyed) -> Result<D, E> {
+        (self.raw)(e).map(|v| v * self.unit)
+    }
+
+    fn point(&self, p: &Point) -> Result<[D; 2], E> {
+        Ok([self.length(&p[0])?, self.length(&p[1])?])
+    }
+
+    /// Written in place: a point returned was a `memcpy` of two `Jet<8>`s.
+    fn point_into(&self, p: &Point, out: &mut [D; 2]) -> Result<(), String> {
+        out[0] = self.length(&p[0]).map_err(Message::message)?;
+        out[1] = self.length(&p[1]).map_err(Message::message)?;
+        Ok(())
+    }
+}
+
+/// What joining a flexure writes ([`join`]): the bodies' reference points and whether each
+/// is placed yet, and the described points where they are kept; at the evaluation's modulus.
+pub(super) struct Joined<'a, D> {
+    modulus: Option<D>,
+    references: &'a mut [[D; 2]],
+    placed: &'a mut [bool],
+    points: Option<&'a mut Vec<[D; 2]>>,
+}
+
+impl<D: Scalar> Joined<'_, D> {
+    fn join(&mut self, f: &mut Flexure<D>) {
+        let points = self.points.as_deref_mut();
+        join(f, self.modulus, self.references, self.placed, points);
+    }
+}
+
 impl NetworkModel {
     /// The value of every expression of the description at the design `x` (SI), by slot;
     /// `None` where one has none.
@@ -106,25 +151,121 @@ impl NetworkModel {
         placed: &mut Vec<bool>,
     ) -> Result<(), String> {
         let d = &self.description;
-        let unit = d.unit;
-        let raw = &eval;
-        let eval = |e: &Keyed| raw(e).map_err(Message::message);
-        let length = |e: &Keyed| raw(e).map(|v| v * unit);
-        let point = |p: &Point| -> Result<[D; 2], E> { Ok([length(&p[0])?, length(&p[1])?]) };
-        // written in place: a point returned was a `memcpy` of two `Jet<8>`s
-        let point_into = |p: &Point, out: &mut [D; 2]| -> Result<(), String> {
-            out[0] = length(&p[0]).map_err(Message::message)?;
-            out[1] = length(&p[1]).map_err(Message::message)?;
-            Ok(())
+        let r = Read {
+            raw: &eval,
+            unit: d.unit,
         };
+        let unit = d.unit;
+        self.place_bodies(&r, extent, out, placed)?;
         let Evaluated {
             network,
             ports,
             points,
-            offsets,
-            link_widths,
             dims,
             measures,
+            ..
+        } = out;
+        // each flexure written into its slot (a `Flexure` of `Jet<8>`s is 648 bytes, which
+        // built and then pushed was copied twice)
+        let count = d.hinges.len() + d.beams.len();
+        if network.flexures.len() != count {
+            network.flexures.clear();
+            network.flexures.resize(count, idle_flexure());
+        }
+        dims.resize_with(count, Vec::new);
+        let kept = extent.then_some(points);
+        let joined = Joined {
+            modulus,
+            references: &mut network.references,
+            placed,
+            points: kept,
+        };
+        let (hinge_flexures, beam_flexures) = network.flexures.split_at_mut(d.hinges.len());
+        let (hinge_dims, beam_dims) = dims.split_at_mut(d.hinges.len());
+        let joined = self.join_hinges(&r, &axis, hinge_flexures, hinge_dims, joined)?;
+        self.join_beams(&r, beam_flexures, beam_dims, joined)?;
+        network.held.clear();
+        network.held.extend_from_slice(&self.held);
+        network.springs.clear();
+        network.guides.clear();
+        for g in &d.supports {
+            let [dx, dy] = r.point(&g.direction).map_err(Message::message)?;
+            let norm = (dx * dx + dy * dy).sqrt();
+            if norm.re() == 0.0 || !norm.re().is_finite() {
+                return Err(format!(
+                    "support ({}.direction): its direction is zero",
+                    g.key
+                ));
+            }
+            network.guides.push(Guide {
+                body: g.body,
+                point: r.point(&g.at).map_err(Message::message)?,
+                direction: [dx / norm, dy / norm],
+            });
+        }
+        assert!(
+            placed.iter().all(|&p| p),
+            "every body has a hinge or a beam, whose end is a point of it"
+        );
+        // written in place, as the flexures
+        if ports.len() != self.directions.len() {
+            let zero = D::from(0.0);
+            ports.clear();
+            ports.resize(
+                self.directions.len(),
+                Load {
+                    body: 0,
+                    point: [zero; 2],
+                    force: [zero; 2],
+                    moment: zero,
+                },
+            );
+        }
+        let described = std::iter::once(&d.input).chain(&d.outputs);
+        for ((p, known), port) in described.zip(&self.directions).zip(ports.iter_mut()) {
+            port.force = match known {
+                Some(unit) => unit.map(D::from),
+                None => {
+                    let [dx, dy] = r.point(&p.direction).map_err(Message::message)?;
+                    let norm = (dx * dx + dy * dy).sqrt();
+                    if norm.re() == 0.0 {
+                        return Err(format!("port \"{}\": its direction is zero", p.name));
+                    }
+                    [dx / norm, dy / norm]
+                }
+            };
+            port.body = p.body;
+            r.point_into(&p.at, &mut port.point)?;
+        }
+        measures.clear();
+        for m in &d.measures {
+            let v = r.eval(&m.value)?;
+            measures.push(if m.dimension == Dimension::Length {
+                v * unit
+            } else {
+                v
+            });
+        }
+        Ok(())
+    }
+
+    /// Each body's reference point (its first point) into the network's references, and
+    /// where `extent`, every described point (each body's, then the ground's) with each
+    /// body's offset among them and its link's width.
+    fn place_bodies<D: Scalar, E: Message>(
+        &self,
+        r: &Read<'_, impl Fn(&Keyed) -> Result<D, E>>,
+        extent: bool,
+        out: &mut Evaluated<D>,
+        placed: &mut Vec<bool>,
+    ) -> Result<(), String> {
+        let d = &self.description;
+        let Evaluated {
+            network,
+            points,
+            offsets,
+            link_widths,
+            ..
         } = out;
         points.clear();
         offsets.clear();
@@ -141,7 +282,7 @@ impl NetworkModel {
             let width = body
                 .link_width
                 .as_ref()
-                .map(|w| length(w).map_err(Message::message))
+                .map(|w| r.length(w).map_err(Message::message))
                 .transpose()?;
             if let (Some(w), Some(keyed)) = (width, &body.link_width) {
                 if w.re() <= 0.0 || w.re().is_nan() {
@@ -154,12 +295,12 @@ impl NetworkModel {
             }
             // the statics read a body's first point alone, its reference
             if let Some(p) = body.points.first() {
-                point_into(p, &mut references[b])?;
+                r.point_into(p, &mut references[b])?;
                 placed[b] = true;
                 if extent {
                     points.push(references[b]);
                     for p in &body.points[1..] {
-                        points.push(point(p).map_err(Message::message)?);
+                        points.push(r.point(p).map_err(Message::message)?);
                     }
                 }
             }
@@ -169,30 +310,35 @@ impl NetworkModel {
         }
         if extent {
             for p in &d.ground {
-                points.push(point(p).map_err(Message::message)?);
+                points.push(r.point(p).map_err(Message::message)?);
             }
         }
-        // each flexure written into its slot (a `Flexure` of `Jet<8>`s is 648 bytes, which
-        // built and then pushed was copied twice)
-        let count = d.hinges.len() + d.beams.len();
-        if network.flexures.len() != count {
-            network.flexures.clear();
-            network.flexures.resize(count, idle_flexure());
-        }
-        dims.resize_with(count, Vec::new);
+        Ok(())
+    }
+
+    /// Each hinge's dimensions into `dims` and its flexure into `flexures`, joined.
+    fn join_hinges<'a, D: Scalar, E: Message>(
+        &self,
+        r: &Read<'_, impl Fn(&Keyed) -> Result<D, E>>,
+        axis: &impl Fn(usize) -> Option<[D; 2]>,
+        flexures: &mut [Flexure<D>],
+        dims: &mut [Vec<D>],
+        mut joined: Joined<'a, D>,
+    ) -> Result<Joined<'a, D>, String> {
+        let d = &self.description;
         for (i, ((h, dd), f)) in d
             .hinges
             .iter()
             .zip(dims.iter_mut())
-            .zip(&mut network.flexures)
+            .zip(flexures.iter_mut())
             .enumerate()
         {
             dd.clear();
             for (e, info) in h.dimensions.iter().zip(h.kind.dimensions()) {
                 dd.push(if info.dimension == Dimension::Length {
-                    length(e).map_err(Message::message)?
+                    r.length(e).map_err(Message::message)?
                 } else {
-                    eval(e)?
+                    r.eval(e)?
                 });
             }
             if let Some(why) = domain_error(h, dd) {
@@ -200,11 +346,11 @@ impl NetworkModel {
             }
             f.from = h.from.map_or(Body::Ground, Body::Rigid);
             f.to = h.to.map_or(Body::Ground, Body::Rigid);
-            point_into(&h.start, &mut f.start)?;
+            r.point_into(&h.start, &mut f.start)?;
             f.axis = match axis(i) {
                 Some(axis) => axis,
                 None => {
-                    let (s, c) = eval(&h.angle)?.sin_cos();
+                    let (s, c) = r.eval(&h.angle)?.sin_cos();
                     [c, s]
                 }
             };
@@ -214,19 +360,24 @@ impl NetworkModel {
             }
             f.end = end_of(&f.start, &f.axis, f.length);
             hinge_compliance(h.kind, dd, d.width, &self.material, &mut f.compliance);
-            join(
-                f,
-                modulus,
-                references,
-                placed,
-                extent.then_some(&mut *points),
-            );
+            joined.join(f);
         }
-        let beams = d.beams.iter().zip(dims[d.hinges.len()..].iter_mut());
-        for ((b, dd), f) in beams.zip(&mut network.flexures[d.hinges.len()..]) {
-            let start = point(&b.start).map_err(Message::message)?;
-            let end = point(&b.end).map_err(Message::message)?;
-            let thickness = length(&b.thickness).map_err(Message::message)?;
+        Ok(joined)
+    }
+
+    /// Each beam's length and thickness into `dims` and its flexure into `flexures`, joined.
+    fn join_beams<D: Scalar, E: Message>(
+        &self,
+        r: &Read<'_, impl Fn(&Keyed) -> Result<D, E>>,
+        flexures: &mut [Flexure<D>],
+        dims: &mut [Vec<D>],
+        mut joined: Joined<'_, D>,
+    ) -> Result<(), String> {
+        let d = &self.description;
+        for ((b, dd), f) in d.beams.iter().zip(dims.iter_mut()).zip(flexures.iter_mut()) {
+            let start = r.point(&b.start).map_err(Message::message)?;
+            let end = r.point(&b.end).map_err(Message::message)?;
+            let thickness = r.length(&b.thickness).map_err(Message::message)?;
             let (dx, dy) = (end[0] - start[0], end[1] - start[1]);
             let l = (dx * dx + dy * dy).sqrt();
             if l.re() == 0.0 {
@@ -254,75 +405,7 @@ impl NetworkModel {
                 l,
                 beam_compliance(l, thickness, d.width, &self.material),
             );
-            join(
-                f,
-                modulus,
-                references,
-                placed,
-                extent.then_some(&mut *points),
-            );
-        }
-        network.held.clear();
-        network.held.extend_from_slice(&self.held);
-        network.springs.clear();
-        network.guides.clear();
-        for g in &d.supports {
-            let [dx, dy] = point(&g.direction).map_err(Message::message)?;
-            let norm = (dx * dx + dy * dy).sqrt();
-            if norm.re() == 0.0 || !norm.re().is_finite() {
-                return Err(format!(
-                    "support ({}.direction): its direction is zero",
-                    g.key
-                ));
-            }
-            network.guides.push(Guide {
-                body: g.body,
-                point: point(&g.at).map_err(Message::message)?,
-                direction: [dx / norm, dy / norm],
-            });
-        }
-        assert!(
-            placed.iter().all(|&p| p),
-            "every body has a hinge or a beam, whose end is a point of it"
-        );
-        // written in place, as the flexures
-        if ports.len() != self.directions.len() {
-            let zero = D::from(0.0);
-            ports.clear();
-            ports.resize(
-                self.directions.len(),
-                Load {
-                    body: 0,
-                    point: [zero; 2],
-                    force: [zero; 2],
-                    moment: zero,
-                },
-            );
-        }
-        let described = std::iter::once(&d.input).chain(&d.outputs);
-        for ((p, known), port) in described.zip(&self.directions).zip(ports.iter_mut()) {
-            port.force = match known {
-                Some(unit) => unit.map(D::from),
-                None => {
-                    let [dx, dy] = point(&p.direction).map_err(Message::message)?;
-                    let norm = (dx * dx + dy * dy).sqrt();
-                    if norm.re() == 0.0 {
-                        return Err(format!("port \"{}\": its direction is zero", p.name));
-                    }
-                    [dx / norm, dy / norm]
-                }
-            };
-            port.body = p.body;
-            point_into(&p.at, &mut port.point)?;
-        }
-        measures.clear();
-        for m in &d.measures {
-            let v = eval(&m.value)?;
-            measures.push(if m.dimension == Dimension::Length {
-                v * unit
-            } else {
-                v
-            });
+            joined.join(f);
         }
         Ok(())
     }
