@@ -12,7 +12,7 @@ mod start_command;
 mod study_command;
 mod tolerance_command;
 mod verify_command;
-use args::{Cli, Command, DesignArgs};
+use args::{Cli, Command, DesignArgs, StudyArgs};
 use failure::{emit, print_json, Failure};
 use start_command::load_problem;
 use study_command::{run_pareto, run_study, study_setup};
@@ -39,7 +39,7 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
     }
-    match run(Cli::parse().command) {
+    match dispatch(Cli::parse().command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
             // exit 4: feasible designs, written, that did not converge: no error
@@ -50,7 +50,7 @@ fn main() -> ExitCode {
     }
 }
 
-fn run(command: Command) -> Result<(), Failure> {
+fn dispatch(command: Command) -> Result<(), Failure> {
     match command {
         Command::Init {
             model,
@@ -100,14 +100,7 @@ fn run(command: Command) -> Result<(), Failure> {
             tolerance,
             max_dofs,
             no_3d,
-        } => {
-            let (problem_loaded, x) = chosen_design(&problem, &design)?;
-            let mut settings = verify_settings(&problem, tolerance, max_dofs)?;
-            settings.solid = !no_3d;
-            let dir = out.unwrap_or_else(|| problem_loaded.default_output_dir().join("verify"));
-            check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
-            run_verify(&problem_loaded, &x, &settings, &dir)
-        }
+        } => verify(&problem, &design, out, tolerance, max_dofs, no_3d),
         Command::Sweep {
             problem,
             param,
@@ -139,46 +132,8 @@ fn run(command: Command) -> Result<(), Failure> {
             refine,
             max_fe,
             report,
-        } => {
-            let (mut problem, options) = study_setup(&problem, &study)?;
-            if let Some(r) = refine {
-                problem.refine.enabled = FIDELITIES.get(&r).unwrap_or(false);
-            }
-            if let Some(n) = max_fe {
-                let (lo, hi) = flexopt::problem::refine::MAX_FE;
-                if !(lo..=hi).contains(&n) {
-                    return Err(Failure::bad_input(format!(
-                        "{}: key `--max-fe`: must lie between {lo} and {hi}, got {n}",
-                        problem.file.display()
-                    )));
-                }
-                problem.refine.max_fe = n as usize;
-            }
-            if !problem.refine.enabled {
-                if let Some(e) = problem.stand_in_error("an unrefined run") {
-                    return Err(Failure::bad_input(e));
-                }
-            }
-            let dir = output_dir(&problem, study.out)?;
-            let report = report.then(|| problem_text(&problem));
-            run_study(&problem, &options, &dir, verify, report.as_ref())
-        }
-        Command::Report { dir, problem } => {
-            let text = problem
-                .map(|p| {
-                    flexopt::problem::read_problem_text(&p)
-                        .map(|text| ProblemText {
-                            path: p.display().to_string(),
-                            text,
-                        })
-                        .map_err(|e| {
-                            Failure::bad_input(format!("{}: key `--problem`: {e}", p.display()))
-                        })
-                })
-                .transpose()?;
-            let written = write_report(&dir, text.as_ref())?;
-            emit(&format!("wrote {}\n", written.display()))
-        }
+        } => run(&problem, study, verify, refine, max_fe, report),
+        Command::Report { dir, problem } => report(&dir, problem.as_deref()),
         Command::Tolerance {
             problem,
             design,
@@ -189,14 +144,8 @@ fn run(command: Command) -> Result<(), Failure> {
             fe,
             fe_samples,
         } => {
-            let (problem_loaded, x) = chosen_design(&problem, &design)?;
-            let settings = tolerance_command::settings(&problem_loaded, samples, seed, threads)?;
-            let fe = fe
-                .then(|| tolerance_command::fe_samples(&problem_loaded, fe_samples, settings))
-                .transpose()?;
-            let dir = out.unwrap_or_else(|| problem_loaded.default_output_dir().join("tolerance"));
-            check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
-            tolerance_command::run(&problem_loaded, &x, settings, fe, &dir)
+            let fe_samples = fe.then_some(fe_samples);
+            tolerance(&problem, &design, samples, seed, threads, out, fe_samples)
         }
         Command::Pareto {
             problem,
@@ -206,21 +155,116 @@ fn run(command: Command) -> Result<(), Failure> {
             steps,
             study,
         } => {
-            let (problem, options) = study_setup(&problem, &study)?;
-            // a front's every point is an analytic optimum
-            if let Some(e) = problem.stand_in_error("a front") {
-                return Err(Failure::bad_input(e));
-            }
             let spec = ParetoSpec {
                 output: vary,
                 from,
                 to,
                 steps,
             };
-            let dir = output_dir(&problem, study.out)?;
-            run_pareto(&problem, &spec, &options, &dir)
+            pareto(&problem, spec, &study)
         }
     }
+}
+
+/// `flexopt verify`: the chosen design's part checked by finite elements, at the
+/// discretization error `tolerance` within `max_dofs`, in 3D too unless `no_3d`.
+fn verify(
+    path: &Path,
+    design: &DesignArgs,
+    out: Option<PathBuf>,
+    tolerance: Option<f64>,
+    max_dofs: Option<usize>,
+    no_3d: bool,
+) -> Result<(), Failure> {
+    let (problem, x) = chosen_design(path, design)?;
+    let mut settings = verify_settings(path, tolerance, max_dofs)?;
+    settings.solid = !no_3d;
+    let dir = out.unwrap_or_else(|| problem.default_output_dir().join("verify"));
+    check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
+    run_verify(&problem, &x, &settings, &dir)
+}
+
+/// `flexopt run`: the study, its optimum refined against the fidelity `refine` names within
+/// `max_fe` checks where asked, checked by FE where `verify`, with its report where `report`.
+fn run(
+    path: &Path,
+    study: StudyArgs,
+    verify: bool,
+    refine: Option<String>,
+    max_fe: Option<i64>,
+    report: bool,
+) -> Result<(), Failure> {
+    let (mut problem, options) = study_setup(path, &study)?;
+    if let Some(r) = refine {
+        problem.refine.enabled = FIDELITIES.get(&r).unwrap_or(false);
+    }
+    if let Some(n) = max_fe {
+        let (lo, hi) = flexopt::problem::refine::MAX_FE;
+        if !(lo..=hi).contains(&n) {
+            return Err(Failure::bad_input(format!(
+                "{}: key `--max-fe`: must lie between {lo} and {hi}, got {n}",
+                problem.file.display()
+            )));
+        }
+        problem.refine.max_fe = n as usize;
+    }
+    if !problem.refine.enabled {
+        if let Some(e) = problem.stand_in_error("an unrefined run") {
+            return Err(Failure::bad_input(e));
+        }
+    }
+    let dir = output_dir(&problem, study.out)?;
+    let report = report.then(|| problem_text(&problem));
+    run_study(&problem, &options, &dir, verify, report.as_ref())
+}
+
+/// `flexopt report`: the design report of a run's folder `dir`, with the problem file's
+/// text where `problem` names it.
+fn report(dir: &Path, problem: Option<&Path>) -> Result<(), Failure> {
+    let text = problem
+        .map(|p| {
+            flexopt::problem::read_problem_text(p)
+                .map(|text| ProblemText {
+                    path: p.display().to_string(),
+                    text,
+                })
+                .map_err(|e| Failure::bad_input(format!("{}: key `--problem`: {e}", p.display())))
+        })
+        .transpose()?;
+    let written = write_report(dir, text.as_ref())?;
+    emit(&format!("wrote {}\n", written.display()))
+}
+
+/// `flexopt tolerance`: the chosen design's yield under the file's tolerances, by `samples`
+/// Monte Carlo samples of the model, and by `fe_samples` of the part where given.
+fn tolerance(
+    path: &Path,
+    design: &DesignArgs,
+    samples: usize,
+    seed: Option<u64>,
+    threads: Option<usize>,
+    out: Option<PathBuf>,
+    fe_samples: Option<usize>,
+) -> Result<(), Failure> {
+    let (problem, x) = chosen_design(path, design)?;
+    let settings = tolerance_command::settings(&problem, samples, seed, threads)?;
+    let fe = fe_samples
+        .map(|n| tolerance_command::fe_samples(&problem, n, settings))
+        .transpose()?;
+    let dir = out.unwrap_or_else(|| problem.default_output_dir().join("tolerance"));
+    check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
+    tolerance_command::run(&problem, &x, settings, fe, &dir)
+}
+
+/// `flexopt pareto`: the front `spec` steps, a study at each step.
+fn pareto(path: &Path, spec: ParetoSpec, study: &StudyArgs) -> Result<(), Failure> {
+    let (problem, options) = study_setup(path, study)?;
+    // a front's every point is an analytic optimum
+    if let Some(e) = problem.stand_in_error("a front") {
+        return Err(Failure::bad_input(e));
+    }
+    let dir = output_dir(&problem, study.out.clone())?;
+    run_pareto(&problem, &spec, &options, &dir)
 }
 
 /// The problem file's text for `run --report`, read again from its path (standard input is

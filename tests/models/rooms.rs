@@ -428,7 +428,6 @@ const OVER_THE_LIMITS: &[&str] = &[
     "src/fe/mesh/triangles.rs fn first_mesh",
     "src/fe/verify/level.rs fn solve_level",
     "src/fe/verify/mod.rs fn verify",
-    "src/main.rs fn run",
     "src/model/bridge/part/fe_cases.rs fn analysis",
     "src/model/bridge/part/mod.rs fn spec",
     "src/optim/qp/direct.rs fn solve_on_active_set",
