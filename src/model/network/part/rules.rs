@@ -113,6 +113,10 @@ fn key(own: &[Vec<Axis>], b: usize, t: Image) -> Group {
     }
 }
 
+/// A body's piece as drawn: the body (by slot), its corners' range among the drawn
+/// corners, and whether they go around it.
+type DrawnPiece = (usize, usize, usize, bool);
+
 /// One solid of the part: where its corners lie among the shapes' corners, whether they go
 /// around it in order (else only their hull counts), and its group.
 #[derive(Debug, Clone, Copy)]
@@ -262,59 +266,30 @@ impl Layout {
         Some(bb)
     }
 
-    fn shapes_from<D: Scalar>(
+    /// The bodies as drawn at a design, each body's points from `point` and its link's width
+    /// from `length`, a body of pads from the flexures' `cuts`: the corners of every piece in
+    /// one vector, and each piece's body (by slot), its corners' range among them, and
+    /// whether they go around it (else only their hull counts: a body of pads, a body drawn
+    /// with its images across an axis).
+    fn drawn_bodies<D: Scalar>(
         &self,
         d: &Description,
-        s: &PartSettings,
-        eval: impl Fn(&Keyed) -> Option<D>,
-        keep: impl Fn(usize) -> bool,
-    ) -> Option<Shapes<D>> {
-        let length = |e: &Keyed| Some(eval(e)? * d.unit);
-        let point = |p: &[Keyed; 2]| Some([length(&p[0])?, length(&p[1])?]);
-        let mut cuts = Vec::with_capacity(d.hinges.len() + d.beams.len());
-        let mut sizes = Vec::with_capacity(2 * d.beams.len());
-        for h in &d.hinges {
-            let mut dims = [D::from(0.0); MAX_HINGE_DIMENSIONS];
-            for ((e, info), dim) in h.dimensions.iter().zip(h.kind.dimensions()).zip(&mut dims) {
-                *dim = if info.dimension == Dimension::Length {
-                    length(e)?
-                } else {
-                    eval(e)?
-                };
-            }
-            let (sin, cos) = eval(&h.angle)?.sin_cos();
-            let dims = &dims[..h.dimensions.len()];
-            cuts.push(cut(h.kind, dims, point(&h.start)?, [cos, sin], s));
-        }
-        for b in &d.beams {
-            let (start, end) = (point(&b.start)?, point(&b.end)?);
-            let thickness = length(&b.thickness)?;
-            let along = [end[0] - start[0], end[1] - start[1]];
-            let length = (along[0] * along[0] + along[1] * along[1]).sqrt();
-            sizes.extend([length, thickness]);
-            let u = if length.re() > 0.0 {
-                scale(along, length.recip())
-            } else {
-                [D::from(1.0), D::from(0.0)]
-            };
-            cuts.push(cut(HingeKind::Strip, &[length, thickness], start, u, s));
-        }
-        // the bodies as drawn: each piece's body, its corners among `at`, and whether they
-        // go around it
+        point: &impl Fn(&[Keyed; 2]) -> Option<Pt<D>>,
+        length: &impl Fn(&Keyed) -> Option<D>,
+        cuts: &[Cut<D>],
+    ) -> Option<(Vec<Pt<D>>, Vec<DrawnPiece>)> {
         let mut at: Vec<Pt<D>> = Vec::with_capacity(self.drawn_corners);
-        let mut drawn: Vec<(usize, usize, usize, bool)> = Vec::with_capacity(self.drawn_corners);
+        let mut drawn: Vec<DrawnPiece> = Vec::with_capacity(self.drawn_corners);
         let mut points: Vec<Pt<D>> = Vec::with_capacity(self.drawn_corners);
-        let outline = |b: usize,
-                       points: &[Pt<D>],
-                       at: &mut Vec<Pt<D>>,
-                       drawn: &mut Vec<(usize, usize, usize, bool)>| {
-            let real: Vec<[f64; 2]> = points.iter().map(|p| [p[0].re(), p[1].re()]).collect();
-            for piece in convex_piece_indices(&real) {
-                let first = at.len();
-                at.extend(piece.iter().map(|&k| points[k]));
-                drawn.push((b, first, at.len(), true));
-            }
-        };
+        let outline =
+            |b: usize, points: &[Pt<D>], at: &mut Vec<Pt<D>>, drawn: &mut Vec<DrawnPiece>| {
+                let real: Vec<[f64; 2]> = points.iter().map(|p| [p[0].re(), p[1].re()]).collect();
+                for piece in convex_piece_indices(&real) {
+                    let first = at.len();
+                    at.extend(piece.iter().map(|&k| points[k]));
+                    drawn.push((b, first, at.len(), true));
+                }
+            };
         if d.ground.len() >= 3 {
             points.clear();
             for p in &d.ground {
@@ -360,6 +335,47 @@ impl Layout {
                 }
             }
         }
+        Some((at, drawn))
+    }
+
+    fn shapes_from<D: Scalar>(
+        &self,
+        d: &Description,
+        s: &PartSettings,
+        eval: impl Fn(&Keyed) -> Option<D>,
+        keep: impl Fn(usize) -> bool,
+    ) -> Option<Shapes<D>> {
+        let length = |e: &Keyed| Some(eval(e)? * d.unit);
+        let point = |p: &[Keyed; 2]| Some([length(&p[0])?, length(&p[1])?]);
+        let mut cuts = Vec::with_capacity(d.hinges.len() + d.beams.len());
+        let mut sizes = Vec::with_capacity(2 * d.beams.len());
+        for h in &d.hinges {
+            let mut dims = [D::from(0.0); MAX_HINGE_DIMENSIONS];
+            for ((e, info), dim) in h.dimensions.iter().zip(h.kind.dimensions()).zip(&mut dims) {
+                *dim = if info.dimension == Dimension::Length {
+                    length(e)?
+                } else {
+                    eval(e)?
+                };
+            }
+            let (sin, cos) = eval(&h.angle)?.sin_cos();
+            let dims = &dims[..h.dimensions.len()];
+            cuts.push(cut(h.kind, dims, point(&h.start)?, [cos, sin], s));
+        }
+        for b in &d.beams {
+            let (start, end) = (point(&b.start)?, point(&b.end)?);
+            let thickness = length(&b.thickness)?;
+            let along = [end[0] - start[0], end[1] - start[1]];
+            let length = (along[0] * along[0] + along[1] * along[1]).sqrt();
+            sizes.extend([length, thickness]);
+            let u = if length.re() > 0.0 {
+                scale(along, length.recip())
+            } else {
+                [D::from(1.0), D::from(0.0)]
+            };
+            cuts.push(cut(HingeKind::Strip, &[length, thickness], start, u, s));
+        }
+        let (at, drawn) = self.drawn_bodies(d, &point, &length, &cuts)?;
         let group = |g: Group| {
             self.groups
                 .iter()
