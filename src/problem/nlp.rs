@@ -461,17 +461,14 @@ impl<'p> DesignNlp<'p> {
                 .zip(x)
                 .any(|(v, &xi)| v.fixed && xi != v.lower)
         };
-        if !self.problem.model().mirror(&mut x)
-            || fixed_moved(&x)
-            || !self.same_wanted(&original, &x)
-        {
+        if !self.problem.model().mirror(&mut x) || fixed_moved(&x) {
             return None;
         }
         let free: Vec<f64> = self.free.iter().map(|&p| x[p]).collect();
         let m = self.scale(&free);
-        m.iter()
-            .all(|v| (-1e-12..=1.0 + 1e-12).contains(v))
-            .then_some(m)
+        // the outputs last: they cost two evaluations, the bounds nothing
+        let within = m.iter().all(|v| (-1e-12..=1.0 + 1e-12).contains(v));
+        (within && self.same_wanted(&original, &x)).then_some(m)
     }
 
     /// Whether the wanted outputs at `x` and at `y` are the same up to sign (relative
