@@ -257,7 +257,7 @@ impl Expression {
                         if x.re() == 0.0 && y.re() == 0.0 {
                             return Err(self.error(i, "has both arguments zero"));
                         }
-                        atan2(y, x)
+                        scalar::atan2(y, x)
                     }
                     Function::Sqrt => {
                         if x.re() < 0.0 {
@@ -346,25 +346,6 @@ fn asin_or_acos<D: Scalar>(x: D, f: Function) -> D {
         asin
     } else {
         -asin + FRAC_PI_2
-    }
-}
-
-/// The angle of `(x, y)` in `(-pi, pi]`, from `atan` of the smaller ratio so that neither
-/// division is by a number near zero; its derivatives are atan's, the branch constants
-/// having none.
-fn atan2<D: Scalar>(y: D, x: D) -> D {
-    if x.re().abs() >= y.re().abs() {
-        let a = (y / x).atan();
-        if x.re() > 0.0 {
-            a
-        } else if y.re() >= 0.0 {
-            a + PI
-        } else {
-            a - PI
-        }
-    } else {
-        let half = if y.re() > 0.0 { FRAC_PI_2 } else { -FRAC_PI_2 };
-        -(x / y).atan() + half
     }
 }
 

@@ -174,6 +174,8 @@ impl<const N: usize> Div for Jet2<N> {
 super::scalar::constant_ops!(Jet2, scaled);
 
 impl<const N: usize> Scalar for Jet2<N> {
+    const SECOND_ORDER: bool = true;
+
     fn re(&self) -> f64 {
         self.re
     }

@@ -109,6 +109,14 @@ pub trait PartMaker: Send + Sync + std::fmt::Debug {
 /// ratio kept), for a tolerance on `E` ([`crate::problem::tolerances`]). A model gives it
 /// where every output that depends on the material does so through its stiffness alone.
 pub trait ModulusScaling: Send + Sync + std::fmt::Debug {
+    /// Why output `output` cannot be scaled or differentiated twice, where it cannot (an
+    /// output whose derivatives come from first-order ones alone): a robust study or a
+    /// tolerance on the modulus is refused for it.
+    fn unscaled(&self, output: usize) -> Option<String> {
+        let _ = output;
+        None
+    }
+
     /// As [`Model::evaluate`], at the moduli `modulus` times the nominal ones.
     fn evaluate_scaled(&self, x: &[f64], modulus: f64, wanted: &[usize], out: &mut [f64]);
 

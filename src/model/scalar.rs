@@ -15,6 +15,7 @@
 //! with gradients ran about 2.5 times faster than `DualSVec64<8>` in the same criterion run
 //! (see `benches/bridge.rs`). `tests/models/bridge_model.rs` checks that both give the same gradients.
 
+use std::f64::consts::{FRAC_PI_2, PI};
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -67,6 +68,11 @@ pub trait Scalar:
     /// num-dual's first-order ones (the tests' independent path, kept the function's own).
     const FROM_PARTIALS: bool = false;
 
+    /// Whether the number carries second derivatives (a robust study's Hessians): a value
+    /// whose derivatives are built from first-order ones alone (an equilibrium's, through
+    /// the implicit function theorem) refuses such a number rather than give it wrong ones.
+    const SECOND_ORDER: bool = false;
+
     /// The value `re` of a function of `args` whose partial derivatives there are
     /// `partials` (one per argument), with the chain rule's first derivatives
     /// `sum_k partials[k] args[k]'`: the local preaccumulation of Griewank and Walther,
@@ -113,8 +119,9 @@ impl Scalar for f64 {
 /// num-dual as well; the tests use this to check [`Jet`] against an independent
 /// implementation.
 macro_rules! num_dual_scalar {
-    ($($t:ty $(, const $n:ident)?);*) => {$(
+    ($($t:ty $(, const $n:ident)? => $second:expr);*) => {$(
         impl$(<const $n: usize>)? Scalar for $t {
+            const SECOND_ORDER: bool = $second;
             fn re(&self) -> f64 {
                 num_dual::DualStruct::re(self)
             }
@@ -143,7 +150,11 @@ macro_rules! num_dual_scalar {
     )*};
 }
 
-num_dual_scalar!(num_dual::Dual64; num_dual::DualSVec64<N>, const N; num_dual::Dual2SVec64<N>, const N);
+num_dual_scalar!(
+    num_dual::Dual64 => false;
+    num_dual::DualSVec64<N>, const N => false;
+    num_dual::Dual2SVec64<N>, const N => true
+);
 
 /// `sin` and `cos` of `x`: for `|x| <= pi/4`, where every angle of Table 1's bounds lies,
 /// by the minimax polynomial kernels of fdlibm (no argument reduction needed, error within
@@ -196,6 +207,25 @@ pub fn max<D: Scalar>(a: D, b: D) -> D {
         a
     } else {
         b
+    }
+}
+
+/// The angle of `(x, y)` in `(-pi, pi]`, from `atan` of the smaller ratio so that neither
+/// division is by a number near zero; its derivatives are atan's, the branch constants
+/// having none.
+pub fn atan2<D: Scalar>(y: D, x: D) -> D {
+    if x.re().abs() >= y.re().abs() {
+        let a = (y / x).atan();
+        if x.re() > 0.0 {
+            a
+        } else if y.re() >= 0.0 {
+            a + PI
+        } else {
+            a - PI
+        }
+    } else {
+        let half = if y.re() > 0.0 { FRAC_PI_2 } else { -FRAC_PI_2 };
+        -(x / y).atan() + half
     }
 }
 

@@ -13,7 +13,8 @@
 
 mod compile;
 
-use super::{asin_or_acos, atan2, Expression, Function};
+use super::{asin_or_acos, Expression, Function};
+use crate::model::scalar::atan2;
 use crate::model::scalar::{self, Scalar};
 use compile::Compiler;
 

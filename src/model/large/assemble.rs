@@ -8,19 +8,33 @@
 use faer::Mat;
 
 use super::element::{beam, spring};
-use super::{LargeError, Structure};
+use super::{LargeError, StructureOf};
+use crate::model::scalar::Scalar;
 
 /// A validated structure with its degrees of freedom sorted: the free ones (solved for)
-/// and the held ones (prescribed).
+/// and the held ones (prescribed). Over a scalar `D` as its structure ([`System`] the real
+/// one, which the paths solve).
 #[derive(Debug, Clone)]
-pub struct System<'a> {
-    pub structure: &'a Structure,
+pub struct SystemOf<'a, D> {
+    pub structure: &'a StructureOf<D>,
     /// The master of each node, if it is a slave.
     pub master: Vec<Option<usize>>,
     /// The indices into the full `3 * nodes` vector of the free degrees of freedom.
     pub free: Vec<usize>,
     /// The held degrees of freedom and their values at load factor 1.
-    pub held: Vec<(usize, f64)>,
+    pub held: Vec<(usize, D)>,
+}
+
+/// The system of a structure in real numbers.
+pub type System<'a> = SystemOf<'a, f64>;
+
+/// The internal forces less the loads `r`, the tangent `dr/du` (row-major, `m x m`) and
+/// `-dr/dlambda` before the prescribed displacements' share `q`, on every degree of
+/// freedom with the slaves' moved onto their masters.
+pub struct Full<D> {
+    pub k: Vec<D>,
+    pub r: Vec<D>,
+    pub q: Vec<D>,
 }
 
 /// The residual `r = g(u, lambda) - lambda f`, the tangent `dr/du` and the load vector
@@ -40,13 +54,13 @@ fn check(ok: bool, what: impl FnOnce() -> String) -> Result<(), LargeError> {
     }
 }
 
-impl<'a> System<'a> {
+impl<'a, D: Scalar> SystemOf<'a, D> {
     /// Checks `structure` and sorts its degrees of freedom.
-    pub fn new(structure: &'a Structure) -> Result<Self, LargeError> {
+    pub fn new(structure: &'a StructureOf<D>) -> Result<Self, LargeError> {
         let n = structure.nodes.len();
         check(n > 0, || "no nodes".into())?;
         check(
-            structure.nodes.iter().flatten().all(|v| v.is_finite()),
+            structure.nodes.iter().flatten().all(|v| v.re().is_finite()),
             || "a node position is not finite".into(),
         )?;
         let node_ok = |i: usize| i < n;
@@ -54,15 +68,15 @@ impl<'a> System<'a> {
             check(node_ok(b.a) && node_ok(b.b), || {
                 format!("beam {e}: node out of range")
             })?;
-            let (xa, xb) = (structure.nodes[b.a], structure.nodes[b.b]);
-            check((xb[0] - xa[0]).hypot(xb[1] - xa[1]) > 0.0, || {
-                format!("beam {e}: zero length")
-            })?;
-            let s = b.local((xb[0] - xa[0]).hypot(xb[1] - xa[1]));
-            let [[k11, k12], [k21, k22]] = s.bending;
-            let finite = [s.axial, k11, k12, k21, k22].iter().all(|v| v.is_finite());
+            let (xa, xb) = (re2(structure.nodes[b.a]), re2(structure.nodes[b.b]));
+            let l0 = (xb[0] - xa[0]).hypot(xb[1] - xa[1]);
+            check(l0 > 0.0, || format!("beam {e}: zero length"))?;
+            let s = b.local(D::from(l0));
+            let [[k11, k12], [k21, k22]] = s.bending.map(|row| row.map(|v| v.re()));
+            let axial = s.axial.re();
+            let finite = [axial, k11, k12, k21, k22].iter().all(|v| v.is_finite());
             check(
-                finite && s.axial > 0.0 && k11 > 0.0 && k11 * k22 - k12 * k21 > 0.0 && k12 == k21,
+                finite && axial > 0.0 && k11 > 0.0 && k11 * k22 - k12 * k21 > 0.0 && k12 == k21,
                 || format!("beam {e}: local stiffness {s:?} not symmetric positive definite"),
             )?;
         }
@@ -70,15 +84,15 @@ impl<'a> System<'a> {
             check(node_ok(s.a) && node_ok(s.b), || {
                 format!("spring {e}: node out of range")
             })?;
-            let (xa, xb) = (structure.nodes[s.a], structure.nodes[s.b]);
+            let (xa, xb) = (re2(structure.nodes[s.a]), re2(structure.nodes[s.b]));
             check((xb[0] - xa[0]).hypot(xb[1] - xa[1]) > 0.0, || {
                 format!("spring {e}: zero length")
             })?;
             let finite = [s.stiffness, s.free_stroke, s.preload]
                 .iter()
-                .all(|v| v.is_finite());
-            check(finite && s.stiffness > 0.0, || {
-                format!("spring {e}: stiffness {} not positive", s.stiffness)
+                .all(|v| v.re().is_finite());
+            check(finite && s.stiffness.re() > 0.0, || {
+                format!("spring {e}: stiffness {:?} not positive", s.stiffness)
             })?;
         }
         let mut master = vec![None; n];
@@ -102,7 +116,7 @@ impl<'a> System<'a> {
         }
         let mut held = Vec::new();
         for &(node, dof, value) in &structure.held {
-            check(node_ok(node) && value.is_finite(), || {
+            check(node_ok(node) && value.re().is_finite(), || {
                 format!("held node {node}")
             })?;
             check(master[node].is_none(), || {
@@ -115,14 +129,15 @@ impl<'a> System<'a> {
             held.push((i, value));
         }
         for &(node, force) in &structure.loads {
-            check(node_ok(node) && force.iter().all(|f| f.is_finite()), || {
-                format!("load at node {node}")
-            })?;
+            check(
+                node_ok(node) && force.iter().all(|f| f.re().is_finite()),
+                || format!("load at node {node}"),
+            )?;
         }
         let free = (0..3 * n)
             .filter(|&i| master[i / 3].is_none() && held.iter().all(|&(j, _)| j != i))
             .collect();
-        Ok(System {
+        Ok(SystemOf {
             structure,
             master,
             free,
@@ -131,26 +146,26 @@ impl<'a> System<'a> {
     }
 
     /// The full displacement vector from the free values and the load factor.
-    pub fn expand(&self, free: &[f64], lambda: f64) -> Vec<f64> {
-        let mut u = vec![0.0; 3 * self.structure.nodes.len()];
+    pub fn expand(&self, free: &[D], lambda: f64) -> Vec<D> {
+        let mut u = vec![D::from(0.0); 3 * self.structure.nodes.len()];
         for (&i, &v) in self.free.iter().zip(free) {
             u[i] = v;
         }
         for &(i, value) in &self.held {
-            u[i] = lambda * value;
+            u[i] = value * lambda;
         }
         self.place_slaves(&mut u);
         u
     }
 
-    fn offset(&self, node: usize, master: usize, theta: f64) -> ([f64; 2], [f64; 2]) {
+    fn offset(&self, node: usize, master: usize, theta: D) -> ([D; 2], [D; 2]) {
         let (xp, xb) = (self.structure.nodes[node], self.structure.nodes[master]);
         let r0 = [xp[0] - xb[0], xp[1] - xb[1]];
         let (s, c) = theta.sin_cos();
         (r0, [c * r0[0] - s * r0[1], s * r0[0] + c * r0[1]])
     }
 
-    fn place_slaves(&self, u: &mut [f64]) {
+    fn place_slaves(&self, u: &mut [D]) {
         for (p, m) in self.master.iter().enumerate() {
             if let Some(b) = *m {
                 let (r0, d) = self.offset(p, b, u[3 * b + 2]);
@@ -161,24 +176,27 @@ impl<'a> System<'a> {
         }
     }
 
-    /// Residual, tangent and load vector at the full displacement `u` (from [`Self::expand`]).
-    pub fn assemble(&self, u: &[f64], lambda: f64) -> Assembled {
+    /// The internal forces, tangent and load on every degree of freedom at the full
+    /// displacement `u` (from [`Self::expand`]) and load factor `lambda`.
+    pub fn assemble_full(&self, u: &[D], lambda: f64) -> Full<D> {
         let st = self.structure;
         let m = u.len();
-        let mut k = vec![0.0; m * m];
-        let mut r = vec![0.0; m];
+        let zero = D::from(0.0);
+        let mut k = vec![zero; m * m];
+        let mut r = vec![zero; m];
         // -dr/dlambda before the prescribed displacements' share
-        let mut q = vec![0.0; m];
+        let mut q = vec![zero; m];
         for b in &st.beams {
             let idx = [0, 1, 2].map(|j| 3 * b.a + j);
             let idx = [idx[0], idx[1], idx[2], 3 * b.b, 3 * b.b + 1, 3 * b.b + 2];
             let d = idx.map(|i| u[i]);
             let (xa, xb) = (st.nodes[b.a], st.nodes[b.b]);
-            let c = beam(xa, xb, b.local((xb[0] - xa[0]).hypot(xb[1] - xa[1])), &d);
+            let l0 = ((xb[0] - xa[0]) * (xb[0] - xa[0]) + (xb[1] - xa[1]) * (xb[1] - xa[1])).sqrt();
+            let c = beam(xa, xb, b.local(l0), &d);
             for (x, &i) in idx.iter().enumerate() {
-                r[i] += c.force[x];
+                r[i] = r[i] + c.force[x];
                 for (y, &j) in idx.iter().enumerate() {
-                    k[i * m + j] += c.stiffness[x][y];
+                    k[i * m + j] = k[i * m + j] + c.stiffness[x][y];
                 }
             }
         }
@@ -190,43 +208,43 @@ impl<'a> System<'a> {
                 st.nodes[s.a],
                 st.nodes[s.b],
                 s.stiffness,
-                lambda * per_lambda,
+                per_lambda * lambda,
                 &d,
             );
             for (x, &i) in idx.iter().enumerate() {
-                r[i] += c.force[x];
-                q[i] -= by_extension[x] * per_lambda;
+                r[i] = r[i] + c.force[x];
+                q[i] = q[i] - by_extension[x] * per_lambda;
                 for (y, &j) in idx.iter().enumerate() {
-                    k[i * m + j] += c.stiffness[x][y];
+                    k[i * m + j] = k[i * m + j] + c.stiffness[x][y];
                 }
             }
         }
         for &(node, force) in &st.loads {
             for j in 0..3 {
-                r[3 * node + j] -= lambda * force[j];
-                q[3 * node + j] += force[j];
+                r[3 * node + j] = r[3 * node + j] - force[j] * lambda;
+                q[3 * node + j] = q[3 * node + j] + force[j];
             }
         }
         self.condense(u, &mut k, &mut r, &mut q);
-        self.select(&k, &r, &q)
+        Full { k, r, q }
     }
 
     /// Moves the slaves' rows and columns onto their masters (`T^T K T` and `T^T r`).
-    fn condense(&self, u: &[f64], k: &mut [f64], r: &mut [f64], q: &mut [f64]) {
+    fn condense(&self, u: &[D], k: &mut [D], r: &mut [D], q: &mut [D]) {
         let m = u.len();
-        let slaves: Vec<(usize, usize, [f64; 2])> = (0..self.master.len())
+        let slaves: Vec<(usize, usize, [D; 2])> = (0..self.master.len())
             .filter_map(|p| {
                 let b = self.master[p]?;
                 Some((p, b, self.offset(p, b, u[3 * b + 2]).1))
             })
             .collect();
-        let map = |d: [f64; 2], v: [f64; 3]| [v[0], v[1], v[2] - d[1] * v[0] + d[0] * v[1]];
+        let map = |d: [D; 2], v: [D; 3]| [v[0], v[1], v[2] - d[1] * v[0] + d[0] * v[1]];
         for &(p, b, d) in &slaves {
             for row in 0..m {
                 let v = [0, 1, 2].map(|j| k[row * m + 3 * p + j]);
                 let t = map(d, v);
                 for j in 0..3 {
-                    k[row * m + 3 * b + j] += t[j];
+                    k[row * m + 3 * b + j] = k[row * m + 3 * b + j] + t[j];
                 }
             }
         }
@@ -235,18 +253,49 @@ impl<'a> System<'a> {
                 let v = [0, 1, 2].map(|j| k[(3 * p + j) * m + col]);
                 let t = map(d, v);
                 for j in 0..3 {
-                    k[(3 * b + j) * m + col] += t[j];
+                    k[(3 * b + j) * m + col] = k[(3 * b + j) * m + col] + t[j];
                 }
             }
             let rp = [0, 1, 2].map(|j| r[3 * p + j]);
-            k[(3 * b + 2) * m + 3 * b + 2] -= d[0] * rp[0] + d[1] * rp[1];
+            let at = (3 * b + 2) * m + 3 * b + 2;
+            k[at] = k[at] - (d[0] * rp[0] + d[1] * rp[1]);
             for vector in [&mut *r, &mut *q] {
                 let t = map(d, [0, 1, 2].map(|j| vector[3 * p + j]));
                 for j in 0..3 {
-                    vector[3 * b + j] += t[j];
+                    vector[3 * b + j] = vector[3 * b + j] + t[j];
                 }
             }
         }
+    }
+
+    /// The residual on the free degrees of freedom at their values `free` and load factor
+    /// `lambda`.
+    pub fn residual(&self, free: &[D], lambda: f64) -> Vec<D> {
+        let full = self.assemble_full(&self.expand(free, lambda), lambda);
+        self.free.iter().map(|&i| full.r[i]).collect()
+    }
+
+    /// The tangent on the free degrees of freedom at the full displacement `u`, row-major.
+    pub fn tangent(&self, u: &[D]) -> Vec<D> {
+        let full = self.assemble_full(u, 0.0);
+        let (m, f) = (u.len(), &self.free);
+        f.iter()
+            .flat_map(|&i| f.iter().map(move |&j| (i, j)))
+            .map(|(i, j)| full.k[i * m + j])
+            .collect()
+    }
+}
+
+/// The real parts of a point.
+fn re2<D: Scalar>(p: [D; 2]) -> [f64; 2] {
+    p.map(|v| v.re())
+}
+
+impl System<'_> {
+    /// Residual, tangent and load vector at the full displacement `u` (from [`Self::expand`]).
+    pub fn assemble(&self, u: &[f64], lambda: f64) -> Assembled {
+        let Full { k, r, q } = self.assemble_full(u, lambda);
+        self.select(&k, &r, &q)
     }
 
     fn select(&self, k: &[f64], r: &[f64], q: &[f64]) -> Assembled {

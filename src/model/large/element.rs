@@ -16,55 +16,71 @@
 //! notation; Battini and Pacoste, Comput. Methods Appl. Mech. Engrg. 191 (2002) 1755-1789,
 //! write the same element in three dimensions).
 
-use super::Local;
+use super::LocalOf;
+use crate::model::scalar::{atan2, Scalar};
 
 /// The internal force and tangent stiffness of an element.
-pub struct Contribution<const N: usize> {
-    pub force: [f64; N],
-    pub stiffness: [[f64; N]; N],
+pub struct Contribution<D, const N: usize> {
+    pub force: [D; N],
+    pub stiffness: [[D; N]; N],
+}
+
+/// `sqrt(x^2 + y^2)`.
+fn hypot<D: Scalar>(x: D, y: D) -> D {
+    (x * x + y * y).sqrt()
 }
 
 /// The beam from reference positions `xa, xb` under displacements `d` (6 values), of
-/// local linear stiffness `local`.
-pub fn beam(xa: [f64; 2], xb: [f64; 2], local: Local, d: &[f64; 6]) -> Contribution<6> {
+/// local linear stiffness `local`. Generic over the scalar so that the derivatives of the
+/// internal force by the design (through the positions and the local stiffness) come from
+/// the same code as its values ([`crate::model::network`]'s gradients at stroke).
+pub fn beam<D: Scalar>(
+    xa: [D; 2],
+    xb: [D; 2],
+    local: LocalOf<D>,
+    d: &[D; 6],
+) -> Contribution<D, 6> {
     let chord0 = [xb[0] - xa[0], xb[1] - xa[1]];
-    let l0 = chord0[0].hypot(chord0[1]);
+    let l0 = hypot(chord0[0], chord0[1]);
     // the chord's change apart from the chord, so that a small stretch keeps its digits
     let change = [d[3] - d[0], d[4] - d[1]];
     let chord = [chord0[0] + change[0], chord0[1] + change[1]];
-    let l = chord[0].hypot(chord[1]);
+    let l = hypot(chord[0], chord[1]);
     let (c, s) = (chord[0] / l, chord[1] / l);
-    let turn = (chord0[0] * change[1] - chord0[1] * change[0])
-        .atan2(l0 * l0 + chord0[0] * change[0] + chord0[1] * change[1]);
+    let turn = atan2(
+        chord0[0] * change[1] - chord0[1] * change[0],
+        l0 * l0 + chord0[0] * change[0] + chord0[1] * change[1],
+    );
     // l - l0 as (l^2 - l0^2) / (l + l0)
-    let stretch = (change[0] * (2.0 * chord0[0] + change[0])
-        + change[1] * (2.0 * chord0[1] + change[1]))
+    let stretch = (change[0] * (chord0[0] * 2.0 + change[0])
+        + change[1] * (chord0[1] * 2.0 + change[1]))
         / (l + l0);
     let (ta, tb) = (d[2] - turn, d[5] - turn);
     let (local, dmat) = local_law(local, l0, stretch, ta, tb);
-    let r = [-c, -s, 0.0, c, s, 0.0];
-    let z = [s, -c, 0.0, -s, c, 0.0];
-    let mut rows = [r, [0.0; 6], [0.0; 6]];
+    let zero = D::from(0.0);
+    let r = [-c, -s, zero, c, s, zero];
+    let z = [s, -c, zero, -s, c, zero];
+    let mut rows = [r, [zero; 6], [zero; 6]];
     for j in 0..6 {
         rows[1][j] = -z[j] / l;
         rows[2][j] = -z[j] / l;
     }
-    rows[1][2] += 1.0;
-    rows[2][5] += 1.0;
+    rows[1][2] = rows[1][2] + 1.0;
+    rows[2][5] = rows[2][5] + 1.0;
     let [n, ma, mb] = local;
-    let mut force = [0.0; 6];
-    let mut stiffness = [[0.0; 6]; 6];
+    let mut force = [zero; 6];
+    let mut stiffness = [[zero; 6]; 6];
+    let (n_l, m_l2) = (n / l, (ma + mb) / (l * l));
     for i in 0..6 {
-        force[i] = (0..3).map(|p| rows[p][i] * local[p]).sum();
+        force[i] = rows[0][i] * local[0] + rows[1][i] * local[1] + rows[2][i] * local[2];
         for j in 0..6 {
-            let mut kij = 0.0;
+            let mut kij = zero;
             for p in 0..3 {
                 for q in 0..3 {
-                    kij += rows[p][i] * dmat[p][q] * rows[q][j];
+                    kij = kij + rows[p][i] * dmat[p][q] * rows[q][j];
                 }
             }
-            kij += n / l * z[i] * z[j] + (ma + mb) / (l * l) * (r[i] * z[j] + z[i] * r[j]);
-            stiffness[i][j] = kij;
+            stiffness[i][j] = kij + n_l * z[i] * z[j] + m_l2 * (r[i] * z[j] + z[i] * r[j]);
         }
     }
     Contribution { force, stiffness }
@@ -78,25 +94,33 @@ pub fn beam(xa: [f64; 2], xb: [f64; 2], local: Local, d: &[f64; 6]) -> Contribut
 /// compliance) keep the element's linear stiffness exactly theirs at the unloaded state;
 /// the arch term, the geometric coupling of stretch and end rotations, is the cubic
 /// shape's, which the element's shortening makes exact in the limit.
-fn local_law(local: Local, l0: f64, stretch: f64, ta: f64, tb: f64) -> ([f64; 3], [[f64; 3]; 3]) {
-    let eps = stretch / l0 + (2.0 * ta * ta - ta * tb + 2.0 * tb * tb) / 30.0;
+fn local_law<D: Scalar>(
+    local: LocalOf<D>,
+    l0: D,
+    stretch: D,
+    ta: D,
+    tb: D,
+) -> ([D; 3], [[D; 3]; 3]) {
+    let eps = stretch / l0 + (ta * ta * 2.0 - ta * tb + tb * tb * 2.0) / 30.0;
     // EA of the uniform beam: N = k l0 eps
     let ea = local.axial * l0;
     let n = ea * eps;
-    let g = [1.0 / l0, (4.0 * ta - tb) / 30.0, (4.0 * tb - ta) / 30.0];
+    let g = [l0.recip(), (ta * 4.0 - tb) / 30.0, (tb * 4.0 - ta) / 30.0];
     let kb = local.bending;
     let ma = kb[0][0] * ta + kb[0][1] * tb + n * l0 * g[1];
     let mb = kb[1][0] * ta + kb[1][1] * tb + n * l0 * g[2];
+    let zero = D::from(0.0);
     let bend = [
-        [0.0; 3],
-        [0.0, kb[0][0], kb[0][1]],
-        [0.0, kb[1][0], kb[1][1]],
+        [zero; 3],
+        [zero, kb[0][0], kb[0][1]],
+        [zero, kb[1][0], kb[1][1]],
     ];
     let arch = [[0.0; 3], [0.0, 4.0, -1.0], [0.0, -1.0, 4.0]];
-    let mut dmat = [[0.0; 3]; 3];
+    let mut dmat = [[zero; 3]; 3];
+    let (eal0, nl0) = (ea * l0, n * l0 / 30.0);
     for p in 0..3 {
         for q in 0..3 {
-            dmat[p][q] = ea * l0 * g[p] * g[q] + bend[p][q] + n * l0 / 30.0 * arch[p][q];
+            dmat[p][q] = eal0 * g[p] * g[q] + bend[p][q] + nl0 * arch[p][q];
         }
     }
     ([n, ma, mb], dmat)
@@ -105,35 +129,36 @@ fn local_law(local: Local, l0: f64, stretch: f64, ta: f64, tb: f64) -> ([f64; 3]
 /// The spring between reference positions `xa, xb` under translations `d`
 /// `(u_a, v_a, u_b, v_b)`, its natural length `l0 + extension`: internal force, tangent
 /// stiffness, and the derivative of the internal force by `extension`.
-pub fn spring(
-    xa: [f64; 2],
-    xb: [f64; 2],
-    stiffness: f64,
-    extension: f64,
-    d: &[f64; 4],
-) -> (Contribution<4>, [f64; 4]) {
-    let l0 = (xb[0] - xa[0]).hypot(xb[1] - xa[1]);
+pub fn spring<D: Scalar>(
+    xa: [D; 2],
+    xb: [D; 2],
+    stiffness: D,
+    extension: D,
+    d: &[D; 4],
+) -> (Contribution<D, 4>, [D; 4]) {
+    let l0 = hypot(xb[0] - xa[0], xb[1] - xa[1]);
     let chord = [xb[0] - xa[0] + d[2] - d[0], xb[1] - xa[1] + d[3] - d[1]];
-    let l = chord[0].hypot(chord[1]);
+    let l = hypot(chord[0], chord[1]);
     let e = [chord[0] / l, chord[1] / l];
     let tension = stiffness * (l - l0 - extension);
     let g = [-e[0], -e[1], e[0], e[1]];
-    let mut k2 = [[0.0; 2]; 2];
+    let zero = D::from(0.0);
+    let mut k2 = [[zero; 2]; 2];
     for i in 0..2 {
         for j in 0..2 {
             let delta = if i == j { 1.0 } else { 0.0 };
-            k2[i][j] = stiffness * e[i] * e[j] + tension / l * (delta - e[i] * e[j]);
+            k2[i][j] = stiffness * e[i] * e[j] + tension / l * (-(e[i] * e[j]) + delta);
         }
     }
-    let mut k = [[0.0; 4]; 4];
+    let mut k = [[zero; 4]; 4];
     for i in 0..4 {
         for j in 0..4 {
             let sign = if (i < 2) == (j < 2) { 1.0 } else { -1.0 };
-            k[i][j] = sign * k2[i % 2][j % 2];
+            k[i][j] = k2[i % 2][j % 2] * sign;
         }
     }
     let force = g.map(|gi| tension * gi);
-    let by_extension = g.map(|gi| -stiffness * gi);
+    let by_extension = g.map(|gi| -(stiffness * gi));
     (
         Contribution {
             force,

@@ -21,9 +21,12 @@ pub mod assemble;
 pub mod critical;
 pub mod element;
 pub mod report;
+pub mod sensitivity;
 pub mod solve;
 
 use std::fmt;
+
+use crate::model::scalar::Scalar;
 
 /// A degree of freedom of a node: its displacement along x or y, or its rotation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -42,44 +45,52 @@ pub struct Section {
 
 impl Section {
     /// The uniform Euler-Bernoulli beam's local stiffness over a length `l0`.
-    pub fn local(self, l0: f64) -> Local {
-        let k = self.ei / l0;
-        Local {
-            axial: self.ea / l0,
-            bending: [[4.0 * k, 2.0 * k], [2.0 * k, 4.0 * k]],
+    pub fn local<D: Scalar>(self, l0: D) -> LocalOf<D> {
+        let k = D::from(self.ei) / l0;
+        LocalOf {
+            axial: D::from(self.ea) / l0,
+            bending: [[k * 4.0, k * 2.0], [k * 2.0, k * 4.0]],
         }
     }
 }
 
 /// A beam element's local linear stiffness: `axial` the force over the chord's stretch,
 /// `bending` the end moments over the end rotations against the chord, `(theta_a,
-/// theta_b)` (symmetric, positive definite).
+/// theta_b)` (symmetric, positive definite). Over a scalar `D` (a dual number carries the
+/// derivatives by the design; [`Local`] is the real one).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Local {
-    pub axial: f64,
-    pub bending: [[f64; 2]; 2],
+pub struct LocalOf<D> {
+    pub axial: D,
+    pub bending: [[D; 2]; 2],
 }
 
-impl Local {
+/// A local stiffness in real numbers.
+pub type Local = LocalOf<f64>;
+
+impl<D: Scalar> LocalOf<D> {
     /// From the compliance at a segment's end `b` with its end `a` clamped, in its frame
     /// (`c11` axial, `[c22 c23; c23 c33]` the transverse motion and rotation): its inverse
     /// carried to the end rotations against the chord, `v = -l theta_a`, `phi_b = theta_b
     /// - theta_a` (the clamped end's rotation against the chord is minus the chord's turn).
-    pub fn from_compliance(l0: f64, c11: f64, c22: f64, c23: f64, c33: f64) -> Local {
+    pub fn from_compliance(l0: D, c11: D, c22: D, c23: D, c33: D) -> LocalOf<D> {
         let det = c22 * c33 - c23 * c23;
         let kc = [[c33 / det, -c23 / det], [-c23 / det, c22 / det]];
-        let m = [[-l0, 0.0], [-1.0, 1.0]];
-        let mut bending = [[0.0; 2]; 2];
+        let zero = D::from(0.0);
+        let m = [[-l0, zero], [D::from(-1.0), D::from(1.0)]];
+        let mut bending = [[zero; 2]; 2];
         for (i, row) in bending.iter_mut().enumerate() {
             for (j, v) in row.iter_mut().enumerate() {
-                *v = (0..2)
-                    .flat_map(|p| (0..2).map(move |q| (p, q)))
-                    .map(|(p, q)| m[p][i] * kc[p][q] * m[q][j])
-                    .sum();
+                let mut sum = zero;
+                for p in 0..2 {
+                    for q in 0..2 {
+                        sum = sum + m[p][i] * kc[p][q] * m[q][j];
+                    }
+                }
+                *v = sum;
             }
         }
-        Local {
-            axial: 1.0 / c11,
+        LocalOf {
+            axial: c11.recip(),
             bending,
         }
     }
@@ -90,27 +101,33 @@ impl Local {
 /// extended by its free stroke and carries its preload (the force it would push with if
 /// held at its unloaded length), both applied along the load factor.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Spring {
+pub struct SpringOf<D> {
     pub a: usize,
     pub b: usize,
-    pub stiffness: f64,
-    pub free_stroke: f64,
-    pub preload: f64,
+    pub stiffness: D,
+    pub free_stroke: D,
+    pub preload: D,
 }
+
+/// A spring in real numbers.
+pub type Spring = SpringOf<f64>;
 
 /// A beam element between two nodes: its section, or a local stiffness of its own in its
 /// place (`local`, a segment of a flexure's exact compliance).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Beam {
+pub struct BeamOf<D> {
     pub a: usize,
     pub b: usize,
     pub section: Section,
-    pub local: Option<Local>,
+    pub local: Option<LocalOf<D>>,
 }
 
-impl Beam {
+/// A beam in real numbers.
+pub type Beam = BeamOf<f64>;
+
+impl<D: Scalar> BeamOf<D> {
     /// The local stiffness over the reference length `l0`.
-    pub fn local(&self, l0: f64) -> Local {
+    pub fn local(&self, l0: D) -> LocalOf<D> {
         self.local.unwrap_or_else(|| self.section.local(l0))
     }
 }
@@ -124,22 +141,41 @@ pub struct Slave {
 }
 
 /// A planar structure of nodes (reference positions), beams, springs, rigid attachments,
-/// held degrees of freedom and applied loads (all at load factor 1).
-#[derive(Debug, Clone, Default)]
-pub struct Structure {
-    pub nodes: Vec<[f64; 2]>,
-    pub beams: Vec<Beam>,
-    pub springs: Vec<Spring>,
+/// held degrees of freedom and applied loads (all at load factor 1), over a scalar `D`: in
+/// real numbers ([`Structure`]) it is solved; in dual numbers it carries the derivatives of
+/// its data by a design, from which the gradients at an equilibrium follow
+/// ([`assemble::SystemOf::residual_by_design`]).
+#[derive(Debug, Clone)]
+pub struct StructureOf<D> {
+    pub nodes: Vec<[D; 2]>,
+    pub beams: Vec<BeamOf<D>>,
+    pub springs: Vec<SpringOf<D>>,
     pub slaves: Vec<Slave>,
     /// Held degrees of freedom and their prescribed displacement at load factor 1.
-    pub held: Vec<(usize, Dof, f64)>,
+    pub held: Vec<(usize, Dof, D)>,
     /// Applied forces `(fx, fy, m)` at a node at load factor 1, fixed in direction.
-    pub loads: Vec<(usize, [f64; 3])>,
+    pub loads: Vec<(usize, [D; 3])>,
 }
 
-impl Structure {
+/// A structure in real numbers: the one the equilibrium paths are solved on.
+pub type Structure = StructureOf<f64>;
+
+impl<D> Default for StructureOf<D> {
+    fn default() -> Self {
+        StructureOf {
+            nodes: Vec::new(),
+            beams: Vec::new(),
+            springs: Vec::new(),
+            slaves: Vec::new(),
+            held: Vec::new(),
+            loads: Vec::new(),
+        }
+    }
+}
+
+impl<D: Scalar> StructureOf<D> {
     /// A new node at `(x, y)`; its index.
-    pub fn node(&mut self, x: f64, y: f64) -> usize {
+    pub fn node(&mut self, x: D, y: D) -> usize {
         self.nodes.push([x, y]);
         self.nodes.len() - 1
     }
@@ -160,13 +196,13 @@ impl Structure {
         let mut chain = vec![a];
         for i in 1..n {
             let s = i as f64 / n as f64;
-            let p = [pa[0] + s * (pb[0] - pa[0]), pa[1] + s * (pb[1] - pa[1])];
+            let p = [pa[0] + (pb[0] - pa[0]) * s, pa[1] + (pb[1] - pa[1]) * s];
             chain.push(self.node(p[0], p[1]));
         }
         chain.push(b);
         for (i, pair) in chain.windows(2).enumerate() {
             let s = (i as f64 + 0.5) / n as f64;
-            self.beams.push(Beam {
+            self.beams.push(BeamOf {
                 a: pair[0],
                 b: pair[1],
                 section: section(s),
@@ -183,7 +219,7 @@ impl Structure {
 
     /// Holds `dof` of `node` at zero.
     pub fn hold(&mut self, node: usize, dof: Dof) {
-        self.held.push((node, dof, 0.0));
+        self.held.push((node, dof, D::from(0.0)));
     }
 
     /// Holds all three degrees of freedom of `node` at zero (a clamp).
@@ -194,12 +230,12 @@ impl Structure {
     }
 
     /// Prescribes `dof` of `node` to reach `value` at load factor 1 (in proportion below).
-    pub fn prescribe(&mut self, node: usize, dof: Dof, value: f64) {
+    pub fn prescribe(&mut self, node: usize, dof: Dof, value: D) {
         self.held.push((node, dof, value));
     }
 
     /// Applies `(fx, fy, m)` at `node` at load factor 1.
-    pub fn load(&mut self, node: usize, force: [f64; 3]) {
+    pub fn load(&mut self, node: usize, force: [D; 3]) {
         self.loads.push((node, force));
     }
 }

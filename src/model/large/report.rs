@@ -31,39 +31,46 @@ impl Default for StrokeOptions {
 
 /// An output port's motion apart from its own direction.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Parasitic {
+pub struct ParasiticOf<D> {
     /// The port's displacement across its direction (m).
-    pub across: f64,
+    pub across: D,
     /// Its body's rotation (rad).
-    pub rotation: f64,
+    pub rotation: D,
 }
 
-/// The outputs at one point of the stroke (SI).
+/// A port's parasitic motion in real numbers.
+pub type Parasitic = ParasiticOf<f64>;
+
+/// The outputs at one point of the stroke (SI), over a scalar `D` (a dual number carries
+/// their derivatives by the design; [`StrokePoint`] is the real one).
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct StrokePoint {
+pub struct StrokePointOf<D> {
     /// The load factor: the fraction of the full stroke (of the stack's free stroke and
     /// preload, or of the force that drives it).
     pub fraction: f64,
     /// The input's motion along its direction, the whole mechanism's (a port across a
     /// mirror axis: the change of distance to its image).
-    pub stroke_in: f64,
+    pub stroke_in: D,
     /// The first output's, likewise.
-    pub stroke_out: f64,
+    pub stroke_out: D,
     /// `stroke_out / stroke_in` (the tangent at the unloaded point).
-    pub amplification: f64,
+    pub amplification: D,
     /// The tangent ratio: the output's motion over the input's under a small added load at
     /// the input.
-    pub amplification_tangent: f64,
+    pub amplification_tangent: D,
     /// Tangent stiffness at the input, the input free of its actuator.
-    pub k_in: f64,
+    pub k_in: D,
     /// Tangent stiffness at the first output, the input free.
-    pub k_out: f64,
+    pub k_out: D,
     /// Each hinge's and beam's largest stress, as the linear model states it from its loads.
-    pub stresses: Vec<f64>,
-    pub stress_max: f64,
+    pub stresses: Vec<D>,
+    pub stress_max: D,
     /// Each output port's motion apart from its direction.
-    pub parasitic: Vec<Parasitic>,
+    pub parasitic: Vec<ParasiticOf<D>>,
 }
+
+/// The outputs at one point of the stroke in real numbers.
+pub type StrokePoint = StrokePointOf<f64>;
 
 /// A mechanism solved over its stroke.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -5,9 +5,9 @@
 
 use super::checks;
 use super::file::describe;
-use super::model::NetworkModel;
+use super::model::{LargeSettings, NetworkModel};
 use super::part::{Counterparts, Drawing, NetworkPart, PartSettings, RawNetworkPart};
-use super::raw::RawNetwork;
+use super::raw::{Deflection, RawAnalysis, RawNetwork};
 use crate::model::actuator::{Actuator, RawActuator};
 use crate::model::material::{Material, RawMaterial};
 use crate::model::Mechanism;
@@ -46,9 +46,13 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         stack_mass: actuator.mass.unwrap_or(0.0),
     };
     let drawing = part.map(|settings| Arc::new(Drawing::new(description.clone(), settings)));
+    let large = analysis(s)?;
     let mut model = NetworkModel::new(description, material, actuator);
     if let Some(drawing) = &drawing {
         model = model.with_drawing(drawing.clone());
+    }
+    if let Some(settings) = large {
+        model = model.with_large(settings);
     }
     let names: Vec<&str> = model.outputs().iter().map(|o| o.name.as_ref()).collect();
     if let Some((path, why)) = checks::name_error(model.description())
@@ -83,4 +87,37 @@ pub fn build(s: &mut Sections) -> Res<Mechanism> {
         }));
     }
     Ok(mechanism)
+}
+
+/// The `[analysis]` section: the outputs at the working stroke, where it asks for large
+/// deflection, and how they are solved.
+fn analysis(s: &Sections) -> Res<Option<LargeSettings>> {
+    let Some(raw) = s.optional::<RawAnalysis>("analysis")? else {
+        return Ok(None);
+    };
+    let count = |key: &str, value: Option<usize>, default: usize, most: usize| {
+        let n = value.unwrap_or(default);
+        if (1..=most).contains(&n) {
+            Ok(n)
+        } else {
+            Err(s.err(
+                &[k("analysis"), k(key)],
+                format!("{n}: expected a whole number from 1 to {most}"),
+            ))
+        }
+    };
+    let settings = LargeSettings {
+        elements: count("elements", raw.elements, 8, 64)?,
+        steps: count("steps", raw.steps, 10, 200)?,
+    };
+    match raw.deflection.unwrap_or(Deflection::Small) {
+        Deflection::Small if raw.elements.is_some() || raw.steps.is_some() => Err(s.err(
+            &[k("analysis"), k("deflection")],
+            "`elements` and `steps` set how the large-deflection solve runs: give \
+             `deflection = \"large\"` with them, or remove them"
+                .to_string(),
+        )),
+        Deflection::Small => Ok(None),
+        Deflection::Large => Ok(Some(settings)),
+    }
 }

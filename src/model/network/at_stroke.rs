@@ -10,19 +10,19 @@
 //! the hinge library's from the loads at its end on `to` (its last element's end forces in
 //! the frame of that end, turned with it), as the linear model states it from its loads.
 
-use faer::Mat;
-
 use super::model::NetworkModel;
-use super::stroke::{build, Built, Drive};
+use super::stroke::{build, Built, Drive, FlexureEnd};
 use crate::model::hinge::HingeLoads;
-use crate::model::large::assemble::System;
+use crate::model::large::assemble::{System, SystemOf};
 use crate::model::large::critical::critical_load_factor;
 use crate::model::large::element::beam;
 use crate::model::large::report::{
-    LargeDeflection, Parasitic, StrokeOptions, StrokePoint, StrokeReport,
+    LargeDeflection, ParasiticOf, StrokeOptions, StrokePoint, StrokePointOf, StrokeReport,
 };
+use crate::model::large::sensitivity::{equilibrium_by_design, Factored};
 use crate::model::large::solve::{continuation, solve_each, Options};
 use crate::model::large::LargeError;
+use crate::model::scalar::{max, Scalar};
 
 impl LargeDeflection for NetworkModel {
     fn at_stroke(&self, x: &[f64], options: &StrokeOptions) -> Result<StrokeReport, String> {
@@ -43,7 +43,7 @@ pub fn solve_stroke(
     drive: Drive,
 ) -> Result<StrokeReport, String> {
     let d = model.description();
-    let solve = |elements: usize, steps: usize| -> Result<(Built, Vec<StrokePoint>), String> {
+    let solve = |elements: usize, steps: usize| -> Result<(Built<f64>, Vec<StrokePoint>), String> {
         let built = build(model, x, elements, drive)?;
         let opts = Options {
             steps,
@@ -94,9 +94,61 @@ pub fn solve_stroke(
     })
 }
 
+/// The outputs at the full stroke of the problem's actuator at the design `x`, over the
+/// scalar of `x`: the path solved in real numbers, then the equilibrium's derivatives by the
+/// design through the implicit function theorem
+/// ([`crate::model::large::sensitivity`]), so a dual `x` gives every output its exact
+/// gradient at stroke (to the path's tolerance).
+pub(super) fn end_by_design<D: Scalar>(
+    model: &NetworkModel,
+    x: &[D],
+    elements: usize,
+    steps: usize,
+) -> Result<StrokePointOf<D>, String> {
+    let real_x: Vec<f64> = x.iter().map(|v| v.re()).collect();
+    let real = build(model, &real_x, elements, Drive::Stack)?;
+    let opts = Options {
+        steps,
+        ..Options::default()
+    };
+    let path = continuation(&real.driven, 1.0, &opts).map_err(large)?;
+    let end = path.end();
+    let system = System::new(&real.driven).map_err(large)?;
+    let free: Vec<f64> = system.free.iter().map(|&i| end.displacement[i]).collect();
+    let free = polish(&system, free, end.lambda);
+    let dual = build(model, x, elements, Drive::Stack)?;
+    let dual_system = SystemOf::new(&dual.driven).map_err(large)?;
+    let u = equilibrium_by_design(&system, &dual_system, &free, end.lambda).map_err(large)?;
+    measure(&dual, &u, end.lambda, None)
+}
+
+/// The equilibrium `free` at `lambda` iterated on by Newton while its residual falls (at
+/// most six times): the path stops within its tolerance, and an output's derivative checked
+/// by differences of such ends would see that tolerance as noise; polished, the ends are
+/// the equilibrium to round-off and smooth in the design.
+fn polish(system: &System, mut free: Vec<f64>, lambda: f64) -> Vec<f64> {
+    let norm = |v: &[f64]| v.iter().map(|r| r * r).sum::<f64>().sqrt();
+    let mut best = (f64::INFINITY, free.clone());
+    for _ in 0..6 {
+        let a = system.assemble(&system.expand(&free, lambda), lambda);
+        let r = norm(&a.residual);
+        if !(r < best.0) {
+            break;
+        }
+        best = (r, free.clone());
+        let Some(step) = solve_each(&a.tangent, &[&a.residual]) else {
+            break;
+        };
+        for (f, s) in free.iter_mut().zip(&step[0]) {
+            *f -= s;
+        }
+    }
+    best.1
+}
+
 /// The linear solution of the driven structure's full load: the unloaded tangent's, with
 /// the slaves carried by the linear rigid transfer.
-fn linear(built: &Built) -> Result<StrokePoint, String> {
+fn linear(built: &Built<f64>) -> Result<StrokePoint, String> {
     let system = System::new(&built.driven).map_err(large)?;
     let zero = vec![0.0; 3 * built.driven.nodes.len()];
     let a = system.assemble(&zero, 0.0);
@@ -124,17 +176,18 @@ fn linear(built: &Built) -> Result<StrokePoint, String> {
 
 /// The outputs at the displacement `u` (every node's) at load factor `lambda`; with
 /// `linear_about` the elements' forces are their unloaded stiffness times `u` (the linear
-/// solution's) and the stiffnesses the unloaded ones.
-fn measure(
-    built: &Built,
-    u: &[f64],
+/// solution's) and the stiffnesses the unloaded ones. Over any scalar: with `u` carrying
+/// its derivatives by the design ([`end_by_design`]), every output carries its own.
+fn measure<D: Scalar>(
+    built: &Built<D>,
+    u: &[D],
     lambda: f64,
-    linear_about: Option<&[f64]>,
-) -> Result<StrokePoint, String> {
+    linear_about: Option<&[D]>,
+) -> Result<StrokePointOf<D>, String> {
     let at = linear_about.unwrap_or(u);
     let along = |i: usize| {
         let p = &built.ports[i];
-        p.read * (u[3 * p.node] * p.direction[0] + u[3 * p.node + 1] * p.direction[1])
+        (u[3 * p.node] * p.direction[0] + u[3 * p.node + 1] * p.direction[1]) * p.read
     };
     let (stroke_in, stroke_out) = (along(0), along(1));
     let w = port_compliance(built, at)?;
@@ -144,72 +197,84 @@ fn measure(
     } else {
         stroke_out / stroke_in
     };
-    let st = &built.driven;
-    let stresses: Vec<f64> = built
+    let stresses: Vec<D> = built
         .flexures
         .iter()
-        .map(|f| {
-            let b = &st.beams[f.beam];
-            let (xa, xb) = (st.nodes[b.a], st.nodes[b.b]);
-            let idx = [
-                3 * b.a,
-                3 * b.a + 1,
-                3 * b.a + 2,
-                3 * b.b,
-                3 * b.b + 1,
-                3 * b.b + 2,
-            ];
-            let local = b.local((xb[0] - xa[0]).hypot(xb[1] - xa[1]));
-            let force = match linear_about {
-                None => beam(xa, xb, local, &idx.map(|i| u[i])).force,
-                Some(zero) => {
-                    let k = beam(xa, xb, local, &idx.map(|i| zero[i])).stiffness;
-                    std::array::from_fn(|r| (0..6).map(|c| k[r][c] * u[idx[c]]).sum())
-                }
-            };
-            // the frame of the flexure's end on `to`, turned with it
-            let (s, c) = if linear_about.is_some() {
-                (0.0, 1.0)
-            } else {
-                u[idx[5]].sin_cos()
-            };
-            let e = [c * f.axis[0] - s * f.axis[1], s * f.axis[0] + c * f.axis[1]];
-            let loads = HingeLoads {
-                axial: force[3] * e[0] + force[4] * e[1],
-                shear: -force[3] * e[1] + force[4] * e[0],
-                moment: force[5],
-            };
-            let (to, from) = f.kind.end_stresses(&f.dims, built.width, &loads);
-            to.max(from)
-        })
+        .map(|f| end_stress(built, f, u, linear_about))
         .collect();
     let parasitic = built.ports[1..]
         .iter()
-        .map(|p| Parasitic {
-            across: -u[3 * p.node] * p.direction[1] + u[3 * p.node + 1] * p.direction[0],
+        .map(|p| ParasiticOf {
+            across: -(u[3 * p.node] * p.direction[1]) + u[3 * p.node + 1] * p.direction[0],
             rotation: u[3 * p.node + 2],
         })
         .collect();
-    Ok(StrokePoint {
+    Ok(StrokePointOf {
         fraction: lambda,
         stroke_in,
         stroke_out,
         amplification,
         amplification_tangent,
-        k_in: 1.0 / w[0][0],
-        k_out: 1.0 / w[1][1],
-        stress_max: stresses.iter().copied().fold(0.0, f64::max),
+        k_in: w[0][0].recip(),
+        k_out: w[1][1].recip(),
+        stress_max: stresses.iter().copied().fold(D::from(0.0), max),
         stresses,
         parasitic,
     })
 }
 
+/// A flexure's largest stress at its end on `to` from its last element's end forces there
+/// (in the frame of that end, turned with it), as the linear model states it from its loads.
+fn end_stress<D: Scalar>(
+    built: &Built<D>,
+    f: &FlexureEnd<D>,
+    u: &[D],
+    linear_about: Option<&[D]>,
+) -> D {
+    let st = &built.driven;
+    let b = &st.beams[f.beam];
+    let (xa, xb) = (st.nodes[b.a], st.nodes[b.b]);
+    let idx = [
+        3 * b.a,
+        3 * b.a + 1,
+        3 * b.a + 2,
+        3 * b.b,
+        3 * b.b + 1,
+        3 * b.b + 2,
+    ];
+    let l0 = ((xb[0] - xa[0]) * (xb[0] - xa[0]) + (xb[1] - xa[1]) * (xb[1] - xa[1])).sqrt();
+    let local = b.local(l0);
+    let force = match linear_about {
+        None => beam(xa, xb, local, &idx.map(|i| u[i])).force,
+        Some(zero) => {
+            let k = beam(xa, xb, local, &idx.map(|i| zero[i])).stiffness;
+            std::array::from_fn(|r| {
+                (1..6).fold(k[r][0] * u[idx[0]], |sum, c| sum + k[r][c] * u[idx[c]])
+            })
+        }
+    };
+    // the frame of the flexure's end on `to`, turned with it
+    let (s, c) = if linear_about.is_some() {
+        (D::from(0.0), D::from(1.0))
+    } else {
+        u[idx[5]].sin_cos()
+    };
+    let e = [c * f.axis[0] - s * f.axis[1], s * f.axis[0] + c * f.axis[1]];
+    let loads = HingeLoads {
+        axial: force[3] * e[0] + force[4] * e[1],
+        shear: -(force[3] * e[1]) + force[4] * e[0],
+        moment: force[5],
+    };
+    let (to, from) = f.kind.end_stresses(&f.dims, built.width, &loads);
+    max(to, from)
+}
+
 /// `W_ij = read_i C_ij share_j` for the input and the first output, `C` from the tangent of
 /// the mechanism alone at `u`.
-fn port_compliance(built: &Built, u: &[f64]) -> Result<[[f64; 2]; 2], String> {
-    let system = System::new(&built.alone).map_err(large)?;
-    let a = system.assemble(u, 0.0);
-    let column = |i: usize| -> Vec<f64> {
+fn port_compliance<D: Scalar>(built: &Built<D>, u: &[D]) -> Result<[[D; 2]; 2], String> {
+    let system = SystemOf::new(&built.alone).map_err(large)?;
+    let k = system.tangent(u);
+    let column = |i: usize| -> Vec<D> {
         let p = &built.ports[i];
         // the unit force at the port carried to its master at the current offset
         let (node, n) = (p.node, p.direction);
@@ -219,20 +284,31 @@ fn port_compliance(built: &Built, u: &[f64]) -> Result<[[f64; 2]; 2], String> {
         let r0 = [xp[0] - xb[0], xp[1] - xb[1]];
         let (s, c) = theta.sin_cos();
         let r = [c * r0[0] - s * r0[1], s * r0[0] + c * r0[1]];
-        let full = [n[0], n[1], -r[1] * n[0] + r[0] * n[1]];
+        let full = [n[0], n[1], -(r[1] * n[0]) + r[0] * n[1]];
         system
             .free
             .iter()
-            .map(|&i| if i / 3 == master { full[i % 3] } else { 0.0 })
+            .map(|&i| {
+                if i / 3 == master {
+                    full[i % 3]
+                } else {
+                    D::from(0.0)
+                }
+            })
             .collect()
     };
     let e = [column(0), column(1)];
-    let k: &Mat<f64> = &a.tangent;
-    let x = solve_each(k, &[&e[0], &e[1]])
-        .ok_or_else(|| large(LargeError::Singular { lambda: 0.0 }))?;
-    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let factored = Factored::of_real_parts(&k, system.free.len());
+    if !factored.is_regular() {
+        return Err(large(LargeError::Singular { lambda: 0.0 }));
+    }
+    let x = [
+        factored.solve_dual(&k, &e[0]),
+        factored.solve_dual(&k, &e[1]),
+    ];
+    let dot = |a: &[D], b: &[D]| a.iter().zip(b).fold(D::from(0.0), |s, (&x, &y)| s + x * y);
     let p = &built.ports;
     Ok(std::array::from_fn(|i| {
-        std::array::from_fn(|j| p[i].read * dot(&e[i], &x[j]) * p[j].share)
+        std::array::from_fn(|j| dot(&e[i], &x[j]) * (p[i].read * p[j].share))
     }))
 }

@@ -97,13 +97,24 @@ pub struct NetworkModel {
     /// The part as its `[part]` section draws it, for the footprint outputs; `None` without
     /// one, and then they are unavailable.
     drawing: Option<Arc<Drawing>>,
+    /// How the outputs at the working stroke are solved, where the file asks for them
+    /// (`[analysis] deflection = "large"`).
+    large: Option<LargeSettings>,
+}
+
+/// How the outputs at the working stroke are solved: the beam elements a flexure and the
+/// load steps from the unloaded part to the full stroke.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LargeSettings {
+    pub elements: usize,
+    pub steps: usize,
 }
 
 /// The linear network at one design (see [`NetworkModel::linear_at`]).
-pub(super) struct LinearAt {
-    pub network: Network<f64>,
-    pub ports: Vec<Load<f64>>,
-    pub dims: Vec<Vec<f64>>,
+pub(super) struct LinearAt<D> {
+    pub network: Network<D>,
+    pub ports: Vec<Load<D>>,
+    pub dims: Vec<Vec<D>>,
     pub read: Vec<f64>,
     pub share: Vec<f64>,
 }
@@ -183,8 +194,8 @@ impl NetworkModel {
     /// The linear network at the design `x` (SI), its ports (input first, each a unit load
     /// along its direction), each flexure's dimensions (SI), and the ports' read factors and
     /// load shares: what the structure at stroke is built from ([`super::stroke`]).
-    pub(super) fn linear_at(&self, x: &[f64]) -> Result<LinearAt, String> {
-        let mut work = Work::<f64>::default();
+    pub(super) fn linear_at<D: Scalar>(&self, x: &[D]) -> Result<LinearAt<D>, String> {
+        let mut work = Work::<D>::default();
         self.at(x, None, false, &mut work)?;
         let e = work.evaluated;
         Ok(LinearAt {
@@ -306,7 +317,41 @@ impl NetworkModel {
             share,
             roles,
             drawing: None,
+            large: None,
         }
+    }
+
+    /// The model with its outputs at the working stroke too (`nl_...`), solved as
+    /// `settings` says.
+    pub fn with_large(self, settings: LargeSettings) -> Self {
+        let mut named = Named {
+            quantities: self.quantities,
+            outputs: self.outputs,
+        };
+        named.at_stroke(&self.description);
+        let needs = named
+            .quantities
+            .iter()
+            .map(|&q| Needs::of(q, self.actuator.stiffness))
+            .collect();
+        NetworkModel {
+            max_of: named.maxima(),
+            needs,
+            quantities: named.quantities,
+            outputs: named.outputs,
+            large: Some(settings),
+            ..self
+        }
+    }
+
+    /// Whether output `output` is one at the working stroke.
+    pub(super) fn at_stroke_output(&self, output: usize) -> bool {
+        matches!(self.quantities[output], Quantity::AtStroke(_))
+    }
+
+    /// How the outputs at stroke are solved, where the model has them.
+    pub(super) fn large_settings(&self) -> Option<LargeSettings> {
+        self.large
     }
 
     /// The model with the part `drawing` draws, whose outline's box the footprint outputs

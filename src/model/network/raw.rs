@@ -15,7 +15,28 @@ use crate::model::material::RawMaterial;
 use crate::vocab::schema::{Measured, NonNegativeMass, PositiveLength};
 
 /// The sections the network reads.
-pub const SECTIONS: &[&str] = &["material", "network", "actuator", "part"];
+pub const SECTIONS: &[&str] = &["material", "network", "actuator", "part", "analysis"];
+
+/// How the network is solved: `deflection = "small"` (the default) the linear model alone;
+/// `"large"` also the outputs at the working stroke (`nl_...`), each flexure a chain of
+/// `elements` corotational beams, the path from the unloaded part in `steps` load steps.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawAnalysis {
+    pub(super) deflection: Option<Deflection>,
+    #[schemars(range(min = 1, max = 64))]
+    pub(super) elements: Option<usize>,
+    #[schemars(range(min = 1, max = 200))]
+    pub(super) steps: Option<usize>,
+}
+
+/// Small (linear) or large deflection.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum Deflection {
+    Small,
+    Large,
+}
 
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -124,5 +145,6 @@ pub fn schema(g: &mut schemars::SchemaGenerator) -> Vec<SectionSchema> {
         one("network", g.subschema_for::<RawNetwork>(), true),
         one("actuator", g.subschema_for::<RawActuator>(), true),
         one("part", g.subschema_for::<RawNetworkPart>(), false),
+        one("analysis", g.subschema_for::<RawAnalysis>(), false),
     ]
 }

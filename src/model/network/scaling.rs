@@ -11,7 +11,7 @@ use super::model::NetworkModel;
 use crate::model::jet2::{seeded_with_modulus, unseed2, Jet2};
 use crate::model::mechanism::ModulusScaling;
 use crate::model::scalar::{with_count, Jet};
-use crate::model::unseed;
+use crate::model::{unseed, Model};
 
 impl NetworkModel {
     /// Values and gradients of the outputs `wanted` at `x` and the moduli `modulus` times
@@ -60,6 +60,17 @@ impl NetworkModel {
 }
 
 impl ModulusScaling for NetworkModel {
+    fn unscaled(&self, output: usize) -> Option<String> {
+        self.at_stroke_output(output).then(|| {
+            format!(
+                "output \"{}\" is at the working stroke, whose solve gives first derivatives \
+                 only and does not scale with the modulus: a robust study or a tolerance on \
+                 E cannot use it",
+                self.outputs()[output].name
+            )
+        })
+    }
+
     fn evaluate_scaled(&self, x: &[f64], modulus: f64, wanted: &[usize], out: &mut [f64]) {
         if self
             .evaluate_generic(x, Some(modulus), wanted, out)

@@ -21,10 +21,11 @@
 
 use super::model::{LinearAt, NetworkModel};
 use super::structure::{beam_compliance, Body, Dof as NetDof, Flexure};
-use crate::model::hinge::profile::integrate;
+use crate::model::hinge::profile::integrate_over;
 use crate::model::hinge::{Compliance, HingeKind};
-use crate::model::large::{Dof, Local, Section, Spring, Structure};
+use crate::model::large::{Dof, LocalOf, Section, SpringOf, StructureOf};
 use crate::model::material::Material;
+use crate::model::scalar::Scalar;
 
 /// How the input is driven.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,30 +39,32 @@ pub enum Drive {
 
 /// A port as a node of the structure.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct PortNode {
+pub(super) struct PortNode<D> {
     pub node: usize,
-    pub direction: [f64; 2],
+    pub direction: [D; 2],
     pub read: f64,
     pub share: f64,
 }
 
 /// A flexure's last element (at its end on `to`) and what its stress needs.
 #[derive(Debug, Clone)]
-pub(super) struct FlexureEnd {
+pub(super) struct FlexureEnd<D> {
     pub beam: usize,
-    pub axis: [f64; 2],
+    pub axis: [D; 2],
     pub kind: HingeKind,
-    pub dims: Vec<f64>,
+    pub dims: Vec<D>,
 }
 
 /// The structure at a design: the mechanism driven, and the mechanism alone (the same
-/// nodes, the drive's anchor held), whose tangent gives the stiffnesses.
+/// nodes, the drive's anchor held), whose tangent gives the stiffnesses. Over a scalar
+/// `D`: real to be solved, dual to carry the design's derivatives
+/// ([`crate::model::large::sensitivity`]).
 #[derive(Debug, Clone)]
-pub(super) struct Built {
-    pub driven: Structure,
-    pub alone: Structure,
-    pub ports: Vec<PortNode>,
-    pub flexures: Vec<FlexureEnd>,
+pub(super) struct Built<D> {
+    pub driven: StructureOf<D>,
+    pub alone: StructureOf<D>,
+    pub ports: Vec<PortNode<D>>,
+    pub flexures: Vec<FlexureEnd<D>>,
     pub width: f64,
 }
 
@@ -70,8 +73,8 @@ pub(super) struct Built {
 const ANCHOR: f64 = 1.0;
 
 /// An axis-aligned unit direction's degree of freedom and sign.
-fn axis_dof(n: [f64; 2]) -> Option<(Dof, f64)> {
-    match n {
+fn axis_dof<D: Scalar>(n: [D; 2]) -> Option<(Dof, f64)> {
+    match n.map(|v| v.re()) {
         [x, y] if y == 0.0 && x.abs() == 1.0 => Some((Dof::X, x)),
         [x, y] if x == 0.0 && y.abs() == 1.0 => Some((Dof::Y, y)),
         _ => None,
@@ -79,12 +82,12 @@ fn axis_dof(n: [f64; 2]) -> Option<(Dof, f64)> {
 }
 
 /// The structure of `model` at the design `x` (SI) in `elements` beams a flexure.
-pub(super) fn build(
+pub(super) fn build<D: Scalar>(
     model: &NetworkModel,
-    x: &[f64],
+    x: &[D],
     elements: usize,
     drive: Drive,
-) -> Result<Built, String> {
+) -> Result<Built<D>, String> {
     let lin = model.linear_at(x)?;
     let d = model.description();
     let (material, actuator) = model.material_and_actuator();
@@ -94,7 +97,7 @@ pub(super) fn build(
     for (h, f) in net.flexures.iter().enumerate() {
         let kind = d.hinges.get(h).map(|h| h.kind);
         let segments = segments(kind, &lin.dims[h], f, elements.max(1), d.width, material);
-        let end = |s: &mut Structure, body: Body, p: [f64; 2]| {
+        let end = |s: &mut StructureOf<D>, body: Body, p: [D; 2]| {
             let node = s.node(p[0], p[1]);
             match body {
                 Body::Ground => s.fix(node),
@@ -108,7 +111,7 @@ pub(super) fn build(
         let chain = s.flexure(a, b, segments.len(), |_| Section { ea: 1.0, ei: 1.0 });
         let l0 = f.length / segments.len() as f64;
         for (beam, c) in s.beams[first..].iter_mut().zip(&segments) {
-            beam.local = Some(Local::from_compliance(l0, c.c11, c.c22, c.c23, c.c33));
+            beam.local = Some(LocalOf::from_compliance(l0, c.c11, c.c22, c.c23, c.c33));
         }
         debug_assert_eq!(chain.len(), segments.len() + 1);
         flexures.push(FlexureEnd {
@@ -121,7 +124,7 @@ pub(super) fn build(
     let ports = port_nodes(&mut s, &lin, &masters);
     let anchor = {
         let (p, n) = (lin.ports[0].point, lin.ports[0].force);
-        s.node(p[0] - ANCHOR * n[0], p[1] - ANCHOR * n[1])
+        s.node(p[0] - n[0] * ANCHOR, p[1] - n[1] * ANCHOR)
     };
     s.fix(anchor);
     let alone = s.clone();
@@ -131,15 +134,15 @@ pub(super) fn build(
             let f = force * port.share;
             s.load(
                 port.node,
-                [f * port.direction[0], f * port.direction[1], 0.0],
+                [port.direction[0] * f, port.direction[1] * f, D::from(0.0)],
             );
         }
-        (Drive::Stack, Some(k_a)) => s.springs.push(Spring {
+        (Drive::Stack, Some(k_a)) => s.springs.push(SpringOf {
             a: anchor,
             b: port.node,
-            stiffness: port.share * port.read * k_a,
-            free_stroke: actuator.nominal_stroke / port.read,
-            preload: port.share * actuator.preload,
+            stiffness: D::from(port.share * port.read * k_a),
+            free_stroke: D::from(actuator.nominal_stroke / port.read),
+            preload: D::from(port.share * actuator.preload),
         }),
         (Drive::Stack, None) => {
             let (dof, sign) = axis_dof(port.direction).ok_or_else(|| {
@@ -151,7 +154,11 @@ pub(super) fn build(
             if s.held.iter().any(|&(n, h, _)| n == port.node && h == dof) {
                 return Err("the input port's motion is held by a mirror axis or a support".into());
             }
-            s.prescribe(port.node, dof, sign * actuator.nominal_stroke / port.read);
+            s.prescribe(
+                port.node,
+                dof,
+                D::from(sign * actuator.nominal_stroke / port.read),
+            );
         }
     }
     Ok(Built {
@@ -166,9 +173,12 @@ pub(super) fn build(
 /// The bodies' master nodes with the mirror axes' and the supports' holds. Each master
 /// stands at the input port for the input's body (the drive acts there without an offset),
 /// at its support for a supported one (held there), else at its reference point.
-fn bodies(lin: &LinearAt, model: &NetworkModel) -> Result<(Structure, Vec<usize>), String> {
+fn bodies<D: Scalar>(
+    lin: &LinearAt<D>,
+    model: &NetworkModel,
+) -> Result<(StructureOf<D>, Vec<usize>), String> {
     let (net, d) = (&lin.network, model.description());
-    let mut at: Vec<Option<[f64; 2]>> = vec![None; net.references.len()];
+    let mut at: Vec<Option<[D; 2]>> = vec![None; net.references.len()];
     let input = &lin.ports[0];
     at[input.body] = Some(input.point);
     let mut holds = Vec::new();
@@ -180,7 +190,7 @@ fn bodies(lin: &LinearAt, model: &NetworkModel) -> Result<(Structure, Vec<usize>
             )
         })?;
         match at[g.body] {
-            Some(p) if p != g.point => {
+            Some(p) if p.map(|v| v.re()) != g.point.map(|v| v.re()) => {
                 return Err(format!(
                     "support ({}): its body has the input port or another support elsewhere, \
                      which the large-deflection model cannot hold together",
@@ -191,7 +201,7 @@ fn bodies(lin: &LinearAt, model: &NetworkModel) -> Result<(Structure, Vec<usize>
         }
         holds.push((g.body, dof));
     }
-    let mut s = Structure::default();
+    let mut s = StructureOf::default();
     let masters: Vec<usize> = (0..net.references.len())
         .map(|b| {
             let p = at[b].unwrap_or(net.references[b]);
@@ -215,7 +225,11 @@ fn bodies(lin: &LinearAt, model: &NetworkModel) -> Result<(Structure, Vec<usize>
 }
 
 /// The ports as nodes: the input its body's master, each output a slave of its body.
-fn port_nodes(s: &mut Structure, lin: &LinearAt, masters: &[usize]) -> Vec<PortNode> {
+fn port_nodes<D: Scalar>(
+    s: &mut StructureOf<D>,
+    lin: &LinearAt<D>,
+    masters: &[usize],
+) -> Vec<PortNode<D>> {
     lin.ports
         .iter()
         .enumerate()
@@ -238,54 +252,61 @@ fn port_nodes(s: &mut Structure, lin: &LinearAt, masters: &[usize]) -> Vec<PortN
 }
 
 /// The compliances of a flexure's `n` equal segments, each at its end toward `to` with its
-/// other end clamped, in the flexure's frame; in series they make the flexure's own.
-fn segments(
+/// other end clamped, in the flexure's frame; in series they make the flexure's own. Segment
+/// `i`'s integrals are taken over its own fraction `tau` in (0, 1), `s = (i + tau) step`, so
+/// that the quadrature's points are fixed fractions of the profile and a dual number's
+/// derivatives by the dimensions and the length come from the same rule.
+fn segments<D: Scalar>(
     kind: Option<HingeKind>,
-    dims: &[f64],
-    f: &Flexure<f64>,
+    dims: &[D],
+    f: &Flexure<D>,
     n: usize,
     width: f64,
     material: &Material,
-) -> Vec<Compliance<f64>> {
+) -> Vec<Compliance<D>> {
     let length = f.length;
     let step = length / n as f64;
-    let mut out: Vec<Compliance<f64>> = (0..n)
+    let mut out: Vec<Compliance<D>> = (0..n)
         .map(|i| match kind {
             None => beam_compliance(step, dims[1], width, material),
             Some(kind) => {
-                let (lo, hi) = (i as f64 * step, (i + 1) as f64 * step);
-                let t = |s: f64| kind.thickness_at(dims, s / length);
+                let t = |tau: f64| kind.thickness_at(dims, (i as f64 + tau) / n as f64);
                 let ew = material.youngs_modulus * width;
-                let i0 = integrate(&|s| 1.0 / t(s), lo, hi);
-                let i3: Vec<f64> = (0..3)
-                    .map(|k| integrate(&|s| (hi - s).powi(k) / t(s).powi(3), lo, hi))
+                let i0 = integrate_over(&|tau| t(tau).recip(), 0.0, 1.0) * step;
+                // int (hi - s)^k / t^3 ds = step^(k+1) int (1 - tau)^k / t^3 dtau
+                let i3: Vec<D> = (0..3)
+                    .map(|k| {
+                        let f = |tau: f64| t(tau).powi(3).recip() * (1.0 - tau).powi(k);
+                        integrate_over(&f, 0.0, 1.0) * step.powi(k + 1)
+                    })
                     .collect();
                 // E / G = 2 (1 + nu): paper 004's shear factor 1, as the hinges' integrals
                 let shear = 2.0 * (1.0 + material.poisson_ratio);
                 Compliance {
                     c11: i0 / ew,
-                    c22: (12.0 * i3[2] + shear * i0) / ew,
-                    c23: 12.0 * i3[1] / ew,
-                    c33: 12.0 * i3[0] / ew,
+                    c22: (i3[2] * 12.0 + i0 * shear) / ew,
+                    c23: i3[1] * 12.0 / ew,
+                    c33: i3[0] * 12.0 / ew,
                 }
             }
         })
         .collect();
     // the segments in series at the flexure's end: each carried over the distance `a`
     // from its end to the flexure's by the rigid transfer (the last with `a = 0`)
-    let mut sum = [0.0; 4];
+    let zero = D::from(0.0);
+    let mut sum = [zero; 4];
     for (i, c) in out.iter().enumerate() {
-        let a = length - (i + 1) as f64 * step;
-        sum[0] += c.c11;
-        sum[1] += c.c22 + 2.0 * a * c.c23 + a * a * c.c33;
-        sum[2] += c.c23 + a * c.c33;
-        sum[3] += c.c33;
+        let a = length - step * (i + 1) as f64;
+        sum[0] = sum[0] + c.c11;
+        sum[1] = sum[1] + c.c22 + a * c.c23 * 2.0 + a * a * c.c33;
+        sum[2] = sum[2] + c.c23 + a * c.c33;
+        sum[3] = sum[3] + c.c33;
     }
     let whole = f.compliance;
     let last = out.last_mut().expect("one segment at least");
-    last.c11 += whole.c11 - sum[0];
-    last.c22 += whole.c22 - sum[1];
-    last.c23 += whole.c23 - sum[2];
-    last.c33 += whole.c33 - sum[3];
+    last.c11 = last.c11 + whole.c11 - sum[0];
+    last.c22 = last.c22 + whole.c22 - sum[1];
+    last.c23 = last.c23 + whole.c23 - sum[2];
+    last.c33 = last.c33 + whole.c33 - sum[3];
     out
 }

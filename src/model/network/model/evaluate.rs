@@ -2,7 +2,10 @@
 //! factorization, and each output read from them, over `f64` or over dual numbers for the
 //! exact gradients.
 
+use super::outputs::AtStroke;
 use super::*;
+use crate::model::large::report::StrokePointOf;
+use crate::model::network::at_stroke::end_by_design;
 
 thread_local! {
     /// The thread's spare [`Work`]s, one per scalar type it evaluated with, each with its
@@ -139,6 +142,7 @@ impl NetworkModel {
             output: needs_output,
             condenses,
             stresses: needs_stresses,
+            stroke: needs_stroke,
         } = self.needs(wanted);
         self.at(x, modulus, extent, work)?;
         let Work {
@@ -205,6 +209,11 @@ impl NetworkModel {
                 .ok_or("the part's outline has no value at this design")?,
             _ => [D::from(f64::NAN); 2],
         };
+        let stroke = if needs_stroke {
+            Some(self.at_stroke(x, modulus)?)
+        } else {
+            None
+        };
         for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
             *slot = match self.quantities[k] {
                 Amplification(o) => amplification(o),
@@ -233,6 +242,7 @@ impl NetworkModel {
                 PartHeight => footprint[1],
                 Measure(m) => e.measures[m],
                 Frequency(i) => frequencies[i],
+                AtStroke(q) => stroke_output(stroke.as_ref().expect("solved"), q),
             };
             if !slot.re().is_finite() {
                 return Err(format!(
@@ -242,6 +252,28 @@ impl NetworkModel {
             }
         }
         Ok(())
+    }
+
+    /// The outputs at the working stroke, their derivatives through the implicit function
+    /// theorem ([`crate::model::large::sensitivity`]): first derivatives only, and not under
+    /// a scaled modulus.
+    fn at_stroke<D: Scalar>(
+        &self,
+        x: &[D],
+        modulus: Option<D>,
+    ) -> Result<StrokePointOf<D>, String> {
+        let settings = self
+            .large_settings()
+            .ok_or("the outputs at stroke need `[analysis] deflection = \"large\"`")?;
+        if modulus.is_some() || D::SECOND_ORDER {
+            return Err(
+                "the outputs at the working stroke have first derivatives only, and \
+                        do not scale with the modulus: a robust study or a tolerance on E \
+                        cannot use them"
+                    .into(),
+            );
+        }
+        end_by_design(self, x, settings.elements, settings.steps)
     }
 
     /// What the `wanted` outputs need.
@@ -281,6 +313,22 @@ impl NetworkModel {
         }
         work.outputs = y;
         give(work);
+    }
+}
+
+/// Output `q` of the solve at the working stroke `p`.
+fn stroke_output<D: Scalar>(p: &StrokePointOf<D>, q: AtStroke) -> D {
+    match q {
+        AtStroke::StrokeIn => p.stroke_in,
+        AtStroke::StrokeOut => p.stroke_out,
+        AtStroke::Amplification => p.amplification,
+        AtStroke::AmplificationTangent => p.amplification_tangent,
+        AtStroke::KIn => p.k_in,
+        AtStroke::KOut => p.k_out,
+        AtStroke::StressMax => p.stress_max,
+        AtStroke::Stress(h) => p.stresses[h],
+        AtStroke::Across(o) => p.parasitic[o].across,
+        AtStroke::Turn(o) => p.parasitic[o].rotation,
     }
 }
 

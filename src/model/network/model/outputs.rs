@@ -33,6 +33,27 @@ pub(super) enum Quantity {
     Measure(usize),
     /// The natural frequency of mode `i` (from 0).
     Frequency(usize),
+    /// An output at the working stroke, with large deflection (`[analysis] deflection =
+    /// "large"`).
+    AtStroke(AtStroke),
+}
+
+/// What an output at the working stroke is ([`crate::model::large::report::StrokePoint`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum AtStroke {
+    StrokeIn,
+    StrokeOut,
+    Amplification,
+    AmplificationTangent,
+    KIn,
+    KOut,
+    StressMax,
+    /// Flexure `h`'s largest stress: the hinges', then the beams'.
+    Stress(usize),
+    /// Output port `o`'s motion across its direction.
+    Across(usize),
+    /// Output port `o`'s body's rotation.
+    Turn(usize),
 }
 
 /// What an evaluation's wanted outputs need ([`NetworkModel::needs`]).
@@ -53,6 +74,8 @@ pub(super) struct Needs {
     pub(super) condenses: bool,
     /// The hinges' end stresses.
     pub(super) stresses: bool,
+    /// The solve at the working stroke.
+    pub(super) stroke: bool,
 }
 
 impl Needs {
@@ -68,11 +91,12 @@ impl Needs {
             footprint: matches!(q, PartWidth | PartHeight),
             input: !matches!(
                 q,
-                SpanX | SpanY | PartWidth | PartHeight | Measure(_) | StrokeIn
+                SpanX | SpanY | PartWidth | PartHeight | Measure(_) | StrokeIn | AtStroke(_)
             ) || (q == StrokeIn && actuator.is_some()),
             output: matches!(q, KOut | KOutActuated | KOutBlocked | BlockedForce),
             condenses: matches!(q, KOutActuated | KOutBlocked | BlockedForce),
             stresses: matches!(q, StressMax | Stress(_) | StressEnd(..)),
+            stroke: matches!(q, AtStroke(_)),
         }
     }
 
@@ -86,6 +110,7 @@ impl Needs {
             output: self.output | o.output,
             condenses: self.condenses | o.condenses,
             stresses: self.stresses | o.stresses,
+            stroke: self.stroke | o.stroke,
         }
     }
 }
@@ -259,6 +284,88 @@ impl Named {
                          on an output's image, about the other axis"
                     }
                 ),
+            );
+        }
+    }
+
+    /// The outputs at the working stroke: the ports', each flexure's stress, each output
+    /// port's parasitic motion.
+    pub(super) fn at_stroke(&mut self, d: &Description) {
+        use Dimension::*;
+        let first = &d.outputs[0].name;
+        let at = "at the working stroke, with large deflection";
+        for (q, name, dim, what) in [
+            (
+                AtStroke::StrokeIn,
+                "nl_stroke_in",
+                Length,
+                format!("the input's motion {at} (the stack at its free stroke and preload)"),
+            ),
+            (
+                AtStroke::StrokeOut,
+                "nl_stroke_out",
+                Length,
+                format!("motion of output \"{first}\" {at}"),
+            ),
+            (
+                AtStroke::Amplification,
+                "nl_amplification",
+                Ratio,
+                format!("nl_stroke_out / nl_stroke_in: the secant amplification {at}"),
+            ),
+            (
+                AtStroke::AmplificationTangent,
+                "nl_amplification_tangent",
+                Ratio,
+                format!("the tangent amplification {at}"),
+            ),
+            (
+                AtStroke::KIn,
+                "nl_k_in",
+                Stiffness,
+                format!("tangent input stiffness {at}, the outputs free"),
+            ),
+            (
+                AtStroke::KOut,
+                "nl_k_out",
+                Stiffness,
+                format!("tangent stiffness at output \"{first}\" {at}, the input free"),
+            ),
+            (
+                AtStroke::StressMax,
+                "nl_stress_max",
+                Stress,
+                format!("largest stress in the flexures {at}"),
+            ),
+        ] {
+            self.add(Quantity::AtStroke(q), name.into(), dim, what);
+        }
+        let members = d
+            .hinges
+            .iter()
+            .map(|h| &h.name)
+            .chain(d.beams.iter().map(|b| &b.name));
+        for (h, name) in members.enumerate() {
+            self.add(
+                Quantity::AtStroke(AtStroke::Stress(h)),
+                format!("nl_stress_{name}"),
+                Stress,
+                format!("largest stress in \"{name}\" {at}"),
+            );
+        }
+        for (o, p) in d.outputs.iter().enumerate() {
+            let name = &p.name;
+            self.add(
+                Quantity::AtStroke(AtStroke::Across(o)),
+                format!("nl_across_{name}"),
+                Length,
+                format!("parasitic motion of output \"{name}\" across its direction {at}"),
+            );
+            self.add(
+                Quantity::AtStroke(AtStroke::Turn(o)),
+                format!("nl_turn_{name}"),
+                Angle,
+                format!("rotation of output \"{name}\"'s body {at}"),
             );
         }
     }
