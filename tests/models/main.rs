@@ -29,4 +29,5 @@ mod prr3;
 mod pss3;
 mod rooms;
 mod step_response;
+mod stroke_matters;
 mod toy_model;
