@@ -30,4 +30,5 @@ mod pss3;
 mod rooms;
 mod step_response;
 mod stroke_gradients;
+mod stroke_matters;
 mod toy_model;
