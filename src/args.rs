@@ -284,6 +284,35 @@ pub enum Command {
         #[arg(long, default_value_t = 12, requires = "fe")]
         fe_samples: usize,
     },
+    /// One network design with its flexures' large deflection over its working stroke,
+    /// beside the linear model: the curves (stroke.csv, stroke.svg), the report with the
+    /// critical load factor and the end point with twice the elements (stroke.json), and a
+    /// table of the full stroke.
+    #[command(after_help = EXIT_CODES)]
+    Stroke(StrokeArgs),
+}
+
+/// The options of `flexopt stroke`.
+#[derive(clap::Args)]
+pub struct StrokeArgs {
+    #[arg(help = PROBLEM)]
+    pub problem: PathBuf,
+    #[command(flatten)]
+    pub design: DesignArgs,
+    /// Folder to write into (default: results/<problem name>/stroke).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Beam elements a flexure (1 to 64); the convergence estimate solves the full stroke
+    /// with twice as many.
+    #[arg(long, default_value_t = 8)]
+    pub elements: usize,
+    /// Load steps from the unloaded part to the full stroke: the curves' points (1 to 1000).
+    #[arg(long, default_value_t = 10)]
+    pub steps: usize,
+    /// Drive the input by this force (N, the whole mechanism's, along the input's
+    /// direction) in the actuator's place.
+    #[arg(long, value_name = "NEWTONS", allow_hyphen_values = true)]
+    pub force: Option<f64>,
 }
 
 /// Where a command takes its one design from.

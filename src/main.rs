@@ -9,6 +9,7 @@ use clap::Parser;
 mod args;
 mod failure;
 mod start_command;
+mod stroke_command;
 mod study_command;
 mod tolerance_command;
 mod verify_command;
@@ -163,6 +164,7 @@ fn dispatch(command: Command) -> Result<(), Failure> {
             };
             pareto(&problem, spec, &study)
         }
+        Command::Stroke(args) => stroke_command::run(&args),
     }
 }
 

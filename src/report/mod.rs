@@ -15,6 +15,7 @@ pub mod pareto;
 pub mod part;
 pub mod plot;
 pub mod refine;
+pub mod stroke;
 pub mod study;
 mod study_plots;
 pub mod summary;

@@ -116,6 +116,47 @@ pub fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
+/// A chart of one panel on `area`: its caption `title`, its axes over `xr` and `yr` with
+/// their `labels` (x, y) and ticks, a light grid; drawn, for the caller's series.
+pub fn panel_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    labels: (&str, &str),
+    xr: (f64, f64),
+    yr: (f64, f64),
+) -> Result<Chart2d<'a, DB>, DrawError>
+where
+    DB::ErrorType: 'static,
+{
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, (FAMILY, 16))
+        .margin(10)
+        .x_label_area_size(44)
+        .y_label_area_size(72)
+        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
+    chart
+        .configure_mesh()
+        .x_desc(labels.0)
+        .y_desc(labels.1)
+        .label_style((FAMILY, 12))
+        .axis_desc_style((FAMILY, 13))
+        .x_labels(6)
+        .y_labels(7)
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(BLACK.mix(0.12))
+        .y_label_formatter(&|v| axis_tick(*v, yr, 7))
+        .x_label_formatter(&|v| axis_tick(*v, xr, 6))
+        .draw()?;
+    Ok(chart)
+}
+
+/// A chart of [`panel_chart`]: `f64` on both axes.
+pub type Chart2d<'a, DB> = ChartContext<
+    'a,
+    DB,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     p: &Panel,
@@ -140,25 +181,7 @@ where
         .filter(|&l| l > lo - reach && l < hi + reach)
         .collect();
     let yr = range(ys.iter().copied().chain(near.iter().copied()));
-    let mut chart = ChartBuilder::on(area)
-        .caption(&p.title, (FAMILY, 16))
-        .margin(10)
-        .x_label_area_size(44)
-        .y_label_area_size(72)
-        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
-    chart
-        .configure_mesh()
-        .x_desc(&p.x_label)
-        .y_desc(&p.y_label)
-        .label_style((FAMILY, 12))
-        .axis_desc_style((FAMILY, 13))
-        .x_labels(6)
-        .y_labels(7)
-        .light_line_style(TRANSPARENT)
-        .bold_line_style(BLACK.mix(0.12))
-        .y_label_formatter(&|v| axis_tick(*v, yr, 7))
-        .x_label_formatter(&|v| axis_tick(*v, xr, 6))
-        .draw()?;
+    let mut chart = panel_chart(area, &p.title, (&p.x_label, &p.y_label), xr, yr)?;
     for &l in &near {
         chart.draw_series(DashedLineSeries::new(
             [(xr.0, l), (xr.1, l)],

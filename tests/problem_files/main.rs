@@ -21,4 +21,5 @@ mod problem_fuzz;
 mod rejected;
 mod sets;
 mod stdout;
+mod stroke_cli;
 mod tolerance_cli;
