@@ -63,6 +63,8 @@ pub(super) struct Built {
     pub ports: Vec<PortNode>,
     pub flexures: Vec<FlexureEnd>,
     pub width: f64,
+    /// Each body's master node.
+    pub masters: Vec<usize>,
 }
 
 /// The distance of the stack's anchor behind the input port (m): long, so that the
@@ -160,6 +162,7 @@ pub(super) fn build(
         ports,
         flexures,
         width: d.width,
+        masters,
     })
 }
 
