@@ -20,6 +20,7 @@ pub mod ports;
 mod raw;
 mod scaling;
 pub mod stroke;
+mod stroke_modes;
 pub mod structure;
 mod supports;
 

@@ -48,6 +48,7 @@ mod placing;
 
 use mirror::{expressions, Role};
 use natural::axis_holds;
+pub(super) use natural::Family;
 use outputs::{Named, Needs, Quantity};
 use placing::{constant_direction, link_band, outline_crossing};
 

@@ -66,6 +66,8 @@ pub(super) struct Built<D> {
     pub ports: Vec<PortNode<D>>,
     pub flexures: Vec<FlexureEnd<D>>,
     pub width: f64,
+    /// Each body's master node.
+    pub masters: Vec<usize>,
 }
 
 /// The distance of the stack's anchor behind the input port (m): long, so that the
@@ -167,6 +169,7 @@ pub(super) fn build<D: Scalar>(
         ports,
         flexures,
         width: d.width,
+        masters,
     })
 }
 

@@ -4,6 +4,22 @@
 
 use super::*;
 
+/// One family of modes ([`families`]): the network with the family's holds and the stack
+/// where it is stretched (on a part unfolded about its mounting, the whole about that line),
+/// the bodies' inertias with the payload (and the images'), the stack's directed masses,
+/// each described body's image (empty unless unfolded), the axes the modes are
+/// antisymmetric about, whether the stack is stretched, and the line unfolded about (`true`
+/// the line `y = 0`).
+pub(in crate::model::network) struct Family<D> {
+    pub network: Network<D>,
+    pub inertia: Vec<Inertia<D>>,
+    pub directed: Vec<DirectedMass<D>>,
+    pub images: Vec<Body>,
+    pub anti: Vec<Axis>,
+    pub stretched: bool,
+    pub unfolded: Option<bool>,
+}
+
 impl NetworkModel {
     /// How many modes [`Self::frequencies`] finds: the degrees of freedom of the described
     /// part in each family of modes ([`families`]), or of the whole about the axis its
@@ -165,6 +181,41 @@ impl NetworkModel {
         e: &Evaluated<D>,
         count: usize,
     ) -> Result<Vec<D>, String> {
+        let mut found: Vec<D> = Vec::new();
+        for f in self.families_of(e) {
+            let modes = f
+                .network
+                .modes_with(&f.inertia, &f.directed, count)
+                .map_err(|err| self.mode_error(err, &f.images, &f.anti))?;
+            found.extend(modes.into_iter().map(|m| m.frequency));
+        }
+        if found.len() < count {
+            return Err(format!(
+                "the network has {} modes; f{count} asks for more",
+                found.len()
+            ));
+        }
+        // by value, the families' order breaking ties, so that the same design gives the
+        // same order
+        found.sort_by(|a, b| a.re().total_cmp(&b.re()));
+        found.truncate(count);
+        Ok(found)
+    }
+
+    /// The families of modes of [`Self::frequencies`] at the design `x` (SI), for the modes
+    /// about an equilibrium at stroke ([`super::super::stroke_modes`]), which takes their
+    /// holds, masses and images and puts its own stiffness in the place of the networks'.
+    pub(in crate::model::network) fn modal_families(
+        &self,
+        x: &[f64],
+    ) -> Result<Vec<Family<f64>>, String> {
+        let mut work = Work::<f64>::default();
+        self.at(x, None, true, &mut work)?;
+        Ok(self.families_of(&work.evaluated))
+    }
+
+    /// Each family of modes of [`Self::frequencies`] at the evaluated design `e`.
+    fn families_of<D: Scalar>(&self, e: &Evaluated<D>) -> Vec<Family<D>> {
         let d = &self.description;
         let mounting = self.mounting();
         let inertia = self.body_inertia(e);
@@ -178,7 +229,6 @@ impl NetworkModel {
             }
         });
         let line = mounting.map(|(_, line)| line);
-        let mut found: Vec<D> = Vec::new();
         // a body across an axis is held at its point on the axis: in a mode antisymmetric
         // about it, it turns about that point, and a hold of its motion along the axis at a
         // reference off it would turn it about the reference instead (in a symmetric mode it
@@ -192,6 +242,7 @@ impl NetworkModel {
                 }
             }
         }
+        let mut out = Vec::new();
         for anti in families(&self.family_axes()) {
             let mut network = on_axes.clone();
             let held = axis_holds(d, line, &anti);
@@ -201,6 +252,7 @@ impl NetworkModel {
             let mut inertia = inertia.clone();
             let mut payload_share = self.share[1];
             let mut images = Vec::new();
+            let mut unfolded = None;
             if let Some((port, line)) = mounting {
                 let flip_y = line == Axis::X;
                 let across: Vec<bool> =
@@ -219,27 +271,23 @@ impl NetworkModel {
                 directed = DirectedMass::unfolded(&directed, &image, flip_y);
                 network = whole;
                 images = image;
+                unfolded = Some(flip_y);
             } else {
                 network.held = held;
             }
             let (body, at) = (e.ports[1].body, e.ports[1].point);
             inertia[body] = inertia[body].with_point_mass(d.outputs[0].payload * payload_share, at);
-            let modes = network
-                .modes_with(&inertia, &directed, count)
-                .map_err(|err| self.mode_error(err, &images, &anti))?;
-            found.extend(modes.into_iter().map(|m| m.frequency));
+            out.push(Family {
+                network,
+                inertia,
+                directed,
+                images,
+                anti,
+                stretched,
+                unfolded,
+            });
         }
-        if found.len() < count {
-            return Err(format!(
-                "the network has {} modes; f{count} asks for more",
-                found.len()
-            ));
-        }
-        // by value, the families' order breaking ties, so that the same design gives the
-        // same order
-        found.sort_by(|a, b| a.re().total_cmp(&b.re()));
-        found.truncate(count);
-        Ok(found)
+        out
     }
 
     /// The stack's own mass (`[actuator] mass`) on the input port, the described part's
