@@ -164,7 +164,10 @@ fn dispatch(command: Command) -> Result<(), Failure> {
             };
             pareto(&problem, spec, &study)
         }
-        Command::Stroke(args) => stroke_command::run(&args),
+        Command::Stroke(args) => {
+            let (problem, x) = chosen_design(&args.problem, &args.design)?;
+            stroke_command::run(&problem, &x, &args)
+        }
     }
 }
 

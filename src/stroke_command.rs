@@ -17,9 +17,9 @@ const ELEMENTS: (usize, usize) = (1, 64);
 /// The load steps of the path: its points.
 const STEPS: (usize, usize) = (1, 1000);
 
-/// Solves the chosen design over its stroke, writes the set and prints the table.
-pub fn run(args: &StrokeArgs) -> Result<(), Failure> {
-    let (problem, x) = crate::chosen_design(&args.problem, &args.design)?;
+/// Solves the chosen design `x` of `problem` over its stroke, writes the set and prints the
+/// table.
+pub fn run(problem: &Problem, x: &[f64], args: &StrokeArgs) -> Result<(), Failure> {
     let Some(large) = problem.mechanism().large.clone() else {
         return Err(Failure::bad_input(format!(
             "{}: key `model`: the large-deflection solve is for networks: model `{}` has \
@@ -28,19 +28,19 @@ pub fn run(args: &StrokeArgs) -> Result<(), Failure> {
             problem.model().name()
         )));
     };
-    let options = options(&problem, args)?;
+    let options = options(problem, args)?;
     let dir = args
         .out
         .clone()
         .unwrap_or_else(|| problem.default_output_dir().join("stroke"));
     check_writable(&dir).map_err(|e| Failure::bad_input(format!("key `--out`: {e}")))?;
-    let report = large.at_stroke(&x, &options).map_err(|e| {
+    let report = large.at_stroke(x, &options).map_err(|e| {
         Failure::bad_input(format!(
             "{}: cannot solve this design over its stroke: {e}",
             problem.file.display()
         ))
     })?;
-    let run = StrokeRun::new(&problem, &x, &options, report);
+    let run = StrokeRun::new(problem, x, &options, report);
     let files = write_stroke_set(&dir, &run).map_err(Failure::write_failed)?;
     emit(&StrokeTable(&run))?;
     emit(&Wrote(&files))

@@ -140,25 +140,16 @@ impl Validator<'_, '_> {
         let search = self.search(&raw.search, limits(&constraints))?;
         let tolerances =
             super::tolerances::tolerances(self, &mechanism, &variables, &raw.tolerances)?;
-        let scaled = search.robust.is_some()
-            || tolerances
-                .iter()
-                .any(|t| t.input == super::tolerances::Input::Modulus);
-        if let (true, Some(scaling)) = (scaled, &mechanism.modulus) {
-            let used = std::iter::once((vec![k("objective")], objective.index)).chain(
-                constraints.iter().enumerate().map(|(j, c)| {
-                    (
-                        vec![k("constraints"), Segment::Index(j), k("output")],
-                        c.index,
-                    )
-                }),
-            );
-            for (path, index) in used {
-                if let Some(why) = scaling.unscaled(index) {
-                    return Err(self.err(&path, why));
-                }
-            }
-        }
+        let used = std::iter::once((vec![k("objective")], objective.index)).chain(
+            (constraints.iter().enumerate()).map(|(j, c)| {
+                (
+                    vec![k("constraints"), Segment::Index(j), k("output")],
+                    c.index,
+                )
+            }),
+        );
+        let robust = search.robust.is_some();
+        super::tolerances::unscaled(self, &mechanism, robust, &tolerances, used)?;
         if search.robust.is_some() {
             let path = [k("search"), k("robust")];
             if mechanism.modulus.is_none() {

@@ -6,7 +6,6 @@
 //! check through its ports ([`part`]), for a file with a `[part]` section.
 
 mod assemble;
-pub mod at_stroke;
 mod checks;
 mod depiction;
 pub mod description;
@@ -19,7 +18,6 @@ pub mod part;
 pub mod ports;
 mod raw;
 mod scaling;
-pub mod stroke;
 mod stroke_modes;
 pub mod structure;
 mod supports;

@@ -40,15 +40,18 @@ use crate::model::material::Material;
 use crate::model::scalar::{max, with_count, Jet, Scalar};
 use crate::model::{unseed, Dimension, Model, OutputInfo, ParameterInfo};
 
+pub(crate) mod at_stroke;
 mod evaluate;
 mod mirror;
 mod natural;
 mod outputs;
 mod placing;
+pub(crate) mod stroke;
 
 use mirror::{expressions, Role};
 use natural::axis_holds;
 pub(super) use natural::Family;
+pub use outputs::LargeSettings;
 use outputs::{Named, Needs, Quantity};
 use placing::{constant_direction, link_band, outline_crossing};
 
@@ -101,14 +104,6 @@ pub struct NetworkModel {
     /// How the outputs at the working stroke are solved, where the file asks for them
     /// (`[analysis] deflection = "large"`).
     large: Option<LargeSettings>,
-}
-
-/// How the outputs at the working stroke are solved: the beam elements a flexure and the
-/// load steps from the unloaded part to the full stroke.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LargeSettings {
-    pub elements: usize,
-    pub steps: usize,
 }
 
 /// The linear network at one design (see [`NetworkModel::linear_at`]).
@@ -322,8 +317,7 @@ impl NetworkModel {
         }
     }
 
-    /// The model with its outputs at the working stroke too (`nl_...`), solved as
-    /// `settings` says.
+    /// The model with its outputs at the working stroke too (`nl_...`), as `settings` says.
     pub fn with_large(self, settings: LargeSettings) -> Self {
         let mut named = Named {
             quantities: self.quantities,

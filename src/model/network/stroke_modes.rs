@@ -19,9 +19,9 @@
 
 use nalgebra::{DMatrix, Matrix3, SymmetricEigen, Vector3};
 
+use super::model::stroke::Built;
 use super::model::{Family, NetworkModel};
 use super::modes::{DirectedMass, Inertia};
-use super::stroke::Built;
 use super::structure::{Body, Dof as NetDof, Network};
 use crate::model::large::assemble::System;
 use crate::model::large::Dof;
@@ -38,7 +38,7 @@ use crate::model::large::Dof;
 pub(super) fn frequencies_at(
     model: &NetworkModel,
     x: &[f64],
-    built: &Built,
+    built: &Built<f64>,
     u: &[f64],
     lambda: f64,
     count: usize,
@@ -83,7 +83,7 @@ pub(super) fn frequencies_at(
 /// master nodes (`3` rows a body, in their order), the masters' holds released (the modes
 /// hold them), the stack's spring left out unless `stretched`.
 fn condense(
-    built: &Built,
+    built: &Built<f64>,
     u: &[f64],
     lambda: f64,
     stretched: bool,
@@ -155,7 +155,7 @@ fn free_motions(rows: &[[f64; 3]]) -> Vec<[f64; 3]> {
 /// Where each body of the family stands at the equilibrium: the described body it is, and
 /// whether it is its image across the line `y = 0` (`Some(true)`) or `x = 0`.
 struct Placement<'a> {
-    built: &'a Built,
+    built: &'a Built<f64>,
     u: &'a [f64],
     source: Vec<(usize, bool)>,
     flip_y: Option<bool>,
@@ -199,7 +199,7 @@ impl Placement<'_> {
 /// The frequencies (Hz) of one family: the condensed tangent `k` of the described part,
 /// with its image's where the family is unfolded, the family's masses and holds.
 fn family_frequencies(
-    built: &Built,
+    built: &Built<f64>,
     u: &[f64],
     f: &Family<f64>,
     k: &DMatrix<f64>,
@@ -299,7 +299,7 @@ fn unfold(
 /// The family's holds at their points as they stand; a stack without a stiffness holds its
 /// input (and the input's image) along the stack where it is stretched.
 fn free_basis(
-    built: &Built,
+    built: &Built<f64>,
     f: &Family<f64>,
     place: &Placement,
     masters: &[[f64; 2]],
@@ -379,15 +379,13 @@ mod tests {
     use std::path::Path;
 
     use super::super::file::describe;
+    use super::super::model::stroke::{build, Drive};
     use super::super::raw::RawNetwork;
-    use super::super::stroke::{build, Drive};
     use super::*;
     use crate::model::actuator::{Actuator, RawActuator};
     use crate::model::large::solve::{continuation, Options};
     use crate::model::material::{Material, RawMaterial};
     use crate::model::Model;
-    use crate::problem::optimum_file::design_from_optimum;
-    use crate::problem::Problem;
     use crate::vocab::error::Locator;
     use crate::vocab::sections::Sections;
 
@@ -414,11 +412,15 @@ mod tests {
             Material::from_section(&s, &m).unwrap(),
             Actuator::read(&s, &a).unwrap(),
         );
-        let problem = Problem::load(Path::new(&file)).unwrap();
+        // the optimum's design (SI) by parameter, read as its file writes it
         let optimum = format!("results/{name}_network/optimum.json");
-        let x = design_from_optimum(&problem, Path::new(&optimum))
-            .unwrap()
-            .x;
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(optimum).unwrap()).unwrap();
+        let x = model
+            .parameters()
+            .iter()
+            .map(|p| json["design_si"][p.name.as_ref()].as_f64().unwrap())
+            .collect();
         (model, x)
     }
 

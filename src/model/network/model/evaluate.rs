@@ -2,10 +2,10 @@
 //! factorization, and each output read from them, over `f64` or over dual numbers for the
 //! exact gradients.
 
+use super::at_stroke::end_by_design;
 use super::outputs::AtStroke;
 use super::*;
 use crate::model::large::report::StrokePointOf;
-use crate::model::network::at_stroke::end_by_design;
 
 thread_local! {
     /// The thread's spare [`Work`]s, one per scalar type it evaluated with, each with its
@@ -203,17 +203,10 @@ impl NetworkModel {
             Some(count) => self.frequencies(e, count)?,
             None => Vec::new(),
         };
-        let footprint = match (footprint, &self.drawing) {
-            (true, Some(drawing)) => drawing
-                .footprint(x)
-                .ok_or("the part's outline has no value at this design")?,
-            _ => [D::from(f64::NAN); 2],
-        };
-        let stroke = if needs_stroke {
-            Some(self.at_stroke(x, modulus)?)
-        } else {
-            None
-        };
+        let footprint = self.footprint_of(footprint, x)?;
+        let stroke = needs_stroke
+            .then(|| self.at_stroke(x, modulus))
+            .transpose()?;
         for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
             *slot = match self.quantities[k] {
                 Amplification(o) => amplification(o),
@@ -252,6 +245,16 @@ impl NetworkModel {
             }
         }
         Ok(())
+    }
+
+    /// The part's footprint where `wanted`, else not-a-number.
+    fn footprint_of<D: Scalar>(&self, wanted: bool, x: &[D]) -> Result<[D; 2], String> {
+        match (wanted, &self.drawing) {
+            (true, Some(drawing)) => drawing
+                .footprint(x)
+                .ok_or_else(|| "the part's outline has no value at this design".into()),
+            _ => Ok([D::from(f64::NAN); 2]),
+        }
     }
 
     /// The outputs at the working stroke, their derivatives through the implicit function

@@ -10,7 +10,7 @@ use super::*;
 /// each described body's image (empty unless unfolded), the axes the modes are
 /// antisymmetric about, whether the stack is stretched, and the line unfolded about (`true`
 /// the line `y = 0`).
-pub(in crate::model::network) struct Family<D> {
+pub(crate) struct Family<D> {
     pub network: Network<D>,
     pub inertia: Vec<Inertia<D>>,
     pub directed: Vec<DirectedMass<D>>,
@@ -205,10 +205,7 @@ impl NetworkModel {
     /// The families of modes of [`Self::frequencies`] at the design `x` (SI), for the modes
     /// about an equilibrium at stroke ([`super::super::stroke_modes`]), which takes their
     /// holds, masses and images and puts its own stiffness in the place of the networks'.
-    pub(in crate::model::network) fn modal_families(
-        &self,
-        x: &[f64],
-    ) -> Result<Vec<Family<f64>>, String> {
+    pub(crate) fn modal_families(&self, x: &[f64]) -> Result<Vec<Family<f64>>, String> {
         let mut work = Work::<f64>::default();
         self.at(x, None, true, &mut work)?;
         Ok(self.families_of(&work.evaluated))

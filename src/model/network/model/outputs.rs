@@ -38,6 +38,14 @@ pub(super) enum Quantity {
     AtStroke(AtStroke),
 }
 
+/// How the outputs at the working stroke are solved: the beam elements a flexure and the
+/// load steps from the unloaded part to the full stroke.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LargeSettings {
+    pub elements: usize,
+    pub steps: usize,
+}
+
 /// What an output at the working stroke is ([`crate::model::large::report::StrokePoint`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum AtStroke {

@@ -10,8 +10,8 @@
 //! the hinge library's from the loads at its end on `to` (its last element's end forces in
 //! the frame of that end, turned with it), as the linear model states it from its loads.
 
-use super::model::NetworkModel;
 use super::stroke::{build, Built, Drive, FlexureEnd};
+use super::NetworkModel;
 use crate::model::hinge::HingeLoads;
 use crate::model::large::assemble::{System, SystemOf};
 use crate::model::large::critical::critical_load_factor;
@@ -99,7 +99,7 @@ pub fn solve_stroke(
 /// design through the implicit function theorem
 /// ([`crate::model::large::sensitivity`]), so a dual `x` gives every output its exact
 /// gradient at stroke (to the path's tolerance).
-pub(super) fn end_by_design<D: Scalar>(
+pub(crate) fn end_by_design<D: Scalar>(
     model: &NetworkModel,
     x: &[D],
     elements: usize,
@@ -132,7 +132,7 @@ fn polish(system: &System, mut free: Vec<f64>, lambda: f64) -> Vec<f64> {
     for _ in 0..6 {
         let a = system.assemble(&system.expand(&free, lambda), lambda);
         let r = norm(&a.residual);
-        if !(r < best.0) {
+        if r.is_nan() || r >= best.0 {
             break;
         }
         best = (r, free.clone());

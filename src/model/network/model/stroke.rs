@@ -19,8 +19,8 @@
 //! and the preload `share P` at the input port; an actuator without a stiffness (much
 //! stiffer than the mechanism) prescribes the input's motion, `X / read`.
 
-use super::model::{LinearAt, NetworkModel};
-use super::structure::{beam_compliance, Body, Dof as NetDof, Flexure};
+use super::super::structure::{beam_compliance, Body, Dof as NetDof, Flexure};
+use super::{LinearAt, NetworkModel};
 use crate::model::hinge::profile::integrate_over;
 use crate::model::hinge::{Compliance, HingeKind};
 use crate::model::large::{Dof, LocalOf, Section, SpringOf, StructureOf};
@@ -39,7 +39,7 @@ pub enum Drive {
 
 /// A port as a node of the structure.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct PortNode<D> {
+pub(crate) struct PortNode<D> {
     pub node: usize,
     pub direction: [D; 2],
     pub read: f64,
@@ -48,7 +48,7 @@ pub(super) struct PortNode<D> {
 
 /// A flexure's last element (at its end on `to`) and what its stress needs.
 #[derive(Debug, Clone)]
-pub(super) struct FlexureEnd<D> {
+pub(crate) struct FlexureEnd<D> {
     pub beam: usize,
     pub axis: [D; 2],
     pub kind: HingeKind,
@@ -60,7 +60,7 @@ pub(super) struct FlexureEnd<D> {
 /// `D`: real to be solved, dual to carry the design's derivatives
 /// ([`crate::model::large::sensitivity`]).
 #[derive(Debug, Clone)]
-pub(super) struct Built<D> {
+pub(crate) struct Built<D> {
     pub driven: StructureOf<D>,
     pub alone: StructureOf<D>,
     pub ports: Vec<PortNode<D>>,
@@ -84,7 +84,7 @@ fn axis_dof<D: Scalar>(n: [D; 2]) -> Option<(Dof, f64)> {
 }
 
 /// The structure of `model` at the design `x` (SI) in `elements` beams a flexure.
-pub(super) fn build<D: Scalar>(
+pub(crate) fn build<D: Scalar>(
     model: &NetworkModel,
     x: &[D],
     elements: usize,
