@@ -199,7 +199,9 @@ fn the_analysis_section_refuses_what_it_cannot_do() {
         ),
         ("elements = 16", "deflection", "deflection = \"large\""),
     ] {
-        let err = with_analysis(file, analysis).err().expect(analysis);
+        let Err(err) = with_analysis(file, analysis) else {
+            panic!("{analysis}: accepted");
+        };
         assert!(
             err.contains(&format!("analysis.{key}")) && err.contains(says),
             "{analysis}: {err}"

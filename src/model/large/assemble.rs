@@ -7,7 +7,7 @@
 
 use faer::Mat;
 
-use super::element::{beam, spring};
+use super::element::{beam, length, spring};
 use super::{LargeError, StructureOf};
 use crate::model::scalar::Scalar;
 
@@ -191,8 +191,7 @@ impl<'a, D: Scalar> SystemOf<'a, D> {
             let idx = [idx[0], idx[1], idx[2], 3 * b.b, 3 * b.b + 1, 3 * b.b + 2];
             let d = idx.map(|i| u[i]);
             let (xa, xb) = (st.nodes[b.a], st.nodes[b.b]);
-            let l0 = ((xb[0] - xa[0]) * (xb[0] - xa[0]) + (xb[1] - xa[1]) * (xb[1] - xa[1])).sqrt();
-            let c = beam(xa, xb, b.local(l0), &d);
+            let c = beam(xa, xb, b.local(length(xa, xb)), &d);
             for (x, &i) in idx.iter().enumerate() {
                 r[i] = r[i] + c.force[x];
                 for (y, &j) in idx.iter().enumerate() {

@@ -30,6 +30,11 @@ fn hypot<D: Scalar>(x: D, y: D) -> D {
     (x * x + y * y).sqrt()
 }
 
+/// The distance from `xa` to `xb`: an element's reference length.
+pub fn length<D: Scalar>(xa: [D; 2], xb: [D; 2]) -> D {
+    hypot(xb[0] - xa[0], xb[1] - xa[1])
+}
+
 /// The beam from reference positions `xa, xb` under displacements `d` (6 values), of
 /// local linear stiffness `local`. Generic over the scalar so that the derivatives of the
 /// internal force by the design (through the positions and the local stiffness) come from
@@ -136,7 +141,7 @@ pub fn spring<D: Scalar>(
     extension: D,
     d: &[D; 4],
 ) -> (Contribution<D, 4>, [D; 4]) {
-    let l0 = hypot(xb[0] - xa[0], xb[1] - xa[1]);
+    let l0 = length(xa, xb);
     let chord = [xb[0] - xa[0] + d[2] - d[0], xb[1] - xa[1] + d[3] - d[1]];
     let l = hypot(chord[0], chord[1]);
     let e = [chord[0] / l, chord[1] / l];

@@ -100,6 +100,29 @@ impl System<'_> {
         self.assemble(&self.expand(&state.free, state.lambda), state.lambda)
     }
 
+    /// The equilibrium `free` at `lambda` iterated on by Newton while its residual falls (at
+    /// most six times): a path stops within its tolerance, and an output's derivative checked
+    /// by differences of such ends would see that tolerance as noise; polished, the ends are
+    /// the equilibrium to round-off and smooth in the design.
+    pub(crate) fn polish(&self, mut free: Vec<f64>, lambda: f64) -> Vec<f64> {
+        let mut best = (f64::INFINITY, free.clone());
+        for _ in 0..6 {
+            let a = self.assemble(&self.expand(&free, lambda), lambda);
+            let r = norm(&a.residual);
+            if r.is_nan() || r >= best.0 {
+                break;
+            }
+            best = (r, free.clone());
+            let Some(step) = solve_each(&a.tangent, &[&a.residual]) else {
+                break;
+            };
+            for (f, s) in free.iter_mut().zip(&step[0]) {
+                *f -= s;
+            }
+        }
+        best.1
+    }
+
     pub(crate) fn point(&self, state: &State) -> PathPoint {
         PathPoint {
             lambda: state.lambda,

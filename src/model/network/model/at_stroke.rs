@@ -15,7 +15,7 @@ use super::NetworkModel;
 use crate::model::hinge::HingeLoads;
 use crate::model::large::assemble::{System, SystemOf};
 use crate::model::large::critical::critical_load_factor;
-use crate::model::large::element::beam;
+use crate::model::large::element::{beam, length};
 use crate::model::large::report::{
     LargeDeflection, ParasiticOf, StrokeOptions, StrokePoint, StrokePointOf, StrokeReport,
 };
@@ -115,35 +115,11 @@ pub(crate) fn end_by_design<D: Scalar>(
     let end = path.end();
     let system = System::new(&real.driven).map_err(large)?;
     let free: Vec<f64> = system.free.iter().map(|&i| end.displacement[i]).collect();
-    let free = polish(&system, free, end.lambda);
+    let free = system.polish(free, end.lambda);
     let dual = build(model, x, elements, Drive::Stack)?;
     let dual_system = SystemOf::new(&dual.driven).map_err(large)?;
     let u = equilibrium_by_design(&system, &dual_system, &free, end.lambda).map_err(large)?;
     measure(&dual, &u, end.lambda, None)
-}
-
-/// The equilibrium `free` at `lambda` iterated on by Newton while its residual falls (at
-/// most six times): the path stops within its tolerance, and an output's derivative checked
-/// by differences of such ends would see that tolerance as noise; polished, the ends are
-/// the equilibrium to round-off and smooth in the design.
-fn polish(system: &System, mut free: Vec<f64>, lambda: f64) -> Vec<f64> {
-    let norm = |v: &[f64]| v.iter().map(|r| r * r).sum::<f64>().sqrt();
-    let mut best = (f64::INFINITY, free.clone());
-    for _ in 0..6 {
-        let a = system.assemble(&system.expand(&free, lambda), lambda);
-        let r = norm(&a.residual);
-        if r.is_nan() || r >= best.0 {
-            break;
-        }
-        best = (r, free.clone());
-        let Some(step) = solve_each(&a.tangent, &[&a.residual]) else {
-            break;
-        };
-        for (f, s) in free.iter_mut().zip(&step[0]) {
-            *f -= s;
-        }
-    }
-    best.1
 }
 
 /// The linear solution of the driven structure's full load: the unloaded tangent's, with
@@ -242,8 +218,7 @@ fn end_stress<D: Scalar>(
         3 * b.b + 1,
         3 * b.b + 2,
     ];
-    let l0 = ((xb[0] - xa[0]) * (xb[0] - xa[0]) + (xb[1] - xa[1]) * (xb[1] - xa[1])).sqrt();
-    let local = b.local(l0);
+    let local = b.local(length(xa, xb));
     let force = match linear_about {
         None => beam(xa, xb, local, &idx.map(|i| u[i])).force,
         Some(zero) => {
