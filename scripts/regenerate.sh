@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates every committed file of results/ but the benchmarks': the study of each problem
 # in problems/ (the flexure networks too: wei2017_network, paper 004's bridge, and the
-# rhombus, guide, lever, Scott-Russell and bridge-lever; but the sweep-only wei2017_fig9;
+# rhombus, guide, lever, Scott-Russell and bridge-lever, and wei2017_stroke, the bridge
+# optimized at its working stroke; but the sweep-only wei2017_fig9;
 # wei2017's optimum refined by FE too, in wei2017_refined/; ti_first_mode's refined by its
 # own [refine] section), the finite-element checks of wei2017's optimum and printed design,
 # of bridge_circular's and of every network's optimum, the hinges' accuracy table, the
@@ -13,7 +14,7 @@ export RESULTS=${1:-results}
 cargo build --release --quiet
 for p in wei2017_dynamic bridge_stress bridge_circular prr3_frequency pss3_frequency ti_first_mode \
   wei2017_min_stress wei2017_network rhombus_network guide_network lever_network \
-  scott_russell_network bridge_lever_network; do
+  scott_russell_network bridge_lever_network wei2017_stroke; do
   ./target/release/flexopt run "problems/$p.toml" --quiet --out "$RESULTS/$p" >/dev/null
 done
 # paper 004's problem as the README's main job runs it (so that running it leaves the
@@ -34,6 +35,12 @@ for n in lever_network guide_network rhombus_network wei2017_network; do
   ./target/release/flexopt verify "problems/$n.toml" \
     --optimum "$RESULTS/$n/optimum.json" --out "$RESULTS/$n/verify" >/dev/null
 done
+# wei2017's network optimized at its working stroke: its part's (linear) check, and its
+# curves over the stroke beside the linear model's
+./target/release/flexopt verify problems/wei2017_stroke.toml \
+  --optimum "$RESULTS/wei2017_stroke/optimum.json" --out "$RESULTS/wei2017_stroke/verify" >/dev/null
+./target/release/flexopt stroke problems/wei2017_stroke.toml \
+  --optimum "$RESULTS/wei2017_stroke/optimum.json" --out "$RESULTS/wei2017_stroke/stroke" >/dev/null
 # the Scott-Russell mechanism's part (its guided form) checked whole
 ./target/release/flexopt verify problems/scott_russell_network.toml \
   --optimum "$RESULTS/scott_russell_network/optimum.json" --out "$RESULTS/scott_russell_network/verify" >/dev/null

@@ -25,6 +25,10 @@ pub struct ModelEntry {
     /// every hinge is of the given kind, each with the index of the kind's dimension it is
     /// (none for the other parameters), for `flexopt init --hinge`.
     pub hinge_layout: Option<HingeLayout>,
+    /// A section that, added to the template, makes the model list the outputs it lists
+    /// only when asked (a network's at the working stroke): the JSON Schema accepts those
+    /// names as well as the template's own.
+    pub optional_outputs: Option<&'static str>,
 }
 
 /// A model's parameters when every hinge is of the given kind, each with the index of the

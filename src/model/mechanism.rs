@@ -109,10 +109,9 @@ pub trait PartMaker: Send + Sync + std::fmt::Debug {
 /// ratio kept), for a tolerance on `E` ([`crate::problem::tolerances`]). A model gives it
 /// where every output that depends on the material does so through its stiffness alone.
 pub trait ModulusScaling: Send + Sync + std::fmt::Debug {
-    /// Why output `output` cannot be scaled or differentiated twice, where it cannot (an
-    /// output whose derivatives come from first-order ones alone): a robust study or a
-    /// tolerance on the modulus is refused for it.
-    fn unscaled(&self, output: usize) -> Option<String> {
+    /// Why output `output` cannot be differentiated twice, where it cannot (an output whose
+    /// derivatives come from first-order ones alone): a robust study is refused for it.
+    fn first_order_only(&self, output: usize) -> Option<String> {
         let _ = output;
         None
     }

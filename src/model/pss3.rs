@@ -323,6 +323,7 @@ pub const ENTRY: ModelEntry = ModelEntry {
     schema: super::entry::no_sections,
     template: include_str!("templates/pss3.toml"),
     hinge_layout: None,
+    optional_outputs: None,
     build: |_| Ok(super::Mechanism::depicted(Pss3Model)),
 };
 

@@ -193,12 +193,23 @@ fn size_in_its_unit() -> Value {
 /// and the size of its angles, read from the model its template builds.
 fn model_keys(entry: &ModelEntry) -> Map<String, Value> {
     let mut keys = Map::new();
-    let Ok(problem) = Problem::parse(Path::new("template.toml"), &template(entry, "template"))
-    else {
+    let file = template(entry, "template");
+    let Ok(problem) = Problem::parse(Path::new("template.toml"), &file) else {
         return keys;
     };
     let model = problem.model();
-    let outputs = model.outputs();
+    let mut outputs = model.outputs().to_vec();
+    // the outputs the model lists only when asked, each once
+    if let Some(section) = entry.optional_outputs {
+        let asked = Problem::parse(Path::new("template.toml"), &(file + section));
+        if let Ok(asked) = asked {
+            for o in asked.model().outputs() {
+                if !outputs.iter().any(|p| p.name == o.name) {
+                    outputs.push(o.clone());
+                }
+            }
+        }
+    }
     let names: Vec<&str> = outputs.iter().map(|o| o.name.as_ref()).collect();
     keys.insert(
         "objective".into(),

@@ -485,23 +485,20 @@ pub fn normal_quantile(p: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
-/// Refuses an output used by the objective or a constraint (`used`: its key path and index)
-/// that cannot be scaled or differentiated twice
-/// ([`crate::model::mechanism::ModulusScaling::unscaled`])
-/// where the study needs that: a robust study, or a tolerance on the modulus.
-pub(crate) fn unscaled(
+/// Refuses, in a robust study, an output used by the objective or a constraint (`used`: its
+/// key path and index) that cannot be differentiated twice
+/// ([`crate::model::mechanism::ModulusScaling::first_order_only`]).
+pub(crate) fn first_order_only(
     reader: &Reader,
     mechanism: &Mechanism,
     robust: bool,
-    tolerances: &[Tolerance],
     used: impl Iterator<Item = (Vec<Segment>, usize)>,
 ) -> Res<()> {
-    let scaled = robust || tolerances.iter().any(|t| t.input == Input::Modulus);
-    let Some(scaling) = mechanism.modulus.as_ref().filter(|_| scaled) else {
+    let Some(scaling) = mechanism.modulus.as_ref().filter(|_| robust) else {
         return Ok(());
     };
     for (path, index) in used {
-        if let Some(why) = scaling.unscaled(index) {
+        if let Some(why) = scaling.first_order_only(index) {
             return Err(reader.err(&path, why));
         }
     }

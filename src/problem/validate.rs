@@ -149,7 +149,7 @@ impl Validator<'_, '_> {
             }),
         );
         let robust = search.robust.is_some();
-        super::tolerances::unscaled(self, &mechanism, robust, &tolerances, used)?;
+        super::tolerances::first_order_only(self, &mechanism, robust, used)?;
         if search.robust.is_some() {
             let path = [k("search"), k("robust")];
             if mechanism.modulus.is_none() {

@@ -334,8 +334,8 @@ pub fn infeasible_message(problem: &Problem, study: &Study) -> String {
 /// FE check where `run --verify` ran, with what the part fails.
 fn judged_by(verdict: Option<&Verdict>) -> String {
     let Some(v) = verdict else {
-        return "judged by the model (closed form); --verify checks its part by finite elements"
-            .into();
+        // the model: a closed form, a network's matrices, or its solve at the stroke
+        return "judged by the model; --verify checks its part by finite elements".into();
     };
     let mut line = match v.fails.as_slice() {
         [] => format!(

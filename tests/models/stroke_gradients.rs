@@ -209,24 +209,89 @@ fn the_analysis_section_refuses_what_it_cannot_do() {
     }
 }
 
-/// An output at stroke has first derivatives only and no scaled modulus: a tolerance on E
-/// over it is refused, naming the objective that uses it.
+/// An output at stroke has first derivatives only: a robust study over it is refused,
+/// naming the objective that uses it; a tolerance on E is not (it needs first derivatives).
 #[test]
-fn a_tolerance_on_the_modulus_refuses_an_output_at_stroke() {
+fn a_robust_study_refuses_an_output_at_stroke() {
     let file = NETWORKS[2];
     let text = std::fs::read_to_string(file).unwrap().replace(
         "maximize = \"amplification\"",
         "maximize = \"nl_amplification\"",
     );
-    let text = format!(
-        "{text}\n[analysis]\ndeflection = \"large\"\n\n[tolerances]\nyoungs_modulus = {{ plus_minus = 0.03 }}\n"
-    );
-    let err = Problem::parse(Path::new(file), &text)
+    let text = format!("{text}\n[analysis]\ndeflection = \"large\"\n");
+    let with_e = format!("{text}\n[tolerances]\nyoungs_modulus = {{ plus_minus = 0.03 }}\n");
+    let p = Problem::parse(Path::new(file), &with_e).unwrap();
+    assert!(p
+        .tolerances
+        .iter()
+        .any(|t| t.input == flexopt::problem::tolerances::Input::Modulus));
+    let robust = text.replace("[search]\n", "[search]\nrobust = { yield = 0.99 }\n");
+    let err = Problem::parse(Path::new(file), &robust)
         .err()
         .unwrap()
         .to_string();
     assert!(
-        err.contains("objective") && err.contains("working stroke"),
+        err.contains("objective") && err.contains("working stroke") && err.contains("robust"),
         "{err}"
     );
+}
+
+/// The outputs at stroke under the moduli scaled by `m` (a tolerance on E) are those of the
+/// same network whose material's modulus is `m` times its own, and their derivative by `m`
+/// is the difference of the scaled solve's.
+#[test]
+fn the_outputs_at_stroke_scale_with_the_modulus() {
+    let file = NETWORKS[2];
+    let p = large(file, 4, 4);
+    let scaling = p.mechanism.modulus.as_ref().unwrap();
+    let wanted: Vec<usize> = at_stroke_outputs(&p).iter().map(|o| o.0).collect();
+    let x = design_within_bounds(&p, &mut rng(49));
+    let (n, k) = (x.len(), wanted.len());
+    let m = 1.1;
+    let mut scaled = vec![0.0; k];
+    scaling.evaluate_scaled(&x, m, &wanted, &mut scaled);
+    // the same network of a material m times as stiff (Poisson's ratio kept)
+    let e = flexopt::model::material::Material::preset("al7075-t6")
+        .unwrap()
+        .youngs_modulus;
+    let text = std::fs::read_to_string(file).unwrap().replace(
+        "preset = \"al7075-t6\"",
+        &format!("preset = \"al7075-t6\"\nyoungs_modulus = \"{:e} Pa\"", e * m),
+    );
+    let text = format!("{text}\n[analysis]\ndeflection = \"large\"\nelements = 4\nsteps = 4\n");
+    let stiffer = Problem::parse(Path::new(file), &text).unwrap();
+    let mut direct = vec![0.0; k];
+    stiffer.mechanism.physics.evaluate(&x, &wanted, &mut direct);
+    for (i, (a, b)) in scaled.iter().zip(&direct).enumerate() {
+        assert!(
+            (a - b).abs() <= 1e-9 * b.abs().max(1e-12),
+            "output {}: {a} scaled against {b} of the stiffer material",
+            wanted[i]
+        );
+    }
+    // the derivative by the factor, the last of each row
+    let (mut values, mut jacobian) = (vec![0.0; k], vec![0.0; k * (n + 1)]);
+    scaling.evaluate_scaled_with_gradient(&x, 1.0, &wanted, &mut values, &mut jacobian);
+    let differences = |h: f64| {
+        let (mut up, mut down) = (vec![0.0; k], vec![0.0; k]);
+        scaling.evaluate_scaled(&x, 1.0 + h, &wanted, &mut up);
+        scaling.evaluate_scaled(&x, 1.0 - h, &wanted, &mut down);
+        (up.iter().zip(&down))
+            .map(|(u, d)| (u - d) / (2.0 * h))
+            .collect::<Vec<_>>()
+    };
+    let (d1, d2) = (differences(1e-3), differences(5e-4));
+    for i in 0..k {
+        let richardson = (4.0 * d2[i] - d1[i]) / 3.0;
+        let exact = jacobian[i * (n + 1) + n];
+        let scale = values[i].abs().max(exact.abs());
+        if scale == 0.0 {
+            continue;
+        }
+        assert!(
+            (exact - richardson).abs() <= 1e-6 * scale,
+            "output {}: d/dm {exact} against differences {richardson}",
+            wanted[i]
+        );
+    }
 }

@@ -127,6 +127,7 @@ const TOY: ModelEntry = ModelEntry {
     schema: flexopt::model::entry::no_sections,
     template: "",
     hinge_layout: None,
+    optional_outputs: None,
 };
 
 fn models() -> Vec<ModelEntry> {

@@ -651,6 +651,7 @@ const STRIP_ENTRY: ModelEntry = ModelEntry {
     name: "clamped_strip",
     sections: &[],
     hinge_layout: None,
+    optional_outputs: None,
     build: |_| {
         Ok(Mechanism::complete(ClampedStrip {
             material: Material {

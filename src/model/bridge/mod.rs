@@ -55,6 +55,7 @@ pub const ENTRY: ModelEntry = ModelEntry {
     schema: file::schema,
     template: include_str!("../templates/bridge.toml"),
     hinge_layout: Some(|kind| Layout::new(kind, kind).hinge_dimensions()),
+    optional_outputs: None,
 };
 
 /// The actuator every mechanism shares, by the path the bridge's users name it.

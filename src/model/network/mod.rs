@@ -32,4 +32,5 @@ pub const ENTRY: ModelEntry = ModelEntry {
     schema: file::schema,
     template: include_str!("../templates/network.toml"),
     hinge_layout: None,
+    optional_outputs: Some("\n[analysis]\ndeflection = \"large\"\n"),
 };

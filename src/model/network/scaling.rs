@@ -60,12 +60,11 @@ impl NetworkModel {
 }
 
 impl ModulusScaling for NetworkModel {
-    fn unscaled(&self, output: usize) -> Option<String> {
+    fn first_order_only(&self, output: usize) -> Option<String> {
         self.at_stroke_output(output).then(|| {
             format!(
                 "output \"{}\" is at the working stroke, whose solve gives first derivatives \
-                 only and does not scale with the modulus: a robust study or a tolerance on \
-                 E cannot use it",
+                 only: a robust study, which needs second derivatives, cannot use it",
                 self.outputs()[output].name
             )
         })

@@ -98,15 +98,20 @@ pub fn solve_stroke(
 /// scalar of `x`: the path solved in real numbers, then the equilibrium's derivatives by the
 /// design through the implicit function theorem
 /// ([`crate::model::large::sensitivity`]), so a dual `x` gives every output its exact
-/// gradient at stroke (to the path's tolerance).
+/// gradient at stroke (to the path's tolerance). With `modulus` the flexures' moduli are that
+/// factor times the material's, and its derivative is carried as the design's.
 pub(crate) fn end_by_design<D: Scalar>(
     model: &NetworkModel,
     x: &[D],
+    modulus: Option<D>,
     elements: usize,
     steps: usize,
 ) -> Result<StrokePointOf<D>, String> {
     let real_x: Vec<f64> = x.iter().map(|v| v.re()).collect();
-    let real = build(model, &real_x, elements, Drive::Stack)?;
+    let mut real = build(model, &real_x, elements, Drive::Stack)?;
+    if let Some(m) = modulus {
+        real.scale_modulus(m.re());
+    }
     let opts = Options {
         steps,
         ..Options::default()
@@ -116,7 +121,10 @@ pub(crate) fn end_by_design<D: Scalar>(
     let system = System::new(&real.driven).map_err(large)?;
     let free: Vec<f64> = system.free.iter().map(|&i| end.displacement[i]).collect();
     let free = system.polish(free, end.lambda);
-    let dual = build(model, x, elements, Drive::Stack)?;
+    let mut dual = build(model, x, elements, Drive::Stack)?;
+    if let Some(m) = modulus {
+        dual.scale_modulus(m);
+    }
     let dual_system = SystemOf::new(&dual.driven).map_err(large)?;
     let u = equilibrium_by_design(&system, &dual_system, &free, end.lambda).map_err(large)?;
     measure(&dual, &u, end.lambda, None)

@@ -258,8 +258,8 @@ impl NetworkModel {
     }
 
     /// The outputs at the working stroke, their derivatives through the implicit function
-    /// theorem ([`crate::model::large::sensitivity`]): first derivatives only, and not under
-    /// a scaled modulus.
+    /// theorem ([`crate::model::large::sensitivity`]): first derivatives only, by the design
+    /// and by the modulus's factor where it is given.
     fn at_stroke<D: Scalar>(
         &self,
         x: &[D],
@@ -268,15 +268,14 @@ impl NetworkModel {
         let settings = self
             .large_settings()
             .ok_or("the outputs at stroke need `[analysis] deflection = \"large\"`")?;
-        if modulus.is_some() || D::SECOND_ORDER {
+        if D::SECOND_ORDER {
             return Err(
-                "the outputs at the working stroke have first derivatives only, and \
-                        do not scale with the modulus: a robust study or a tolerance on E \
-                        cannot use them"
+                "the outputs at the working stroke have first derivatives only: a robust \
+                 study cannot use them"
                     .into(),
             );
         }
-        end_by_design(self, x, settings.elements, settings.steps)
+        end_by_design(self, x, modulus, settings.elements, settings.steps)
     }
 
     /// What the `wanted` outputs need.

@@ -70,6 +70,22 @@ pub(crate) struct Built<D> {
     pub masters: Vec<usize>,
 }
 
+impl<D: Scalar> Built<D> {
+    /// Every flexure's stiffness times `factor`, the factor on the material's moduli (E and
+    /// G alike, as the linear model's [`crate::model::mechanism::ModulusScaling`]): the
+    /// stack's spring and the rigid bodies stay as they are.
+    pub(crate) fn scale_modulus(&mut self, factor: D) {
+        for s in [&mut self.driven, &mut self.alone] {
+            for local in s.beams.iter_mut().filter_map(|b| b.local.as_mut()) {
+                local.axial = local.axial * factor;
+                for v in local.bending.iter_mut().flatten() {
+                    *v = *v * factor;
+                }
+            }
+        }
+    }
+}
+
 /// The distance of the stack's anchor behind the input port (m): long, so that the
 /// stack's force keeps the port's direction as the port moves across it.
 const ANCHOR: f64 = 1.0;
