@@ -15,20 +15,14 @@ use flexopt::problem::nlp::DesignNlp;
 use flexopt::problem::Problem;
 use num_dual::DualSVec64;
 
+#[path = "support/table1.rs"]
+mod table1;
+use table1::table1_design;
+
 fn bench(c: &mut Criterion) {
     let problem = Problem::load(Path::new("problems/wei2017.toml")).unwrap();
     let model = problem.model();
-    let deg = std::f64::consts::PI / 180.0;
-    let x = [
-        1.96e-3,
-        4.07 * deg,
-        0.4e-3,
-        8.1e-3,
-        4.01 * deg,
-        1.96e-3,
-        4.07 * deg,
-        0.4e-3,
-    ];
+    let x = table1_design();
     // the closed-form outputs of paper 004, before the dynamic ones
     let static_outputs: Vec<usize> = (0..BridgeOutput::KOutActuated as usize).collect();
     let mut out = vec![0.0; static_outputs.len()];
@@ -77,17 +71,7 @@ fn gradient_backends(c: &mut Criterion) {
         dynamics: None,
         part: flexopt::model::bridge::part::PartSettings::default(),
     });
-    let deg = std::f64::consts::PI / 180.0;
-    let x = [
-        1.96e-3,
-        4.07 * deg,
-        0.4e-3,
-        8.1e-3,
-        4.01 * deg,
-        1.96e-3,
-        4.07 * deg,
-        0.4e-3,
-    ];
+    let x = table1_design();
     let mut out_jet = vec![Jet::<8>::from(0.0); wanted.len()];
     c.bench_function("gradient_backend/jet", |b| {
         b.iter(|| {

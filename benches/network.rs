@@ -18,47 +18,20 @@ use flexopt::problem::Problem;
 
 #[path = "support/chain.rs"]
 mod chain;
+#[path = "support/side_by_side.rs"]
+mod side_by_side;
+#[path = "support/table1.rs"]
+mod table1;
+use side_by_side::{alternate, median, write_results};
+use table1::table1_design;
 
 const ROUNDS: usize = 31;
 const CALLS: usize = 2000;
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
-/// The medians over `rounds` rounds of `time(true)` and `time(false)`, each a time (s),
-/// alternating which goes first, so that neither always meets a cold cache.
-fn alternate(rounds: usize, mut time: impl FnMut(bool) -> f64) -> (f64, f64) {
-    let (mut a, mut b) = (Vec::new(), Vec::new());
-    for round in 0..rounds {
-        let first = round % 2 == 0;
-        for now in [first, !first] {
-            let t = time(now);
-            if now {
-                a.push(t)
-            } else {
-                b.push(t)
-            }
-        }
-    }
-    (median(a), median(b))
-}
-
 fn main() {
     let bridge = Problem::load(Path::new("problems/wei2017.toml")).unwrap();
     let network = Problem::load(Path::new("problems/wei2017_network.toml")).unwrap();
-    let deg = std::f64::consts::PI / 180.0;
-    let x = [
-        1.96e-3,
-        4.07 * deg,
-        0.4e-3,
-        8.1e-3,
-        4.01 * deg,
-        1.96e-3,
-        4.07 * deg,
-        0.4e-3,
-    ];
+    let x = table1_design();
     let wanted = |m: &dyn Model, stresses: &[&str]| -> Vec<usize> {
         ["amplification", "span_x", "span_y", "k_in", "k_out"]
             .iter()
@@ -128,14 +101,7 @@ fn main() {
     shipped(&mut text, &mut json);
     studies(&mut text, &mut json);
     chain_exports(&mut text, &mut json);
-    print!("{text}");
-    std::fs::create_dir_all("results/bench").unwrap();
-    std::fs::write("results/bench/network.txt", &text).unwrap();
-    std::fs::write(
-        "results/bench/network.json",
-        serde_json::to_string_pretty(&json).unwrap() + "\n",
-    )
-    .unwrap();
+    write_results("network", &text, &json);
 }
 
 /// Each shipped network's every output with its exact gradient, against central differences
