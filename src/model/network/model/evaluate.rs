@@ -143,6 +143,7 @@ impl NetworkModel {
             condenses,
             stresses: needs_stresses,
             stroke: needs_stroke,
+            stroke_modes,
         } = self.needs(wanted);
         self.at(x, modulus, extent, work)?;
         let Work {
@@ -205,7 +206,7 @@ impl NetworkModel {
         };
         let footprint = self.footprint_of(footprint, x)?;
         let stroke = needs_stroke
-            .then(|| self.at_stroke(x, modulus))
+            .then(|| self.at_stroke(x, modulus, stroke_modes.unwrap_or(0)))
             .transpose()?;
         for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
             *slot = match self.quantities[k] {
@@ -257,13 +258,15 @@ impl NetworkModel {
         }
     }
 
-    /// The outputs at the working stroke, their derivatives through the implicit function
-    /// theorem ([`crate::model::large::sensitivity`]): first derivatives only, and not under
-    /// a scaled modulus.
+    /// The outputs at the working stroke, with the `frequencies` lowest natural frequencies
+    /// about its equilibrium, their derivatives through the implicit function theorem
+    /// ([`crate::model::large::sensitivity`]): first derivatives only, and not under a
+    /// scaled modulus.
     fn at_stroke<D: Scalar>(
         &self,
         x: &[D],
         modulus: Option<D>,
+        frequencies: usize,
     ) -> Result<StrokePointOf<D>, String> {
         let settings = self
             .large_settings()
@@ -276,7 +279,7 @@ impl NetworkModel {
                     .into(),
             );
         }
-        end_by_design(self, x, settings.elements, settings.steps)
+        end_by_design(self, x, settings.elements, settings.steps, frequencies)
     }
 
     /// What the `wanted` outputs need.
@@ -332,6 +335,7 @@ fn stroke_output<D: Scalar>(p: &StrokePointOf<D>, q: AtStroke) -> D {
         AtStroke::Stress(h) => p.stresses[h],
         AtStroke::Across(o) => p.parasitic[o].across,
         AtStroke::Turn(o) => p.parasitic[o].rotation,
+        AtStroke::Frequency(i) => p.frequencies[i],
     }
 }
 
