@@ -200,10 +200,7 @@ impl NetworkModel {
         let stresses = &*stresses;
         // each read in place: the pair copied out was two `Jet<8>`s for one
         let extent = |i: usize| span(&e.points, i);
-        let frequencies = match modes {
-            Some(count) => self.frequencies(e, count)?,
-            None => Vec::new(),
-        };
+        let frequencies = modes.map_or(Ok(Vec::new()), |count| self.frequencies(e, count))?;
         let footprint = self.footprint_of(footprint, x)?;
         let stroke = needs_stroke
             .then(|| self.at_stroke(x, modulus, stroke_modes.unwrap_or(0)))
