@@ -86,7 +86,9 @@ impl Column {
 }
 
 /// The quantities of `report`'s points: the strokes, amplifications, stiffnesses, the
-/// largest stress, each flexure's stress and each output port's parasitic motion.
+/// largest stress, each flexure's stress, each output port's parasitic motion and the
+/// natural frequencies (where the network has them: the linear model's beside, the same
+/// over the stroke).
 pub fn columns(report: &StrokeReport) -> Vec<Column> {
     let (um, mpa, n_per_um) = (1e6, 1e-6, 1e-6);
     let mut c = vec![
@@ -135,6 +137,12 @@ pub fn columns(report: &StrokeReport) -> Vec<Column> {
             Linear::Scaled,
             move |p| p.parasitic[i].rotation,
         ));
+    }
+    for i in 0..report.linear.frequencies.len() {
+        let label = format!("f{}", i + 1);
+        c.push(Column::new(label, "Hz", 1.0, Linear::Constant, move |p| {
+            p.frequencies[i]
+        }));
     }
     c
 }

@@ -29,6 +29,7 @@ mod prr3;
 mod pss3;
 mod rooms;
 mod step_response;
+mod stroke_frequencies;
 mod stroke_gradients;
 mod stroke_matters;
 mod toy_model;

@@ -88,7 +88,7 @@ fn the_outputs_at_stroke_are_the_solve_at_its_end() {
 }
 
 /// Central differences of the outputs `wanted` along parameter `j` at `x` with step `h`.
-fn central(p: &Problem, x: &[f64], j: usize, h: f64, wanted: &[usize]) -> Vec<f64> {
+pub(super) fn central(p: &Problem, x: &[f64], j: usize, h: f64, wanted: &[usize]) -> Vec<f64> {
     let m = &p.mechanism.physics;
     let (mut up, mut down) = (x.to_vec(), x.to_vec());
     up[j] += h;

@@ -67,6 +67,10 @@ pub struct StrokePointOf<D> {
     pub stress_max: D,
     /// Each output port's motion apart from its direction.
     pub parasitic: Vec<ParasiticOf<D>>,
+    /// The lowest natural frequencies (Hz) about the equilibrium, as many as the linear
+    /// model has (none where it has none, or where a force drives the input in the stack's
+    /// place); not-a-number at a point where they cannot be found (past a critical point).
+    pub frequencies: Vec<D>,
 }
 
 /// The outputs at one point of the stroke in real numbers.

@@ -18,7 +18,6 @@ pub mod part;
 pub mod ports;
 mod raw;
 mod scaling;
-mod stroke_modes;
 pub mod structure;
 mod supports;
 

@@ -47,12 +47,13 @@ mod natural;
 mod outputs;
 mod placing;
 pub(crate) mod stroke;
+mod stroke_modes;
 
 use mirror::{expressions, Role};
 use natural::axis_holds;
 pub(super) use natural::Family;
 pub use outputs::LargeSettings;
-use outputs::{Named, Needs, Quantity};
+use outputs::{AtStroke, Named, Needs, Quantity};
 use placing::{constant_direction, link_band, outline_crossing};
 
 /// The described part at one design (m), for its pictures ([`super::depiction`]).
@@ -519,66 +520,12 @@ impl Model for NetworkModel {
                 self.outputs[output].name
             ));
         }
-        let Quantity::Frequency(i) = self.quantities[output] else {
+        let (Quantity::Frequency(i) | Quantity::AtStroke(AtStroke::Frequency(i))) =
+            self.quantities[output]
+        else {
             return None;
         };
-        let name = &self.outputs[output].name;
-        let d = &self.description;
-        if let Some(g) = d.supports.first() {
-            return Some(format!(
-                "output \"{name}\": the natural frequencies of a network with supports \
-                 ({}) are not modelled",
-                g.key
-            ));
-        }
-        if !self.material.density.is_finite() {
-            return Some(format!(
-                "output \"{name}\" needs the material's density: give `[material] density` \
-                 (e.g. \"2810 kg/m3\") or a preset"
-            ));
-        }
-        if !d.mirror.is_empty() && !self.grounded() {
-            match self.mounting() {
-                None => {
-                    return Some(format!(
-                        "output \"{name}\": the part has no ground, and neither its input nor \
-                         its first output is across a mirror axis: nothing holds it"
-                    ))
-                }
-                Some((1, _)) if d.input.across.is_none() => {
-                    return Some(format!(
-                        "output \"{name}\": the part stands on the first output's image, and \
-                         the input is across no mirror axis, so the stack's far end has no \
-                         place: give `network.input.across` or join a hinge to the ground"
-                    ))
-                }
-                _ => {}
-            }
-        }
-        if self.actuator.stiffness.is_none() {
-            return Some(format!(
-                "output \"{name}\" needs the actuator's stiffness (`[actuator] stiffness`): the \
-                 input stands on it in every mode"
-            ));
-        }
-        if let Some(body) = d
-            .bodies
-            .iter()
-            .find(|body| body.link_width.is_none() && body.points.len() < 3)
-        {
-            return Some(format!(
-                "output \"{name}\" needs every body's mass: body \"{}\" ({}) has no outline or \
-                 link to give it",
-                body.name, body.key
-            ));
-        }
-        let dofs = self.mode_dofs();
-        if i >= dofs {
-            return Some(format!(
-                "output \"{name}\": the network has {dofs} degrees of freedom, so {dofs} modes"
-            ));
-        }
-        None
+        self.frequency_unavailable(i, &self.outputs[output].name)
     }
 
     fn material(&self) -> Option<&Material> {

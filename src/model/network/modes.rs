@@ -11,7 +11,7 @@
 //! Its second derivatives would need the eigenvector's, which it does not carry: a robust
 //! study on a frequency must not read them from here.
 
-use nalgebra::{DMatrix, SymmetricEigen};
+use nalgebra::{DMatrix, DVector, SymmetricEigen};
 
 pub use super::inertia::{described_piece, DirectedMass, Inertia};
 use super::structure::{Body, Dof, Flexure, Network, NetworkError, Spring};
@@ -202,46 +202,17 @@ impl<D: Scalar> Network<D> {
             .collect();
         let nf = free.len();
         let pick = |a: &[D]| DMatrix::from_fn(nf, nf, |i, j| a[free[i] * n + free[j]].re());
-        let (kf, mf) = (pick(&k), pick(&m));
         // a free motion is the structure's error, named as a solve would name it
         self.solve(&[]).map_err(ModeError::Network)?;
-        let Some(chol) = mf.clone().cholesky() else {
-            let j = (0..nf).find(|&i| mf[(i, i)] <= 0.0).unwrap_or(0);
-            return Err(ModeError::Massless { body: free[j] / 3 });
-        };
-        let l = chol.l();
-        let l_inv = l
-            .clone()
-            .try_inverse()
-            .ok_or(ModeError::Massless { body: free[0] / 3 })?;
-        let a = &l_inv * &kf * l_inv.transpose();
-        let a = (&a + a.transpose()) * 0.5;
-        let eigen = SymmetricEigen::new(a);
-        let mut order: Vec<usize> = (0..nf).collect();
-        order.sort_by(|&i, &j| eigen.eigenvalues[i].total_cmp(&eigen.eigenvalues[j]));
+        let pairs = eigenpairs(&pick(&k), &pick(&m))
+            .map_err(|j| ModeError::Massless { body: free[j] / 3 })?;
         let mut modes = Vec::new();
-        for &i in order.iter().take(count) {
-            // phi = L^-T y, unit modal mass since y has unit length
-            let phi = l_inv.transpose() * eigen.eigenvectors.column(i);
+        for (_, phi) in pairs.into_iter().take(count) {
             let mut full = vec![0.0; n];
             for (p, &j) in free.iter().enumerate() {
                 full[j] = phi[p];
             }
-            let quadratic = |a: &[D]| {
-                let mut s = D::from(0.0);
-                for (p, &fp) in full.iter().enumerate() {
-                    if fp == 0.0 {
-                        continue;
-                    }
-                    for (q, &fq) in full.iter().enumerate() {
-                        if fq != 0.0 {
-                            s = s + a[p * n + q] * (fp * fq);
-                        }
-                    }
-                }
-                s
-            };
-            let omega2 = quadratic(&k) / quadratic(&m);
+            let omega2 = rayleigh(&k, &m, &full);
             modes.push(Mode {
                 frequency: omega2.sqrt() / (2.0 * std::f64::consts::PI),
                 shape: full.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
@@ -249,6 +220,58 @@ impl<D: Scalar> Network<D> {
         }
         Ok(modes)
     }
+}
+
+/// The eigenpairs of `K phi = w^2 M phi` (`K` symmetric, `M` symmetric positive definite),
+/// by `w^2` from the lowest, each `phi` of unit modal mass: `M = L L^T` (Cholesky), the
+/// symmetric `L^-1 K L^-T` solved (nalgebra's symmetric eigensolver), `phi = L^-T y`. Where
+/// `M` is not positive definite, the first degree of freedom with no mass (else 0).
+pub(super) fn eigenpairs(
+    k: &DMatrix<f64>,
+    m: &DMatrix<f64>,
+) -> Result<Vec<(f64, DVector<f64>)>, usize> {
+    let massless = || (0..m.nrows()).find(|&i| m[(i, i)] <= 0.0).unwrap_or(0);
+    let m = (m + m.transpose()) * 0.5;
+    let l = m.cholesky().ok_or_else(massless)?.l();
+    let y = l.solve_lower_triangular(k).ok_or_else(massless)?;
+    let a = l
+        .solve_lower_triangular(&y.transpose())
+        .ok_or_else(massless)?;
+    let eigen = SymmetricEigen::new((&a + a.transpose()) * 0.5);
+    let lt = l.transpose();
+    let mut pairs: Vec<(f64, DVector<f64>)> = (0..a.nrows())
+        .map(|i| {
+            let y = eigen.eigenvectors.column(i).into_owned();
+            let phi = lt.solve_upper_triangular(&y).unwrap_or(y);
+            (eigen.eigenvalues[i], phi)
+        })
+        .collect();
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    Ok(pairs)
+}
+
+/// The Rayleigh quotient `phi^T K phi / phi^T M phi` of the row-major `K` and `M` (in the
+/// scalar type) at the real `phi`. At an eigenvector of a simple eigenvalue it is `w^2`,
+/// and, being stationary there, its first derivative is the eigenvalue's, `phi^T (dK - w^2
+/// dM) phi / phi^T M phi`, without the eigenvector's (Fox and Kapoor, "Rates of change of
+/// eigenvalues and eigenvectors", AIAA J. 6 (1968) 2426-2429, Eq. 9).
+pub(super) fn rayleigh<D: Scalar>(k: &[D], m: &[D], phi: &[f64]) -> D {
+    let n = phi.len();
+    let quadratic = |a: &[D]| {
+        let mut s = D::from(0.0);
+        for (p, &fp) in phi.iter().enumerate() {
+            if fp == 0.0 {
+                continue;
+            }
+            for (q, &fq) in phi.iter().enumerate() {
+                if fq != 0.0 {
+                    s = s + a[p * n + q] * (fp * fq);
+                }
+            }
+        }
+        s
+    };
+    quadratic(k) / quadratic(m)
 }
 
 #[cfg(test)]

@@ -24,7 +24,8 @@ struct Panel<'a> {
 }
 
 /// The panels: the output's stroke, the amplification, the input's stiffness, the largest
-/// stress, and each output's parasitic motion across and in rotation.
+/// stress, each output's parasitic motion across and in rotation, and the natural
+/// frequencies where the network has them.
 fn panels(all: &[Column]) -> Vec<Panel<'_>> {
     let one = |label: &str, title: &str| {
         let c: Vec<&Column> = all.iter().filter(|c| c.label == label).collect();
@@ -40,14 +41,23 @@ fn panels(all: &[Column]) -> Vec<Panel<'_>> {
         y_label: with_unit(prefix.trim_end_matches('_'), unit),
         columns: all.iter().filter(|c| c.label.starts_with(prefix)).collect(),
     };
-    vec![
+    let mut panels = vec![
         one("stroke_out", "output stroke"),
         one("amplification", "amplification (secant)"),
         one("k_in", "input stiffness (tangent)"),
         one("stress_max", "largest stress"),
         several("parasitic_across_", "parasitic motion across", "um"),
         several("parasitic_rotation_", "parasitic rotation", "mrad"),
-    ]
+    ];
+    let frequencies: Vec<&Column> = all.iter().filter(|c| c.unit == "Hz").collect();
+    if !frequencies.is_empty() {
+        panels.push(Panel {
+            title: "natural frequencies".into(),
+            y_label: with_unit("frequency", "Hz"),
+            columns: frequencies,
+        });
+    }
+    panels
 }
 
 fn with_unit(label: &str, unit: &str) -> String {

@@ -11,6 +11,7 @@
 //! the frame of that end, turned with it), as the linear model states it from its loads.
 
 use super::stroke::{build, Built, Drive, FlexureEnd};
+use super::stroke_modes::frequencies_at;
 use super::NetworkModel;
 use crate::model::hinge::HingeLoads;
 use crate::model::large::assemble::{System, SystemOf};
@@ -43,6 +44,11 @@ pub fn solve_stroke(
     drive: Drive,
 ) -> Result<StrokeReport, String> {
     let d = model.description();
+    // the natural frequencies at each point: the linear model's count, with the stack
+    let count = match drive {
+        Drive::Stack => model.frequency_count(),
+        Drive::Force(_) => 0,
+    };
     let solve = |elements: usize, steps: usize| -> Result<(Built<f64>, Vec<StrokePoint>), String> {
         let built = build(model, x, elements, drive)?;
         let opts = Options {
@@ -53,12 +59,19 @@ pub fn solve_stroke(
         let curve = path
             .points
             .iter()
-            .map(|p| measure(&built, &p.displacement, p.lambda, None))
-            .collect::<Result<Vec<_>, _>>()?;
+            .map(|p| {
+                let mut point = measure(&built, &p.displacement, p.lambda, None)?;
+                point.frequencies =
+                    frequencies_or_nan(model, x, &built, &p.displacement, p.lambda, count);
+                Ok(point)
+            })
+            .collect::<Result<Vec<_>, String>>()?;
         Ok((built, curve))
     };
     let (built, curve) = solve(options.elements, options.steps)?;
-    let linear = linear(&built)?;
+    let mut linear = linear(&built)?;
+    let zero = vec![0.0; 3 * built.driven.nodes.len()];
+    linear.frequencies = frequencies_or_nan(model, x, &built, &zero, 0.0, count);
     let finer = solve(2 * options.elements, options.steps)?
         .1
         .pop()
@@ -94,18 +107,35 @@ pub fn solve_stroke(
     })
 }
 
+/// The `count` lowest natural frequencies about the equilibrium `u` at `lambda` of the
+/// network `model` at the design `x` ([`frequencies_at`]), not-a-number where they cannot
+/// be found there (the curve goes on without them).
+fn frequencies_or_nan(
+    model: &NetworkModel,
+    x: &[f64],
+    built: &Built<f64>,
+    u: &[f64],
+    lambda: f64,
+    count: usize,
+) -> Vec<f64> {
+    frequencies_at(model, x, built, u, lambda, count).unwrap_or_else(|_| vec![f64::NAN; count])
+}
+
 /// The outputs at the full stroke of the problem's actuator at the design `x`, over the
-/// scalar of `x`: the path solved in real numbers, then the equilibrium's derivatives by the
-/// design through the implicit function theorem
-/// ([`crate::model::large::sensitivity`]), so a dual `x` gives every output its exact
-/// gradient at stroke (to the path's tolerance). With `modulus` the flexures' moduli are that
-/// factor times the material's, and its derivative is carried as the design's.
+/// scalar of `x`, with the `frequencies` lowest natural frequencies about its equilibrium:
+/// the path solved in real numbers, then the equilibrium's derivatives by the design
+/// through the implicit function theorem ([`crate::model::large::sensitivity`]), so a dual
+/// `x` gives every output its exact gradient at stroke (to the path's tolerance); the
+/// frequencies' by the eigenvalue's derivative at the equilibrium ([`frequencies_at`]).
+/// With `modulus` the flexures' moduli are that factor times the material's, and its
+/// derivative is carried as the design's.
 pub(crate) fn end_by_design<D: Scalar>(
     model: &NetworkModel,
     x: &[D],
     modulus: Option<D>,
     elements: usize,
     steps: usize,
+    frequencies: usize,
 ) -> Result<StrokePointOf<D>, String> {
     let real_x: Vec<f64> = x.iter().map(|v| v.re()).collect();
     let mut real = build(model, &real_x, elements, Drive::Stack)?;
@@ -127,7 +157,11 @@ pub(crate) fn end_by_design<D: Scalar>(
     }
     let dual_system = SystemOf::new(&dual.driven).map_err(large)?;
     let u = equilibrium_by_design(&system, &dual_system, &free, end.lambda).map_err(large)?;
-    measure(&dual, &u, end.lambda, None)
+    let mut point = measure(&dual, &u, end.lambda, None)?;
+    if frequencies > 0 {
+        point.frequencies = frequencies_at(model, x, &dual, &u, end.lambda, frequencies)?;
+    }
+    Ok(point)
 }
 
 /// The linear solution of the driven structure's full load: the unloaded tangent's, with
@@ -204,6 +238,7 @@ fn measure<D: Scalar>(
         stress_max: stresses.iter().copied().fold(D::from(0.0), max),
         stresses,
         parasitic,
+        frequencies: Vec::new(),
     })
 }
 

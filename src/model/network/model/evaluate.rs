@@ -143,6 +143,7 @@ impl NetworkModel {
             condenses,
             stresses: needs_stresses,
             stroke: needs_stroke,
+            stroke_modes,
         } = self.needs(wanted);
         self.at(x, modulus, extent, work)?;
         let Work {
@@ -199,13 +200,10 @@ impl NetworkModel {
         let stresses = &*stresses;
         // each read in place: the pair copied out was two `Jet<8>`s for one
         let extent = |i: usize| span(&e.points, i);
-        let frequencies = match modes {
-            Some(count) => self.frequencies(e, count)?,
-            None => Vec::new(),
-        };
+        let frequencies = modes.map_or(Ok(Vec::new()), |count| self.frequencies(e, count))?;
         let footprint = self.footprint_of(footprint, x)?;
         let stroke = needs_stroke
-            .then(|| self.at_stroke(x, modulus))
+            .then(|| self.at_stroke(x, modulus, stroke_modes.unwrap_or(0)))
             .transpose()?;
         for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
             *slot = match self.quantities[k] {
@@ -257,13 +255,15 @@ impl NetworkModel {
         }
     }
 
-    /// The outputs at the working stroke, their derivatives through the implicit function
-    /// theorem ([`crate::model::large::sensitivity`]): first derivatives only, by the design
-    /// and by the modulus's factor where it is given.
+    /// The outputs at the working stroke, with the `frequencies` lowest natural frequencies
+    /// about its equilibrium, their derivatives through the implicit function theorem
+    /// ([`crate::model::large::sensitivity`]): first derivatives only, by the design and by
+    /// the modulus's factor where it is given.
     fn at_stroke<D: Scalar>(
         &self,
         x: &[D],
         modulus: Option<D>,
+        frequencies: usize,
     ) -> Result<StrokePointOf<D>, String> {
         let settings = self
             .large_settings()
@@ -275,7 +275,14 @@ impl NetworkModel {
                     .into(),
             );
         }
-        end_by_design(self, x, modulus, settings.elements, settings.steps)
+        end_by_design(
+            self,
+            x,
+            modulus,
+            settings.elements,
+            settings.steps,
+            frequencies,
+        )
     }
 
     /// What the `wanted` outputs need.
@@ -331,6 +338,7 @@ fn stroke_output<D: Scalar>(p: &StrokePointOf<D>, q: AtStroke) -> D {
         AtStroke::Stress(h) => p.stresses[h],
         AtStroke::Across(o) => p.parasitic[o].across,
         AtStroke::Turn(o) => p.parasitic[o].rotation,
+        AtStroke::Frequency(i) => p.frequencies[i],
     }
 }
 

@@ -21,6 +21,77 @@ pub(crate) struct Family<D> {
 }
 
 impl NetworkModel {
+    /// Why the natural frequency `i` (from 0) has no value on this network, the output named
+    /// `name` (`f1`, or `nl_f1` at the working stroke, which has a value where the linear
+    /// model's has one): a support, no density, a part that nothing holds, no stack's
+    /// stiffness, a body without a mass, or fewer degrees of freedom than modes.
+    pub(super) fn frequency_unavailable(&self, i: usize, name: &str) -> Option<String> {
+        let d = &self.description;
+        if let Some(g) = d.supports.first() {
+            return Some(format!(
+                "output \"{name}\": the natural frequencies of a network with supports \
+                 ({}) are not modelled",
+                g.key
+            ));
+        }
+        if !self.material.density.is_finite() {
+            return Some(format!(
+                "output \"{name}\" needs the material's density: give `[material] density` \
+                 (e.g. \"2810 kg/m3\") or a preset"
+            ));
+        }
+        if !d.mirror.is_empty() && !self.grounded() {
+            match self.mounting() {
+                None => {
+                    return Some(format!(
+                        "output \"{name}\": the part has no ground, and neither its input nor \
+                         its first output is across a mirror axis: nothing holds it"
+                    ))
+                }
+                Some((1, _)) if d.input.across.is_none() => {
+                    return Some(format!(
+                        "output \"{name}\": the part stands on the first output's image, and \
+                         the input is across no mirror axis, so the stack's far end has no \
+                         place: give `network.input.across` or join a hinge to the ground"
+                    ))
+                }
+                _ => {}
+            }
+        }
+        if self.actuator.stiffness.is_none() {
+            return Some(format!(
+                "output \"{name}\" needs the actuator's stiffness (`[actuator] stiffness`): the \
+                 input stands on it in every mode"
+            ));
+        }
+        if let Some(body) = d
+            .bodies
+            .iter()
+            .find(|body| body.link_width.is_none() && body.points.len() < 3)
+        {
+            return Some(format!(
+                "output \"{name}\" needs every body's mass: body \"{}\" ({}) has no outline or \
+                 link to give it",
+                body.name, body.key
+            ));
+        }
+        let dofs = self.mode_dofs();
+        if i >= dofs {
+            return Some(format!(
+                "output \"{name}\": the network has {dofs} degrees of freedom, so {dofs} modes"
+            ));
+        }
+        None
+    }
+
+    /// How many natural frequencies the model has values for: `f1` to `f{n}`, and at the
+    /// working stroke `nl_f1` to `nl_f{n}`.
+    pub(crate) fn frequency_count(&self) -> usize {
+        (0..super::outputs::FREQUENCIES)
+            .take_while(|&i| self.frequency_unavailable(i, "").is_none())
+            .count()
+    }
+
     /// How many modes [`Self::frequencies`] finds: the degrees of freedom of the described
     /// part in each family of modes ([`families`]), or of the whole about the axis its
     /// mounting stands across.
@@ -203,10 +274,10 @@ impl NetworkModel {
     }
 
     /// The families of modes of [`Self::frequencies`] at the design `x` (SI), for the modes
-    /// about an equilibrium at stroke ([`super::super::stroke_modes`]), which takes their
+    /// about an equilibrium at stroke ([`super::stroke_modes`]), which takes their
     /// holds, masses and images and puts its own stiffness in the place of the networks'.
-    pub(crate) fn modal_families(&self, x: &[f64]) -> Result<Vec<Family<f64>>, String> {
-        let mut work = Work::<f64>::default();
+    pub(crate) fn modal_families<D: Scalar>(&self, x: &[D]) -> Result<Vec<Family<D>>, String> {
+        let mut work = Work::<D>::default();
         self.at(x, None, true, &mut work)?;
         Ok(self.families_of(&work.evaluated))
     }

@@ -62,6 +62,8 @@ pub(super) enum AtStroke {
     Across(usize),
     /// Output port `o`'s body's rotation.
     Turn(usize),
+    /// The natural frequency of mode `i` (from 0) about the equilibrium.
+    Frequency(usize),
 }
 
 /// What an evaluation's wanted outputs need ([`NetworkModel::needs`]).
@@ -84,6 +86,8 @@ pub(super) struct Needs {
     pub(super) stresses: bool,
     /// The solve at the working stroke.
     pub(super) stroke: bool,
+    /// How many natural frequencies about the equilibrium at the working stroke, where any.
+    pub(super) stroke_modes: Option<usize>,
 }
 
 impl Needs {
@@ -105,6 +109,10 @@ impl Needs {
             condenses: matches!(q, KOutActuated | KOutBlocked | BlockedForce),
             stresses: matches!(q, StressMax | Stress(_) | StressEnd(..)),
             stroke: matches!(q, AtStroke(_)),
+            stroke_modes: match q {
+                AtStroke(self::AtStroke::Frequency(i)) => Some(i + 1),
+                _ => None,
+            },
         }
     }
 
@@ -119,6 +127,7 @@ impl Needs {
             condenses: self.condenses | o.condenses,
             stresses: self.stresses | o.stresses,
             stroke: self.stroke | o.stroke,
+            stroke_modes: self.stroke_modes.max(o.stroke_modes),
         }
     }
 }
@@ -374,6 +383,19 @@ impl Named {
                 format!("nl_turn_{name}"),
                 Angle,
                 format!("rotation of output \"{name}\"'s body {at}"),
+            );
+        }
+        for i in 0..FREQUENCIES {
+            self.add(
+                Quantity::AtStroke(AtStroke::Frequency(i)),
+                format!("nl_f{}", i + 1),
+                Frequency,
+                format!(
+                    "natural frequency of mode {} about the equilibrium {at}: the tangent \
+                     stiffness there, the masses of f{} where the bodies stand",
+                    i + 1,
+                    i + 1
+                ),
             );
         }
     }
