@@ -2,7 +2,7 @@
 //! factorization, and each output read from them, over `f64` or over dual numbers for the
 //! exact gradients.
 
-use super::at_stroke::end_by_design;
+use super::at_stroke::{critical_of, end_by_design};
 use super::outputs::AtStroke;
 use super::*;
 use crate::model::large::report::StrokePointOf;
@@ -143,6 +143,7 @@ impl NetworkModel {
             condenses,
             stresses: needs_stresses,
             stroke: needs_stroke,
+            critical: needs_critical,
         } = self.needs(wanted);
         self.at(x, modulus, extent, work)?;
         let Work {
@@ -207,6 +208,9 @@ impl NetworkModel {
         let stroke = needs_stroke
             .then(|| self.at_stroke(x, modulus))
             .transpose()?;
+        let critical = needs_critical
+            .then(|| self.critical(x, modulus))
+            .transpose()?;
         for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
             *slot = match self.quantities[k] {
                 Amplification(o) => amplification(o),
@@ -236,6 +240,7 @@ impl NetworkModel {
                 Measure(m) => e.measures[m],
                 Frequency(i) => frequencies[i],
                 AtStroke(q) => stroke_output(stroke.as_ref().expect("solved"), q),
+                Critical => critical.expect("solved"),
             };
             if !slot.re().is_finite() {
                 return Err(format!(
@@ -265,10 +270,24 @@ impl NetworkModel {
         x: &[D],
         modulus: Option<D>,
     ) -> Result<StrokePointOf<D>, String> {
+        let settings = self.stroke_settings::<D>(modulus.is_some())?;
+        end_by_design(self, x, settings.elements, settings.steps)
+    }
+
+    /// The critical load factor of the working stroke (`nl_critical`), with its derivatives
+    /// at the critical point ([`crate::model::large::critical::by_design`]), under the same
+    /// terms as [`Self::at_stroke`].
+    fn critical<D: Scalar>(&self, x: &[D], modulus: Option<D>) -> Result<D, String> {
+        let settings = self.stroke_settings::<D>(modulus.is_some())?;
+        critical_of(self, x, settings.elements, settings.critical_up_to)
+    }
+
+    /// The large-deflection settings, for first derivatives (`D`) and the modulus unscaled.
+    fn stroke_settings<D: Scalar>(&self, scaled: bool) -> Result<LargeSettings, String> {
         let settings = self
             .large_settings()
             .ok_or("the outputs at stroke need `[analysis] deflection = \"large\"`")?;
-        if modulus.is_some() || D::SECOND_ORDER {
+        if scaled || D::SECOND_ORDER {
             return Err(
                 "the outputs at the working stroke have first derivatives only, and \
                         do not scale with the modulus: a robust study or a tolerance on E \
@@ -276,7 +295,7 @@ impl NetworkModel {
                     .into(),
             );
         }
-        end_by_design(self, x, settings.elements, settings.steps)
+        Ok(settings)
     }
 
     /// What the `wanted` outputs need.
