@@ -11,6 +11,7 @@ mod common;
 
 mod bridge_dynamics;
 mod bridge_model;
+mod critical_load;
 mod fit_ranges;
 mod hinges;
 mod large_deflection;

@@ -274,9 +274,18 @@ impl<'a, D: Scalar> SystemOf<'a, D> {
         self.free.iter().map(|&i| full.r[i]).collect()
     }
 
-    /// The tangent on the free degrees of freedom at the full displacement `u`, row-major.
+    /// The tangent on the free degrees of freedom at the full displacement `u`, row-major,
+    /// with no load: a structure without springs or loads on rigid bodies has it at any
+    /// load factor ([`Self::tangent_at`] otherwise).
     pub fn tangent(&self, u: &[D]) -> Vec<D> {
-        let full = self.assemble_full(u, 0.0);
+        self.tangent_at(u, 0.0)
+    }
+
+    /// The tangent on the free degrees of freedom at the full displacement `u` and load
+    /// factor `lambda` (a spring's natural length and a rigid body's loads move it),
+    /// row-major.
+    pub fn tangent_at(&self, u: &[D], lambda: f64) -> Vec<D> {
+        let full = self.assemble_full(u, lambda);
         let (m, f) = (u.len(), &self.free);
         f.iter()
             .flat_map(|&i| f.iter().map(move |&j| (i, j)))

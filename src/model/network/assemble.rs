@@ -5,7 +5,7 @@
 
 use super::checks;
 use super::file::describe;
-use super::model::{LargeSettings, NetworkModel};
+use super::model::{LargeSettings, NetworkModel, CRITICAL_UP_TO};
 use super::part::{Counterparts, Drawing, NetworkPart, PartSettings, RawNetworkPart};
 use super::raw::{Deflection, RawAnalysis, RawNetwork};
 use crate::model::actuator::{Actuator, RawActuator};
@@ -106,15 +106,24 @@ fn analysis(s: &Sections) -> Res<Option<LargeSettings>> {
             ))
         }
     };
+    let up_to = raw.critical_up_to.unwrap_or(CRITICAL_UP_TO);
+    if !(up_to > 1.0 && up_to <= 100.0) {
+        return Err(s.err(
+            &[k("analysis"), k("critical_up_to")],
+            format!("{up_to}: expected a number above 1 and at most 100"),
+        ));
+    }
     let settings = LargeSettings {
         elements: count("elements", raw.elements, 8, 64)?,
         steps: count("steps", raw.steps, 10, 200)?,
+        critical_up_to: up_to,
     };
+    let tuned = raw.elements.is_some() || raw.steps.is_some() || raw.critical_up_to.is_some();
     match raw.deflection.unwrap_or(Deflection::Small) {
-        Deflection::Small if raw.elements.is_some() || raw.steps.is_some() => Err(s.err(
+        Deflection::Small if tuned => Err(s.err(
             &[k("analysis"), k("deflection")],
-            "`elements` and `steps` set how the large-deflection solve runs: give \
-             `deflection = \"large\"` with them, or remove them"
+            "`elements`, `steps` and `critical_up_to` set how the large-deflection solve runs: \
+             give `deflection = \"large\"` with them, or remove them"
                 .to_string(),
         )),
         Deflection::Small => Ok(None),

@@ -52,7 +52,7 @@ mod stroke_modes;
 use mirror::{expressions, Role};
 use natural::axis_holds;
 pub(super) use natural::Family;
-pub use outputs::LargeSettings;
+pub use outputs::{LargeSettings, CRITICAL_UP_TO};
 use outputs::{AtStroke, Named, Needs, Quantity};
 use placing::{constant_direction, link_band, outline_crossing};
 
@@ -342,7 +342,7 @@ impl NetworkModel {
 
     /// Whether output `output` is one at the working stroke.
     pub(super) fn at_stroke_output(&self, output: usize) -> bool {
-        matches!(self.quantities[output], Quantity::AtStroke(_))
+        self.quantities[output].at_stroke()
     }
 
     /// How the outputs at stroke are solved, where the model has them.

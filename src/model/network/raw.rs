@@ -19,7 +19,9 @@ pub const SECTIONS: &[&str] = &["material", "network", "actuator", "part", "anal
 
 /// How the network is solved: `deflection = "small"` (the default) the linear model alone;
 /// `"large"` also the outputs at the working stroke (`nl_...`), each flexure a chain of
-/// `elements` corotational beams, the path from the unloaded part in `steps` load steps.
+/// `elements` corotational beams, the path from the unloaded part in `steps` load steps,
+/// the critical load factor (`nl_critical`) looked for up to `critical_up_to` times the
+/// working stroke.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawAnalysis {
@@ -28,6 +30,10 @@ pub(super) struct RawAnalysis {
     pub(super) elements: Option<usize>,
     #[schemars(range(min = 1, max = 200))]
     pub(super) steps: Option<usize>,
+    /// The multiple of the working stroke up to which `nl_critical` looks for a critical
+    /// point: above 1, at most 100 (default 4).
+    #[schemars(range(min = 1, max = 100))]
+    pub(super) critical_up_to: Option<f64>,
 }
 
 /// Small (linear) or large deflection.

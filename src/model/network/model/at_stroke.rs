@@ -15,6 +15,7 @@ use super::stroke_modes::frequencies_at;
 use super::NetworkModel;
 use crate::model::hinge::HingeLoads;
 use crate::model::large::assemble::{System, SystemOf};
+use crate::model::large::critical::by_design::critical_by_design;
 use crate::model::large::critical::critical_load_factor;
 use crate::model::large::element::{beam, length};
 use crate::model::large::report::{
@@ -77,14 +78,11 @@ pub fn solve_stroke(
         .pop()
         .expect("a path has its end");
     let critical = if options.critical_up_to > 1.0 {
-        let opts = Options {
-            steps: (2.0 * options.critical_up_to).ceil() as usize,
-            ..Options::default()
-        };
+        let opts = critical_options(options.critical_up_to);
         match critical_load_factor(&built.driven, options.critical_up_to, &opts) {
             Ok(c) => Some(c.lambda),
             Err(LargeError::NoCriticalPoint { .. }) => None,
-            // a limit point: past it the path has no equilibrium to re-solve
+            // no equilibrium from there, and none past it to find the point on
             Err(LargeError::NotConverged { lambda, .. }) => Some(lambda),
             Err(e) => return Err(large(e)),
         }
@@ -162,6 +160,45 @@ pub(crate) fn end_by_design<D: Scalar>(
         point.frequencies = frequencies_at(model, x, &dual, &u, end.lambda, frequencies)?;
     }
     Ok(point)
+}
+
+/// How the critical load factor is looked for up to `up_to`: two load steps a unit of
+/// the load factor before the bracket is closed.
+fn critical_options(up_to: f64) -> Options {
+    Options {
+        steps: (2.0 * up_to).ceil() as usize,
+        ..Options::default()
+    }
+}
+
+/// The critical load factor of the problem's actuator on the structure at the design `x`
+/// (the load factor by which its free stroke and preload grow until the tangent stiffness
+/// stops being positive definite), looked for up to `up_to`, over the scalar of `x`: found
+/// in real numbers ([`critical_load_factor`]), its derivatives at the critical point by the
+/// design ([`critical_by_design`]). Without a critical point up to `up_to`, `up_to` itself,
+/// constant.
+pub(crate) fn critical_of<D: Scalar>(
+    model: &NetworkModel,
+    x: &[D],
+    modulus: Option<D>,
+    elements: usize,
+    up_to: f64,
+) -> Result<D, String> {
+    let real_x: Vec<f64> = x.iter().map(|v| v.re()).collect();
+    let mut real = build(model, &real_x, elements, Drive::Stack)?;
+    if let Some(m) = modulus {
+        real.scale_modulus(m.re());
+    }
+    let critical = match critical_load_factor(&real.driven, up_to, &critical_options(up_to)) {
+        Ok(c) => c,
+        Err(LargeError::NoCriticalPoint { .. }) => return Ok(D::from(up_to)),
+        Err(e) => return Err(large(e)),
+    };
+    let mut dual = build(model, x, elements, Drive::Stack)?;
+    if let Some(m) = modulus {
+        dual.scale_modulus(m);
+    }
+    critical_by_design(&real.driven, &dual.driven, &critical).map_err(large)
 }
 
 /// The linear solution of the driven structure's full load: the unloaded tangent's, with

@@ -2,7 +2,7 @@
 //! factorization, and each output read from them, over `f64` or over dual numbers for the
 //! exact gradients.
 
-use super::at_stroke::end_by_design;
+use super::at_stroke::{critical_of, end_by_design};
 use super::outputs::AtStroke;
 use super::*;
 use crate::model::large::report::StrokePointOf;
@@ -144,6 +144,7 @@ impl NetworkModel {
             stresses: needs_stresses,
             stroke: needs_stroke,
             stroke_modes,
+            critical: needs_critical,
         } = self.needs(wanted);
         self.at(x, modulus, extent, work)?;
         let Work {
@@ -205,6 +206,9 @@ impl NetworkModel {
         let stroke = needs_stroke
             .then(|| self.at_stroke(x, modulus, stroke_modes.unwrap_or(0)))
             .transpose()?;
+        let critical = needs_critical
+            .then(|| self.critical(x, modulus))
+            .transpose()?;
         for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
             *slot = match self.quantities[k] {
                 Amplification(o) => amplification(o),
@@ -234,6 +238,7 @@ impl NetworkModel {
                 Measure(m) => e.measures[m],
                 Frequency(i) => frequencies[i],
                 AtStroke(q) => stroke_output(stroke.as_ref().expect("solved"), q),
+                Critical => critical.expect("solved"),
             };
             if !slot.re().is_finite() {
                 return Err(format!(
@@ -265,6 +270,27 @@ impl NetworkModel {
         modulus: Option<D>,
         frequencies: usize,
     ) -> Result<StrokePointOf<D>, String> {
+        let settings = self.stroke_settings::<D>()?;
+        end_by_design(
+            self,
+            x,
+            modulus,
+            settings.elements,
+            settings.steps,
+            frequencies,
+        )
+    }
+
+    /// The critical load factor of the working stroke (`nl_critical`), with its derivatives
+    /// at the critical point ([`crate::model::large::critical::by_design`]), under the same
+    /// terms as [`Self::at_stroke`].
+    fn critical<D: Scalar>(&self, x: &[D], modulus: Option<D>) -> Result<D, String> {
+        let settings = self.stroke_settings::<D>()?;
+        critical_of(self, x, modulus, settings.elements, settings.critical_up_to)
+    }
+
+    /// The large-deflection settings, for first derivatives (`D`).
+    fn stroke_settings<D: Scalar>(&self) -> Result<LargeSettings, String> {
         let settings = self
             .large_settings()
             .ok_or("the outputs at stroke need `[analysis] deflection = \"large\"`")?;
@@ -275,14 +301,7 @@ impl NetworkModel {
                     .into(),
             );
         }
-        end_by_design(
-            self,
-            x,
-            modulus,
-            settings.elements,
-            settings.steps,
-            frequencies,
-        )
+        Ok(settings)
     }
 
     /// What the `wanted` outputs need.

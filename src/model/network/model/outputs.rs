@@ -36,6 +36,16 @@ pub(super) enum Quantity {
     /// An output at the working stroke, with large deflection (`[analysis] deflection =
     /// "large"`).
     AtStroke(AtStroke),
+    /// The critical load factor of the working stroke (`nl_critical`), with large
+    /// deflection.
+    Critical,
+}
+
+impl Quantity {
+    /// Whether it is an output of the large-deflection solve.
+    pub(super) fn at_stroke(self) -> bool {
+        matches!(self, Quantity::AtStroke(_) | Quantity::Critical)
+    }
 }
 
 /// How the outputs at the working stroke are solved: the beam elements a flexure and the
@@ -44,6 +54,9 @@ pub(super) enum Quantity {
 pub struct LargeSettings {
     pub elements: usize,
     pub steps: usize,
+    /// The critical load factor is looked for up to this multiple of the working stroke
+    /// (above 1).
+    pub critical_up_to: f64,
 }
 
 /// What an output at the working stroke is ([`crate::model::large::report::StrokePoint`]).
@@ -88,6 +101,8 @@ pub(super) struct Needs {
     pub(super) stroke: bool,
     /// How many natural frequencies about the equilibrium at the working stroke, where any.
     pub(super) stroke_modes: Option<usize>,
+    /// The critical load factor's search.
+    pub(super) critical: bool,
 }
 
 impl Needs {
@@ -103,7 +118,14 @@ impl Needs {
             footprint: matches!(q, PartWidth | PartHeight),
             input: !matches!(
                 q,
-                SpanX | SpanY | PartWidth | PartHeight | Measure(_) | StrokeIn | AtStroke(_)
+                SpanX
+                    | SpanY
+                    | PartWidth
+                    | PartHeight
+                    | Measure(_)
+                    | StrokeIn
+                    | AtStroke(_)
+                    | Critical
             ) || (q == StrokeIn && actuator.is_some()),
             output: matches!(q, KOut | KOutActuated | KOutBlocked | BlockedForce),
             condenses: matches!(q, KOutActuated | KOutBlocked | BlockedForce),
@@ -113,6 +135,7 @@ impl Needs {
                 AtStroke(self::AtStroke::Frequency(i)) => Some(i + 1),
                 _ => None,
             },
+            critical: q == Critical,
         }
     }
 
@@ -128,9 +151,14 @@ impl Needs {
             stresses: self.stresses | o.stresses,
             stroke: self.stroke | o.stroke,
             stroke_modes: self.stroke_modes.max(o.stroke_modes),
+            critical: self.critical | o.critical,
         }
     }
 }
+
+/// The multiple of the working stroke the critical load factor is looked for up to, where
+/// `[analysis] critical_up_to` does not say.
+pub const CRITICAL_UP_TO: f64 = 4.0;
 
 /// How many natural frequencies the model names (`f1`, `f2`, ...).
 pub(super) const FREQUENCIES: usize = 3;
@@ -370,6 +398,19 @@ impl Named {
                 format!("largest stress in \"{name}\" {at}"),
             );
         }
+        self.add(
+            Quantity::Critical,
+            "nl_critical".into(),
+            Ratio,
+            format!(
+                "the critical load factor: the multiple of the working stroke (the stack's free \
+                 stroke and preload times it) at which the tangent stiffness stops being positive \
+                 definite (buckling, a limit point), looked for up to `[analysis] critical_up_to` \
+                 (default {CRITICAL_UP_TO}); without one up to there it is `critical_up_to` itself \
+                 with a zero gradient, so that a constraint `nl_critical >= m` with m below \
+                 `critical_up_to` holds"
+            ),
+        );
         for (o, p) in d.outputs.iter().enumerate() {
             let name = &p.name;
             self.add(

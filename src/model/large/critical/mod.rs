@@ -5,14 +5,21 @@
 //! point, which the Illinois variant of regula falsi (Dowell and Jarratt, BIT 11 (1971)
 //! 168-174) then closes, re-solving the equilibrium at each trial load factor from the
 //! bracket's stable end. A bifurcation from a perfect path (Euler's column) is found this
-//! way; a limit point, past which there is no equilibrium to re-solve, ends in
-//! [`LargeError::NotConverged`] at the limit.
+//! way. A limit point, past which there is no equilibrium at a higher load factor, is found
+//! where the continuation first fails to reach a load factor: the path is then followed by
+//! displacement control, on which it passes the limit smoothly, and the same bracket is
+//! closed on the controlled displacement ([`limit`]).
+//!
+//! [`by_design`] gives the critical load factor's derivatives by the design.
 
-use faer::{Mat, Side};
+pub mod by_design;
+mod eigen;
+mod limit;
 
 use super::assemble::System;
 use super::solve::{Options, Path, State};
 use super::{LargeError, Structure};
+use eigen::{illinois_keeps, lowest, scaling};
 
 /// The critical load factor and the path up to it.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,31 +31,10 @@ pub struct Critical {
     pub lowest_unloaded: f64,
 }
 
-/// The lowest eigenvalue of the tangent stiffness on the free degrees of freedom, scaled
-/// symmetrically by `scale` (a congruence: the signs of the eigenvalues are kept, by
-/// Sylvester's law of inertia, while a strip's axial and bending stiffnesses, 1e9 apart,
-/// are brought together so that an eigenvalue near zero is not lost in the round-off of
-/// the largest).
-fn lowest(system: &System, state: &State, scale: &[f64]) -> Result<f64, LargeError> {
-    let a = system.at(state);
-    if a.tangent.nrows() == 0 {
-        return Err(LargeError::Invalid("no free degree of freedom".into()));
-    }
-    let n = scale.len();
-    let scaled = Mat::from_fn(n, n, |i, j| scale[i] * a.tangent[(i, j)] * scale[j]);
-    let values = scaled
-        .self_adjoint_eigenvalues(Side::Lower)
-        .map_err(|_| LargeError::Eigen)?;
-    values
-        .first()
-        .copied()
-        .filter(|v| v.is_finite())
-        .ok_or(LargeError::Eigen)
-}
-
 /// The least load factor in `(0, lambda_max]` at which the tangent stiffness loses
 /// positive definiteness, from `opts.steps` load steps and a bracket closed to a relative
-/// width of `1e-12` (at most 200 trial load factors).
+/// width of `1e-12` (at most 200 trial points): a bifurcation on the load factor, a limit
+/// point on the displacement that controls the path past it.
 pub fn critical_load_factor(
     structure: &Structure,
     lambda_max: f64,
@@ -56,13 +42,7 @@ pub fn critical_load_factor(
 ) -> Result<Critical, LargeError> {
     let system = System::new(structure)?;
     let mut state = system.unloaded();
-    let unloaded = system.at(&state).tangent;
-    let scale: Vec<f64> = (0..unloaded.nrows())
-        .map(|i| 1.0 / unloaded[(i, i)].abs().sqrt())
-        .collect();
-    if scale.iter().any(|s| !s.is_finite()) {
-        return Err(LargeError::Singular { lambda: 0.0 });
-    }
+    let scale = scaling(&system)?;
     let lowest_unloaded = lowest(&system, &state, &scale)?;
     if lowest_unloaded <= 0.0 {
         return Err(LargeError::Singular { lambda: 0.0 });
@@ -70,9 +50,25 @@ pub fn critical_load_factor(
     let mut points = vec![system.point(&state)];
     let steps = opts.steps.max(1);
     let mut below = (state.clone(), lowest_unloaded);
+    let found = |points: Vec<_>, critical: State| {
+        let mut points = points;
+        points.push(system.point(&critical));
+        Ok(Critical {
+            lambda: critical.lambda,
+            path: Path { points },
+            lowest_unloaded,
+        })
+    };
     for i in 1..=steps {
         let lambda = lambda_max * i as f64 / steps as f64;
-        state = system.advance(&below.0, lambda, opts)?;
+        state = match system.advance(&below.0, lambda, opts) {
+            Ok(state) => state,
+            Err(LargeError::NotConverged { .. }) => {
+                let critical = limit::locate(&system, &scale, below, lambda, opts)?;
+                return found(points, critical);
+            }
+            Err(e) => return Err(e),
+        };
         let mu = lowest(&system, &state, &scale)?;
         if mu > 0.0 {
             points.push(system.point(&state));
@@ -80,17 +76,14 @@ pub fn critical_load_factor(
             continue;
         }
         let critical = illinois(&system, &scale, below, (lambda, mu), opts)?;
-        points.push(system.point(&critical));
-        return Ok(Critical {
-            lambda: critical.lambda,
-            path: Path { points },
-            lowest_unloaded,
-        });
+        return found(points, critical);
     }
     Err(LargeError::NoCriticalPoint { lambda_max })
 }
 
-/// Closes the bracket `[a, b]` (lowest eigenvalue positive at `a`, not at `b`).
+/// Closes the bracket `[a, b]` (lowest eigenvalue positive at `a`, not at `b`); where a
+/// trial load factor has no equilibrium the point is a limit, and [`limit::locate`] takes
+/// over from the bracket's stable end.
 fn illinois(
     system: &System,
     scale: &[f64],
@@ -100,26 +93,24 @@ fn illinois(
 ) -> Result<State, LargeError> {
     let (mut sa, mut fa) = a;
     let (mut lb, mut fb) = b;
-    let mut side = 0;
+    let mut side: i8 = 0;
     for _ in 0..200 {
         if (lb - sa.lambda).abs() <= 1e-12 * lb.abs() {
             break;
         }
         let lc = (sa.lambda * fb - lb * fa) / (fb - fa);
-        let sc = system.advance(&sa, lc, opts)?;
+        let sc = match system.advance(&sa, lc, opts) {
+            Ok(sc) => sc,
+            Err(LargeError::NotConverged { .. }) => {
+                return limit::locate(system, scale, (sa, fa), lc, opts)
+            }
+            Err(e) => return Err(e),
+        };
         let fc = lowest(system, &sc, scale)?;
-        if fc > 0.0 {
-            (sa, fa) = (sc, fc);
-            if side == -1 {
-                fb *= 0.5;
-            }
-            side = -1;
+        if illinois_keeps(fc, &mut fa, &mut fb, &mut side) {
+            sa = sc;
         } else {
-            (lb, fb) = (lc, fc);
-            if side == 1 {
-                fa *= 0.5;
-            }
-            side = 1;
+            lb = lc;
         }
     }
     Ok(sa)
