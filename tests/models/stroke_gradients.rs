@@ -256,7 +256,10 @@ fn the_outputs_at_stroke_scale_with_the_modulus() {
         .youngs_modulus;
     let text = std::fs::read_to_string(file).unwrap().replace(
         "preset = \"al7075-t6\"",
-        &format!("preset = \"al7075-t6\"\nyoungs_modulus = \"{:e} Pa\"", e * m),
+        &format!(
+            "preset = \"al7075-t6\"\nyoungs_modulus = \"{:e} Pa\"",
+            e * m
+        ),
     );
     let text = format!("{text}\n[analysis]\ndeflection = \"large\"\nelements = 4\nsteps = 4\n");
     let stiffer = Problem::parse(Path::new(file), &text).unwrap();

@@ -52,8 +52,8 @@ mod stroke_modes;
 use mirror::{expressions, Role};
 use natural::axis_holds;
 pub(super) use natural::Family;
-pub use outputs::{LargeSettings, CRITICAL_UP_TO};
 use outputs::{AtStroke, Named, Needs, Quantity};
+pub use outputs::{LargeSettings, CRITICAL_UP_TO};
 use placing::{constant_direction, link_band, outline_crossing};
 
 /// The described part at one design (m), for its pictures ([`super::depiction`]).

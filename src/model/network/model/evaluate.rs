@@ -203,12 +203,8 @@ impl NetworkModel {
         let extent = |i: usize| span(&e.points, i);
         let frequencies = modes.map_or(Ok(Vec::new()), |count| self.frequencies(e, count))?;
         let footprint = self.footprint_of(footprint, x)?;
-        let stroke = needs_stroke
-            .then(|| self.at_stroke(x, modulus, stroke_modes.unwrap_or(0)))
-            .transpose()?;
-        let critical = needs_critical
-            .then(|| self.critical(x, modulus))
-            .transpose()?;
+        let at_stroke = needs_stroke.then_some(stroke_modes);
+        let (stroke, critical) = self.large(x, modulus, at_stroke, needs_critical)?;
         for (&k, slot) in wanted.iter().zip(out.iter_mut()) {
             *slot = match self.quantities[k] {
                 Amplification(o) => amplification(o),
@@ -279,6 +275,22 @@ impl NetworkModel {
             settings.steps,
             frequencies,
         )
+    }
+
+    /// The solve at the working stroke (with `stroke`'s count of natural frequencies about
+    /// its equilibrium, where any) and the critical load factor, each where asked for.
+    fn large<D: Scalar>(
+        &self,
+        x: &[D],
+        modulus: Option<D>,
+        stroke: Option<Option<usize>>,
+        critical: bool,
+    ) -> Result<(Option<StrokePointOf<D>>, Option<D>), String> {
+        let point = stroke
+            .map(|modes| self.at_stroke(x, modulus, modes.unwrap_or(0)))
+            .transpose()?;
+        let lambda = critical.then(|| self.critical(x, modulus)).transpose()?;
+        Ok((point, lambda))
     }
 
     /// The critical load factor of the working stroke (`nl_critical`), with its derivatives

@@ -158,6 +158,8 @@ impl<'a, D: Scalar> Placement<'a, D> {
     /// The condensed tangent `k` (row-major, `3` rows a described body) on the family's
     /// bodies: the described part's, and on a part unfolded its image's, `S K S` (the
     /// reflection's signs) carried to each image's master. Row-major, `3` rows a body.
+    // the congruence's four indices run over three small matrices at once
+    #[allow(clippy::needless_range_loop)]
     pub(super) fn unfold(&self, f: &Family<D>, k: &[D], masters: &[[D; 2]]) -> Vec<D> {
         let (nb, n) = (self.built.masters.len(), self.source.len());
         let (kn, size) = (3 * nb, 3 * n);
