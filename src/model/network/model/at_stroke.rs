@@ -136,10 +136,7 @@ pub(crate) fn end_by_design<D: Scalar>(
     frequencies: usize,
 ) -> Result<StrokePointOf<D>, String> {
     let real_x: Vec<f64> = x.iter().map(|v| v.re()).collect();
-    let mut real = build(model, &real_x, elements, Drive::Stack)?;
-    if let Some(m) = modulus {
-        real.scale_modulus(m.re());
-    }
+    let real = stack_driven(model, &real_x, modulus.map(|m| m.re()), elements)?;
     let opts = Options {
         steps,
         ..Options::default()
@@ -149,10 +146,7 @@ pub(crate) fn end_by_design<D: Scalar>(
     let system = System::new(&real.driven).map_err(large)?;
     let free: Vec<f64> = system.free.iter().map(|&i| end.displacement[i]).collect();
     let free = system.polish(free, end.lambda);
-    let mut dual = build(model, x, elements, Drive::Stack)?;
-    if let Some(m) = modulus {
-        dual.scale_modulus(m);
-    }
+    let dual = stack_driven(model, x, modulus, elements)?;
     let dual_system = SystemOf::new(&dual.driven).map_err(large)?;
     let u = equilibrium_by_design(&system, &dual_system, &free, end.lambda).map_err(large)?;
     let mut point = measure(&dual, &u, end.lambda, None)?;
@@ -185,20 +179,29 @@ pub(crate) fn critical_of<D: Scalar>(
     up_to: f64,
 ) -> Result<D, String> {
     let real_x: Vec<f64> = x.iter().map(|v| v.re()).collect();
-    let mut real = build(model, &real_x, elements, Drive::Stack)?;
-    if let Some(m) = modulus {
-        real.scale_modulus(m.re());
-    }
+    let real = stack_driven(model, &real_x, modulus.map(|m| m.re()), elements)?;
     let critical = match critical_load_factor(&real.driven, up_to, &critical_options(up_to)) {
         Ok(c) => c,
         Err(LargeError::NoCriticalPoint { .. }) => return Ok(D::from(up_to)),
         Err(e) => return Err(large(e)),
     };
-    let mut dual = build(model, x, elements, Drive::Stack)?;
-    if let Some(m) = modulus {
-        dual.scale_modulus(m);
-    }
+    let dual = stack_driven(model, x, modulus, elements)?;
     critical_by_design(&real.driven, &dual.driven, &critical).map_err(large)
+}
+
+/// The structure at the design `x` driven by the problem's stack, its flexures' moduli
+/// `modulus` times the material's where given.
+fn stack_driven<D: Scalar>(
+    model: &NetworkModel,
+    x: &[D],
+    modulus: Option<D>,
+    elements: usize,
+) -> Result<Built<D>, String> {
+    let mut built = build(model, x, elements, Drive::Stack)?;
+    if let Some(m) = modulus {
+        built.scale_modulus(m);
+    }
+    Ok(built)
 }
 
 /// The linear solution of the driven structure's full load: the unloaded tangent's, with
