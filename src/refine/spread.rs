@@ -21,13 +21,18 @@
 //!
 //! The yield of the part is then the analytic Monte Carlo's samples with each measured
 //! output mapped onto the measurement, `F(p_0) + beta (a - a(p_0))`: the fraction of them
-//! that meet every constraint.
+//! that meet every constraint and whose part can be made.
+//!
+//! A sample whose part breaks one of the part's rules or fails its checks cannot be cut: it
+//! is passed over for the next one ([`Unmade`], reported), and its Monte Carlo twin counts
+//! as a failed part in the yield ([`crate::tolerance::makeable`]).
 
 use rayon::prelude::*;
 use serde::Serialize;
 
 use super::HighFidelity;
 use crate::problem::Problem;
+use crate::tolerance::makeable::Rules;
 use crate::tolerance::monte_carlo::{count_met, draw_sample, mean_and_std, out_of_domain, wilson};
 use crate::tolerance::Analysis;
 
@@ -99,6 +104,17 @@ pub struct Sample {
     pub errors: Vec<Option<f64>>,
 }
 
+/// A sample the high fidelity did not measure: its part cannot be made.
+#[derive(Debug, Clone, Serialize)]
+pub struct Unmade {
+    pub index: usize,
+    /// Every parameter (SI).
+    pub design: Vec<f64>,
+    pub modulus: f64,
+    /// The rules it breaks, or what the part's checks found.
+    pub why: String,
+}
+
 /// The measured spread of a design.
 #[derive(Debug, Clone, Serialize)]
 pub struct FeSpread {
@@ -115,13 +131,17 @@ pub struct FeSpread {
     pub yield_interval: [f64; 2],
     pub constraint_yields: Vec<f64>,
     pub sample_records: Vec<Sample>,
+    /// The samples among the first drawn whose part cannot be made, passed over for the
+    /// next ones: failed parts, which the yield counts as such.
+    pub unmade: Vec<Unmade>,
     pub seconds: f64,
 }
 
 /// The measured spread of the design `x` (SI, every parameter) of `problem`, whose analytic
 /// analysis (first order and Monte Carlo) is `analysis`, measured by `high` at `settings`'
-/// samples. The error names a sample that leaves the model's domain or that the high
-/// fidelity cannot measure.
+/// samples, the first whose part can be made. The error names a sample that leaves the
+/// model's domain or that the high fidelity cannot measure, or says that too few samples
+/// can be made.
 pub fn measure_spread(
     problem: &Problem,
     x: &[f64],
@@ -152,33 +172,27 @@ pub fn measure_spread(
     let nominal = high
         .measure(x, &asked)
         .map_err(|e| Measure(format!("the design itself: {e}")))?;
-    let tolerances = &problem.tolerances;
-    let one = |i: usize| -> Result<Sample, SpreadError> {
-        let (xi, modulus) = draw_sample(tolerances, x, settings.seed, i).map_err(Input)?;
-        if let Some(why) = model.domain_error(&xi) {
-            return Err(Input(out_of_domain(tolerances, settings.seed, i, &why)));
-        }
+    let one = |(i, xi, modulus): &(usize, Vec<f64>, f64)| -> Result<Sample, SpreadError> {
         let mut all = vec![0.0; wanted.len()];
-        analysis.outputs.values(&xi, modulus, &mut all);
+        analysis.outputs.values(xi, *modulus, &mut all);
         let m = high
-            .measure_at_modulus(&xi, modulus, &asked)
+            .measure_at_modulus(xi, *modulus, &asked)
             .map_err(|e| Measure(format!("sample {i} (seed {}): {e}", settings.seed)))?;
         Ok(Sample {
-            index: i,
-            design: xi,
-            modulus,
+            index: *i,
+            design: xi.clone(),
+            modulus: *modulus,
             analytic: slots.iter().map(|&j| all[j]).collect(),
             measured: m.values,
             errors: m.errors,
         })
     };
     let work = || {
-        (0..settings.samples)
-            .into_par_iter()
-            .map(one)
-            .collect::<Result<Vec<_>, _>>()
+        let (chosen, unmade) = makeable_samples(problem, x, settings)?;
+        let samples = chosen.par_iter().map(one).collect::<Result<Vec<_>, _>>()?;
+        Ok::<_, SpreadError>((samples, unmade))
     };
-    let samples = match rayon::ThreadPoolBuilder::new()
+    let (samples, unmade) = match rayon::ThreadPoolBuilder::new()
         .num_threads(settings.threads)
         .build()
     {
@@ -223,7 +237,7 @@ pub fn measure_spread(
             row[j] = o.measured + o.beta * (row[j] - o.analytic);
         }
     }
-    let (met, all) = count_met(&analysis.outputs, &mapped);
+    let (met, all) = count_met(&analysis.outputs, &mapped, &analysis.monte_carlo.makeable);
     let n = analysis.monte_carlo.samples;
     Ok(FeSpread {
         fidelity: high.describe(),
@@ -234,8 +248,80 @@ pub fn measure_spread(
         yield_interval: wilson(all, n),
         constraint_yields: met.iter().map(|&c| c as f64 / n as f64).collect(),
         sample_records: samples,
+        unmade,
         seconds: begin.elapsed().as_secs_f64(),
     })
+}
+
+/// How many candidates [`makeable_samples`] draws at most, per sample asked.
+const CANDIDATES_PER_SAMPLE: usize = 10;
+
+/// The first `settings.samples` of the Monte Carlo's samples whose part can be made (each
+/// `(index, design, modulus)`), and those passed over before them because their part breaks
+/// a rule or fails its checks. With fewer makeable among the first
+/// [`CANDIDATES_PER_SAMPLE`] times as many, those found, if at least [`MIN_SAMPLES`].
+#[allow(clippy::type_complexity)]
+fn makeable_samples(
+    problem: &Problem,
+    x: &[f64],
+    settings: SpreadSettings,
+) -> Result<(Vec<(usize, Vec<f64>, f64)>, Vec<Unmade>), SpreadError> {
+    let (model, tolerances) = (problem.model(), &problem.tolerances);
+    let rules = Rules::of(problem);
+    // a candidate: its draw, and why its part cannot be made where it cannot
+    let candidate = |i: usize| -> Result<(usize, Vec<f64>, f64, Option<String>), SpreadError> {
+        let (xi, modulus) =
+            draw_sample(tolerances, x, settings.seed, i).map_err(SpreadError::Input)?;
+        if let Some(why) = model.domain_error(&xi) {
+            return Err(SpreadError::Input(out_of_domain(
+                tolerances,
+                settings.seed,
+                i,
+                &why,
+            )));
+        }
+        let mut why = rules.broken_at(&xi);
+        if why.is_empty() {
+            if let Some(Err(e)) = problem.mechanism().part(&xi) {
+                why = e.problems.join("; ");
+            }
+        } else {
+            why = format!("it breaks {why}");
+        }
+        Ok((i, xi, modulus, (!why.is_empty()).then_some(why)))
+    };
+    let (wanted, most) = (settings.samples, settings.samples * CANDIDATES_PER_SAMPLE);
+    let (mut chosen, mut unmade) = (Vec::new(), Vec::new());
+    let mut next = 0;
+    while chosen.len() < wanted && next < most {
+        // a batch as large as the samples still wanted, checked in parallel, taken in order
+        let batch = (wanted - chosen.len()).min(most - next);
+        let checked: Vec<_> = (next..next + batch)
+            .into_par_iter()
+            .map(candidate)
+            .collect::<Result<_, _>>()?;
+        next += batch;
+        for (index, design, modulus, why) in checked {
+            match why {
+                Some(why) => unmade.push(Unmade {
+                    index,
+                    design,
+                    modulus,
+                    why,
+                }),
+                None => chosen.push((index, design, modulus)),
+            }
+        }
+    }
+    if chosen.len() < MIN_SAMPLES {
+        return Err(SpreadError::Input(format!(
+            "only {} of the first {next} samples can be made (at least {MIN_SAMPLES} are \
+             needed): {}",
+            chosen.len(),
+            unmade.first().map_or("", |u| u.why.as_str())
+        )));
+    }
+    Ok((chosen, unmade))
 }
 
 /// The slope of `y` on `x` through the origin and its standard error; `None` where `x` does

@@ -74,10 +74,15 @@ pub struct ToleranceReport {
     pub outputs: Vec<OutputLine>,
     pub samples: usize,
     pub seed: u64,
-    /// The fraction of samples meeting every constraint of `yield_of`.
+    /// The fraction of samples whose part can be made and that meet every constraint of
+    /// `yield_of`.
     #[serde(rename = "yield")]
     pub yield_fraction: f64,
     pub yield_of: Vec<String>,
+    /// The fraction of samples whose part breaks one of the part's rules or more (failed
+    /// parts), and per rule the fraction that breaks it (every rule the part states).
+    pub unmakeable: f64,
+    pub rules_broken: IndexMap<String, f64>,
     pub yield_interval: [f64; 2],
     pub yield_confidence: f64,
     pub interval_method: &'static str,
@@ -135,7 +140,18 @@ pub struct FeReport {
     pub yield_interval: [f64; 2],
     pub constraint_yields: IndexMap<String, f64>,
     pub sample_records: Vec<FeSampleLine>,
+    /// The samples passed over because their part cannot be made.
+    pub unmade: Vec<UnmadeLine>,
     pub seconds: f64,
+}
+
+/// A sample whose part cannot be made, in the file's units.
+#[derive(Debug, Clone, Serialize)]
+pub struct UnmadeLine {
+    pub index: usize,
+    pub design: IndexMap<String, f64>,
+    pub youngs_modulus_factor: f64,
+    pub why: String,
 }
 
 impl FeReport {
@@ -193,8 +209,9 @@ impl FeReport {
         FeReport {
             fidelity: spread.fidelity.clone(),
             samples: spread.samples,
-            method: "the Monte Carlo's first samples checked by FE; the FE's deviations \
-                     regressed on the model's (the model as control variate)",
+            method: "the Monte Carlo's first samples whose part can be made checked by FE; \
+                     the FE's deviations regressed on the model's (the model as control \
+                     variate)",
             outputs,
             yield_fraction: spread.yield_fraction,
             yield_interval: spread.yield_interval,
@@ -205,6 +222,16 @@ impl FeReport {
                 .map(|(c, &y)| (c.output.clone(), y))
                 .collect(),
             sample_records,
+            unmade: spread
+                .unmade
+                .iter()
+                .map(|u| UnmadeLine {
+                    index: u.index,
+                    design: problem.design_in_file_units(&u.design),
+                    youngs_modulus_factor: u.modulus,
+                    why: u.why.clone(),
+                })
+                .collect(),
             seconds: spread.seconds,
         }
     }
@@ -281,6 +308,12 @@ impl ToleranceReport {
                 .iter()
                 .filter(|c| c.in_yield)
                 .map(|c| c.output.clone())
+                .collect(),
+            unmakeable: mc.unmakeable,
+            rules_broken: crate::tolerance::makeable::Rules::of(problem)
+                .names()
+                .into_iter()
+                .zip(mc.rule_breaks.iter().copied())
                 .collect(),
             yield_interval: mc.yield_interval,
             yield_confidence: CONFIDENCE,

@@ -1,7 +1,7 @@
 //! A design under its tolerances ([`crate::problem::tolerances`]): the spread of every output
 //! the problem uses, to first order from the model's exact gradients ([`first_order`]) and
-//! by Monte Carlo ([`monte_carlo`]), and the yield, the fraction of made parts that meet
-//! every constraint.
+//! by Monte Carlo ([`monte_carlo`]), and the yield, the fraction of parts cut to the
+//! tolerances that can be made ([`makeable`]) and meet every constraint.
 //!
 //! First order (the first-order second-moment method, FOSM: Parkinson, Sorensen and
 //! Pourhassan, J. Mech. Des. 115 (1993) 74-80): with independent inputs `p_j` of standard
@@ -9,6 +9,7 @@
 //! sum is the input's share of the variance, and `y +- sum_j |dy/dp_j| b_j`, with `b_j` the
 //! inputs' bands, is the worst case of the linearized output.
 
+pub mod makeable;
 pub mod monte_carlo;
 pub mod robust;
 

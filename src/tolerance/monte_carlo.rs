@@ -9,7 +9,9 @@ use rand_distr::StandardNormal;
 use rayon::prelude::*;
 use serde::Serialize;
 
+use super::makeable::Rules;
 use super::Outputs;
+use crate::model::part_rules::broken;
 use crate::problem::tolerances::{Distribution, Input, Tolerance};
 
 /// How many samples, from which seed, on how many threads (0: every core).
@@ -43,7 +45,8 @@ pub struct Spread {
 pub struct MonteCarlo {
     pub samples: usize,
     pub seed: u64,
-    /// The fraction of samples that meet every constraint the yield counts.
+    /// The fraction of samples whose part can be made and that meet every constraint the
+    /// yield counts.
     #[serde(rename = "yield")]
     pub yield_fraction: f64,
     /// Its Wilson score interval at [`CONFIDENCE`].
@@ -51,11 +54,20 @@ pub struct MonteCarlo {
     pub interval_method: &'static str,
     /// Per wanted output, in the order of [`Outputs::wanted`].
     pub outputs: Vec<Spread>,
-    /// Per constraint, the fraction of samples that meet it.
+    /// Per constraint, the fraction of samples that meet it (whether or not their part can
+    /// be made: the performance alone).
     pub constraint_yields: Vec<f64>,
+    /// The fraction of samples whose part breaks one of the part's rules or more: parts that
+    /// cannot be made, which the yield counts as failed ([`super::makeable`]).
+    pub unmakeable: f64,
+    /// Per rule of the part, in its order, the fraction of samples that break it.
+    pub rule_breaks: Vec<f64>,
     /// Every sample's wanted outputs, row-major (for the histograms; not written).
     #[serde(skip)]
     pub values: Vec<f64>,
+    /// Whether each sample's part keeps every rule (not written).
+    #[serde(skip)]
+    pub makeable: Vec<bool>,
 }
 
 /// The deviation of one input, in standard deviations, from `rng`.
@@ -108,8 +120,13 @@ pub fn out_of_domain(tolerances: &[Tolerance], seed: u64, i: usize, why: &str) -
     )
 }
 
-/// Samples the tolerances around `x` and evaluates the wanted outputs at each sample; an
-/// error names the first sample (by index) whose design leaves the model's domain.
+/// The samples one task of [`run`] takes: the rules' counts are summed per block, so that
+/// the thread count changes no count.
+const BLOCK: usize = 256;
+
+/// Samples the tolerances around `x` and evaluates the wanted outputs and the part's rules
+/// at each sample; an error names the first sample (by index) whose design leaves the
+/// model's domain.
 pub fn run(
     outputs: &Outputs,
     tolerances: &[Tolerance],
@@ -118,38 +135,61 @@ pub fn run(
 ) -> Result<MonteCarlo, String> {
     let m = outputs.wanted.len();
     let model = outputs.problem.model();
+    let rules = Rules::of(outputs.problem);
+    let r = rules.len();
     let mut values = vec![0.0; settings.samples * m];
-    let sample = |i: usize, row: &mut [f64]| -> Result<(), String> {
-        let (xi, modulus) = draw_sample(tolerances, x, settings.seed, i)?;
-        if let Some(why) = model.domain_error(&xi) {
-            return Err(out_of_domain(tolerances, settings.seed, i, &why));
+    let mut makeable = vec![true; settings.samples];
+    // one block of samples from `first`: their outputs, whether each can be made, and how
+    // many break each rule
+    let block = |first: usize, rows: &mut [f64], made: &mut [bool]| {
+        let mut breaks = vec![0usize; r];
+        let mut margins = vec![0.0; r];
+        for (k, (row, made)) in rows.chunks_mut(m).zip(made.iter_mut()).enumerate() {
+            let i = first + k;
+            let (xi, modulus) = draw_sample(tolerances, x, settings.seed, i).map_err(|e| (i, e))?;
+            if let Some(why) = model.domain_error(&xi) {
+                return Err((i, out_of_domain(tolerances, settings.seed, i, &why)));
+            }
+            outputs.values(&xi, modulus, row);
+            *made = rules.keeps_all(&xi, &mut margins);
+            if !*made {
+                for (count, &margin) in breaks.iter_mut().zip(&margins) {
+                    *count += usize::from(broken(margin));
+                }
+            }
         }
-        outputs.values(&xi, modulus, row);
-        Ok(())
+        Ok(breaks)
     };
     let mut work = || {
         values
-            .par_chunks_mut(m)
+            .par_chunks_mut(m * BLOCK)
+            .zip(makeable.par_chunks_mut(BLOCK))
             .enumerate()
-            .filter_map(|(i, row)| sample(i, row).err().map(|e| (i, e)))
-            .min_by_key(|(i, _)| *i)
+            .map(|(b, (rows, made))| block(b * BLOCK, rows, made))
+            .collect::<Vec<_>>()
     };
-    let failed = match rayon::ThreadPoolBuilder::new()
+    let blocks = match rayon::ThreadPoolBuilder::new()
         .num_threads(settings.threads)
         .build()
     {
         Ok(pool) => pool.install(work),
         Err(_) => work(),
     };
-    if let Some((_, e)) = failed {
-        return Err(e);
+    let mut breaks = vec![0usize; r];
+    for block in blocks {
+        // blocks in order, and the first sample of a block that failed stops it: the first
+        // error is the first failing sample's
+        for (total, count) in breaks.iter_mut().zip(block.map_err(|(_, e)| e)?) {
+            *total += count;
+        }
     }
-    Ok(summarize(outputs, values, settings))
+    Ok(summarize(outputs, values, makeable, &breaks, settings))
 }
 
 /// How many rows of `values` (the wanted outputs of each sample, row-major) meet each
-/// constraint, and how many meet every one the yield counts ([`crate::problem::Constraint::in_yield`]).
-pub fn count_met(outputs: &Outputs, values: &[f64]) -> (Vec<usize>, usize) {
+/// constraint, and how many of those whose part can be made (`makeable`, one per row) meet
+/// every one the yield counts ([`crate::problem::Constraint::in_yield`]).
+pub fn count_met(outputs: &Outputs, values: &[f64], makeable: &[bool]) -> (Vec<usize>, usize) {
     let m = outputs.wanted.len();
     let constraints = &outputs.problem.constraints;
     let columns: Vec<usize> = constraints
@@ -168,8 +208,8 @@ pub fn count_met(outputs: &Outputs, values: &[f64]) -> (Vec<usize>, usize) {
     };
     let mut met = vec![0usize; constraints.len()];
     let mut all = 0usize;
-    for row in values.chunks(m) {
-        let mut every = true;
+    for (row, &made) in values.chunks(m).zip(makeable) {
+        let mut every = made;
         for (k, count) in met.iter_mut().enumerate() {
             if meets(row, k) {
                 *count += 1;
@@ -190,9 +230,16 @@ pub fn mean_and_std(v: &[f64]) -> (f64, f64) {
     (mean, var.sqrt())
 }
 
-fn summarize(outputs: &Outputs, values: Vec<f64>, settings: Settings) -> MonteCarlo {
+fn summarize(
+    outputs: &Outputs,
+    values: Vec<f64>,
+    makeable: Vec<bool>,
+    breaks: &[usize],
+    settings: Settings,
+) -> MonteCarlo {
     let (n, m) = (settings.samples, outputs.wanted.len());
-    let (met, all) = count_met(outputs, &values);
+    let (met, all) = count_met(outputs, &values, &makeable);
+    let unmade = makeable.iter().filter(|&&made| !made).count();
     let spreads = (0..m)
         .map(|j| {
             let mut column: Vec<f64> = values.iter().skip(j).step_by(m).copied().collect();
@@ -216,7 +263,10 @@ fn summarize(outputs: &Outputs, values: Vec<f64>, settings: Settings) -> MonteCa
         interval_method: "Wilson score, 95 %",
         outputs: spreads,
         constraint_yields: met.iter().map(|&c| c as f64 / n as f64).collect(),
+        unmakeable: unmade as f64 / n as f64,
+        rule_breaks: breaks.iter().map(|&c| c as f64 / n as f64).collect(),
         values,
+        makeable,
     }
 }
 

@@ -20,6 +20,9 @@ pub struct Side {
     #[serde(rename = "yield")]
     pub yield_fraction: f64,
     pub yield_interval: [f64; 2],
+    /// The fraction of samples whose part breaks one of the part's rules (failed parts,
+    /// outside the yield).
+    pub unmakeable: f64,
     /// Constraint output -> its margin to the nearest limit in first-order standard
     /// deviations (positive inside).
     pub margins_in_sigma: IndexMap<String, f64>,
@@ -99,6 +102,7 @@ fn side(problem: &Problem, x: &[f64], objective: f64, settings: Settings) -> Res
         design: problem.design_in_file_units(x),
         yield_fraction: a.monte_carlo.yield_fraction,
         yield_interval: a.monte_carlo.yield_interval,
+        unmakeable: a.monte_carlo.unmakeable,
         margins_in_sigma: margins,
     })
 }

@@ -14,3 +14,4 @@ mod shards;
 mod solver_robustness;
 mod study;
 mod tolerances;
+mod unmakeable;

@@ -245,3 +245,73 @@ fn tolerance_fe_refuses_too_few_fe_samples() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("--fe-samples") && err.contains('2'), "{err}");
 }
+
+/// `tolerance --fe` on an optimum that stands on a rule (wei2017_min_stress's middle link as
+/// wide as its thickest hinge): about half its parts break the rule. The run finishes, counts
+/// them as failed parts beside the yield, and checks by FE the first samples that can be
+/// made, naming those passed over.
+#[test]
+fn tolerance_fe_on_an_active_rule_counts_the_parts_that_cannot_be_made() {
+    let dir = scratch("unmade");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string("problems/wei2017_min_stress.toml").unwrap();
+    let file = dir.join("wei2017_min_stress.toml");
+    std::fs::write(
+        &file,
+        format!("{text}\n[refine]\nfidelity = \"none\"\nidealization = \"plane-stress\"\n"),
+    )
+    .unwrap();
+    let optimum: Value = serde_json::from_str(
+        &std::fs::read_to_string("results/wei2017_min_stress/optimum.json").unwrap(),
+    )
+    .unwrap();
+    let design: Vec<String> = optimum["design"]
+        .as_object()
+        .unwrap()
+        .iter()
+        .map(|(k, v)| format!("{k}={}", v.as_f64().unwrap()))
+        .collect();
+    let out = dir.join("out");
+    let o = flexopt_ok(&[
+        "tolerance",
+        file.to_str().unwrap(),
+        "--design",
+        &design.join(","),
+        "--samples",
+        "4000",
+        "--fe",
+        "--fe-samples",
+        "3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(text.contains("cannot be made: "), "{text}");
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("tolerance.json")).unwrap())
+            .unwrap();
+    let unmakeable = json["unmakeable"].as_f64().unwrap();
+    assert!((0.2..0.8).contains(&unmakeable), "{unmakeable}");
+    let link = json["rules_broken"]["link_width"].as_f64().unwrap();
+    assert!(link > 0.0 && link <= unmakeable, "{link} {unmakeable}");
+    let y = json["yield"].as_f64().unwrap();
+    assert!(y <= 1.0 - unmakeable, "{y} {unmakeable}");
+    let fe = &json["fe"];
+    assert_eq!(fe["samples"].as_u64(), Some(3));
+    assert!(fe["yield"].as_f64().unwrap() <= 1.0 - unmakeable);
+    // the samples checked and those passed over are the Monte Carlo's first ones, each once
+    let mut seen: Vec<u64> = fe["sample_records"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .chain(fe["unmade"].as_array().unwrap())
+        .map(|r| r["index"].as_u64().unwrap())
+        .collect();
+    seen.sort_unstable();
+    assert_eq!(seen, (0..seen.len() as u64).collect::<Vec<_>>());
+    for u in fe["unmade"].as_array().unwrap() {
+        let why = u["why"].as_str().unwrap();
+        assert!(!why.is_empty(), "{u}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -382,9 +382,13 @@ pub(super) fn tolerances(set: &Set) -> Markup {
             @if let Some(t) = t {
                 p {
                     "The optimum under its tolerances: " strong { (percent(t.get("yield"))) }
-                    " of " (num(t.get("samples"))) " Monte Carlo parts meet every constraint ("
+                    " of " (num(t.get("samples"))) " Monte Carlo parts can be made and meet every constraint ("
                     (text(t, "interval_method")) " interval " (percent(interval.first())) " .. "
                     (percent(interval.get(1))) "; seed " (num(t.get("seed"))) ")."
+                    @if t.get("rules_broken").and_then(Value::as_object).is_some_and(|r| !r.is_empty()) {
+                        " " (percent(t.get("unmakeable"))) " cannot be made: their part breaks one of \
+                        the part's rules or more, and the yield counts them as failed."
+                    }
                 }
                 p.small { "σ: the standard deviation, to first order from the exact gradients and by Monte \
                     Carlo (MC); in limits: the share of parts within the output's limits (– for the \

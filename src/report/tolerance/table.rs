@@ -69,7 +69,7 @@ impl Display for ToleranceTable<'_> {
         }
         writeln!(
             s,
-            "yield: {} of {} samples meet {} ({} {} interval {} .. {})",
+            "yield: {} of {} samples can be made and meet {} ({} {} interval {} .. {})",
             pc(r.yield_fraction),
             r.samples,
             if r.yield_of.len()
@@ -87,6 +87,24 @@ impl Display for ToleranceTable<'_> {
             pc(r.yield_interval[0]),
             pc(r.yield_interval[1]),
         )?;
+        if !r.rules_broken.is_empty() {
+            let broken: Vec<String> = r
+                .rules_broken
+                .iter()
+                .filter(|(_, &f)| f > 0.0)
+                .map(|(rule, &f)| format!("{rule} {}", pc(f)))
+                .collect();
+            writeln!(
+                s,
+                "cannot be made: {} of the samples break the part's rules{}",
+                pc(r.unmakeable),
+                if broken.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({})", broken.join(", "))
+                }
+            )?;
+        }
         if let Some(fe) = &r.fe {
             write!(s, "{}", FeTable(fe))?;
         }
@@ -107,6 +125,15 @@ impl Display for FeTable<'_> {
             fe.samples,
             significant(fe.seconds, 3)
         )?;
+        if !fe.unmade.is_empty() {
+            let indices: Vec<String> = fe.unmade.iter().map(|u| u.index.to_string()).collect();
+            writeln!(
+                s,
+                "  passed over, their part cannot be made: samples {} (the first: {})",
+                indices.join(", "),
+                fe.unmade[0].why
+            )?;
+        }
         writeln!(
             s,
             "{:<18} {:>11} {:>11} {:>8} {:>15} {:>11} {:>11} {:>25}  unit",
@@ -185,6 +212,13 @@ impl Display for RobustTable<'_> {
             "yield (Monte Carlo)",
             cell(&|x| pc(x.yield_fraction), sides[0].1),
             cell(&|x| pc(x.yield_fraction), sides[1].1)
+        )?;
+        writeln!(
+            s,
+            "  {:<22} {:>16} {:>16}",
+            "cannot be made",
+            cell(&|x| pc(x.unmakeable), sides[0].1),
+            cell(&|x| pc(x.unmakeable), sides[1].1)
         )?;
         for k in c.robust.margins_in_sigma.keys() {
             let m = |x: &Side| format!("{} sigma", significant(x.margins_in_sigma[k], 3));
