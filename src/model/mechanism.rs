@@ -98,6 +98,24 @@ pub trait PartMaker: Send + Sync + std::fmt::Debug {
     /// row-major (`jacobian[i * x.len() + p]`).
     fn rule_margins_with_gradient(&self, _x: &[f64], _out: &mut [f64], _jacobian: &mut [f64]) {}
 
+    /// Whether the part gives its rules' Hessians ([`PartMaker::rule_margins_with_hessian`]):
+    /// a robust study keeps each rule inside by its spread only where it does.
+    fn rule_hessians(&self) -> bool {
+        false
+    }
+
+    /// As [`PartMaker::rule_margins_with_gradient`], and each margin's Hessian over every
+    /// parameter into `hessian` (`out.len()` blocks of `x.len()^2`, row-major): the
+    /// gradient of a rule's first-order spread under the tolerances needs them.
+    fn rule_margins_with_hessian(
+        &self,
+        _x: &[f64],
+        _out: &mut [f64],
+        _jacobian: &mut [f64],
+        _hessian: &mut [f64],
+    ) {
+    }
+
     /// Where each rule is measured at the design `x` (SI), into `out` (one per rule, in
     /// their order): `None` where the model does not say.
     fn rule_witnesses(&self, _x: &[f64], _out: &mut [Option<Witness>]) {}

@@ -40,7 +40,7 @@ use crate::optim::Problem;
 mod rows;
 mod spreads;
 pub(crate) use rows::with_scratch;
-use spreads::{spreads, Spreads};
+use spreads::{point_to_spreads, spreads, Spreads};
 
 /// Relative violation up to which a constraint counts as met: a constraint's value here is
 /// its relative margin, so this is the one place where the rule can be stated.
@@ -103,6 +103,9 @@ pub struct DesignNlp<'p> {
     rules: usize,
     /// Present in a robust study.
     spreads: Option<Spreads<'p>>,
+    /// How many of the rules keep their spread too (all of them in a robust study whose
+    /// part gives their Hessians; none otherwise): their spreads follow the outputs'.
+    rule_spreads: usize,
     offset: Vec<f64>,
     range: Vec<f64>,
     zeros: Vec<f64>,
@@ -236,16 +239,20 @@ impl<'p> DesignNlp<'p> {
             });
         }
         let spreads = spreads(problem).filter(|_| robust);
+        let rule_spreads = match (&spreads, part) {
+            (Some(_), Some(p)) if p.rule_hessians() => rules,
+            _ => 0,
+        };
         if spreads.is_some() {
             let first = wanted.len() + fits.len() + rules;
-            for r in rows.iter_mut().filter(|r| {
-                problem
-                    .constraints
-                    .get(r.constraint)
-                    .is_some_and(|c| c.in_yield)
-            }) {
-                r.spread = Some(first + r.value);
-            }
+            let first_rule = problem.constraints.len() + fits.len();
+            point_to_spreads(
+                problem,
+                &mut rows,
+                (first, wanted.len()),
+                first_rule,
+                rule_spreads,
+            );
         }
         let range: Vec<f64> = free.iter().map(|v| v.upper - v.lower).collect();
         let jacobian_factor = rows
@@ -266,6 +273,7 @@ impl<'p> DesignNlp<'p> {
             part,
             rules,
             spreads,
+            rule_spreads,
             offset: free.iter().map(|v| v.lower).collect(),
             range,
             zeros: vec![0.0; free.len()],
@@ -316,7 +324,7 @@ impl<'p> DesignNlp<'p> {
     /// ranges of fit the study keeps to, then the margins of the part's rules it keeps to.
     pub fn values(&self) -> usize {
         let spreads = if self.spreads.is_some() {
-            self.wanted.len()
+            self.wanted.len() + self.rule_spreads
         } else {
             0
         };
@@ -344,6 +352,7 @@ impl<'p> DesignNlp<'p> {
             let mut jacobian = vec![0.0; w * n];
             s.model
                 .evaluate_scaled_with_gradient(x, 1.0, &self.wanted, &mut values, &mut jacobian);
+            let (spreads, rule_spreads) = spreads.split_at_mut(w);
             for (spread, row) in spreads.iter_mut().zip(jacobian.chunks_exact(n)) {
                 *spread = row
                     .iter()
@@ -351,6 +360,9 @@ impl<'p> DesignNlp<'p> {
                     .map(|(d, sj)| (d * sj).powi(2))
                     .sum::<f64>()
                     .sqrt();
+            }
+            if let (Some(part), false) = (self.part, rule_spreads.is_empty()) {
+                s.rule_spreads(part, x, rule_spreads);
             }
         }
     }
@@ -381,7 +393,12 @@ impl<'p> DesignNlp<'p> {
         let (ratio_jac, rest_jac) = rest_jac.split_at_mut(self.fits.len() * np);
         let (margin_jac, spread_jac) = rest_jac.split_at_mut(self.rules * np);
         if let Some(s) = &self.spreads {
+            let (spreads, rule_spreads) = spreads.split_at_mut(w);
+            let (spread_jac, rule_spread_jac) = spread_jac.split_at_mut(w * np);
             s.spreads_with_gradient(x, &self.wanted, spreads, spread_jac);
+            if let (Some(part), true, false) = (self.part, rules, rule_spreads.is_empty()) {
+                s.rule_spreads_with_gradient(part, x, rule_spreads, rule_spread_jac);
+            }
         }
         if let (Some(part), true) = (self.part, rules) {
             part.rule_margins_with_gradient(x, margins, margin_jac);

@@ -269,13 +269,13 @@ fn the_chapters_robust_optimum_keeps_the_stroke_two_deviations_inside() {
     let outputs = &json(&out.join("optimum.json"))["outputs"];
     within(
         outputs["output_frequency"].as_f64().unwrap(),
-        711.77,
+        711.124,
         1e-4,
         "robust output_frequency",
     );
     within(
         outputs["stroke_out"].as_f64().unwrap(),
-        150.197e-6,
+        150.198e-6,
         1e-5,
         "robust stroke_out",
     );

@@ -183,6 +183,25 @@ impl Bridge {
             jacobian,
         );
     }
+
+    /// Values, gradients and Hessians of the part's rules at `x`, with `N` = the number
+    /// of parameters ([`part::rules::margins_with_hessian`]).
+    fn rule_second_derivatives<const N: usize>(
+        &self,
+        x: &[f64],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    ) {
+        part::rules::margins_with_hessian::<N>(
+            &self.settings.part,
+            &self.layout,
+            x,
+            out,
+            jacobian,
+            hessian,
+        );
+    }
 }
 
 impl Model for Bridge {
@@ -379,6 +398,20 @@ impl PartMaker for Bridge {
 
     fn rule_margins_with_gradient(&self, x: &[f64], out: &mut [f64], jacobian: &mut [f64]) {
         per_count!(x.len(), self.rule_gradients::<+0>(x, out, jacobian))
+    }
+
+    fn rule_hessians(&self) -> bool {
+        true
+    }
+
+    fn rule_margins_with_hessian(
+        &self,
+        x: &[f64],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    ) {
+        per_count!(x.len(), self.rule_second_derivatives::<+0>(x, out, jacobian, hessian))
     }
 
     fn rule_witnesses(&self, x: &[f64], out: &mut [Option<crate::model::part_rules::Witness>]) {

@@ -1,9 +1,34 @@
 //! A robust study's spreads: each wanted output's first-order standard deviation under the
 //! tolerances and its gradient, from the model's exact second derivatives.
 
-use super::DesignProblem;
-use crate::model::mechanism::ModulusScaling;
+use super::{DesignProblem, Row};
+use crate::model::mechanism::{ModulusScaling, PartMaker};
 use crate::problem::tolerances::Input;
+
+/// A robust study's rows pointed at their spreads among the values, which begin at `first`:
+/// the wanted outputs' (`wanted` of them, the constraints `yield_of` names keep theirs),
+/// then those of the first `rule_spreads` rules, whose rows are the constraints from
+/// `first_rule` on (a part that cannot be made fails whatever `yield_of` names).
+pub(super) fn point_to_spreads(
+    problem: &DesignProblem,
+    rows: &mut [Row],
+    (first, wanted): (usize, usize),
+    first_rule: usize,
+    rule_spreads: usize,
+) {
+    for r in rows.iter_mut() {
+        if r.constraint >= first_rule {
+            let i = r.constraint - first_rule;
+            r.spread = (i < rule_spreads).then_some(first + wanted + i);
+        } else if problem
+            .constraints
+            .get(r.constraint)
+            .is_some_and(|c| c.in_yield)
+        {
+            r.spread = Some(first + r.value);
+        }
+    }
+}
 
 /// What a robust study needs to know of the tolerances.
 pub(super) struct Spreads<'p> {
@@ -51,27 +76,82 @@ impl Spreads<'_> {
         let mut hessian = vec![0.0; w * n * n];
         self.model
             .evaluate_with_hessian(x, wanted, &mut values, &mut gradient, &mut hessian);
-        for i in 0..w {
+        for (i, (spread, row)) in spreads
+            .iter_mut()
+            .zip(jacobian.chunks_exact_mut(np))
+            .enumerate()
+        {
             let g = &gradient[i * n..(i + 1) * n];
             let h = &hessian[i * n * n..(i + 1) * n * n];
-            let sigma = g
+            *spread = spread_with_gradient(g, h, &self.sigma, row);
+        }
+    }
+
+    /// The first-order standard deviation of each of the part's first `spreads.len()`
+    /// rules' margins at `x`: the tolerances on the parameters move them, the modulus's
+    /// does not.
+    pub(super) fn rule_spreads(&self, part: &dyn PartMaker, x: &[f64], spreads: &mut [f64]) {
+        let (r, np) = (spreads.len(), x.len());
+        let mut margins = vec![0.0; r];
+        let mut gradient = vec![0.0; r * np];
+        part.rule_margins_with_gradient(x, &mut margins, &mut gradient);
+        for (spread, g) in spreads.iter_mut().zip(gradient.chunks_exact(np)) {
+            *spread = g
                 .iter()
                 .zip(&self.sigma)
                 .map(|(d, s)| (d * s).powi(2))
                 .sum::<f64>()
                 .sqrt();
-            spreads[i] = sigma;
-            let row = &mut jacobian[i * np..(i + 1) * np];
-            for (p, o) in row.iter_mut().enumerate() {
-                *o = if sigma > 0.0 {
-                    (0..n)
-                        .map(|j| g[j] * self.sigma[j].powi(2) * h[j * n + p])
-                        .sum::<f64>()
-                        / sigma
-                } else {
-                    0.0
-                };
-            }
         }
     }
+
+    /// As [`Spreads::rule_spreads`], with their gradients over the parameters into
+    /// `jacobian` (rows of `x.len()`), from the rules' exact Hessians.
+    pub(super) fn rule_spreads_with_gradient(
+        &self,
+        part: &dyn PartMaker,
+        x: &[f64],
+        spreads: &mut [f64],
+        jacobian: &mut [f64],
+    ) {
+        let (r, np) = (spreads.len(), x.len());
+        let mut margins = vec![0.0; r];
+        let mut gradient = vec![0.0; r * np];
+        let mut hessian = vec![0.0; r * np * np];
+        part.rule_margins_with_hessian(x, &mut margins, &mut gradient, &mut hessian);
+        for (i, (spread, row)) in spreads
+            .iter_mut()
+            .zip(jacobian.chunks_exact_mut(np))
+            .enumerate()
+        {
+            let g = &gradient[i * np..(i + 1) * np];
+            let h = &hessian[i * np * np..(i + 1) * np * np];
+            *spread = spread_with_gradient(g, h, &self.sigma[..np], row);
+        }
+    }
+}
+
+/// The first-order standard deviation `sigma = sqrt(sum_j (g_j s_j)^2)` of a value of
+/// gradient `g` and Hessian `h` (`g.len()` square, row-major) over inputs of standard
+/// deviations `s`, and its gradient over the first `row.len()` inputs (the parameters):
+/// `d sigma / dx_p = sum_j g_j s_j^2 h_jp / sigma` (zero where `sigma` is).
+fn spread_with_gradient(g: &[f64], h: &[f64], s: &[f64], row: &mut [f64]) -> f64 {
+    let n = g.len();
+    let sigma = g
+        .iter()
+        .zip(s)
+        .map(|(d, s)| (d * s).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    for (p, o) in row.iter_mut().enumerate() {
+        *o = if sigma > 0.0 {
+            (0..n)
+                .map(|j| g[j] * s[j].powi(2) * h[j * n + p])
+                .sum::<f64>()
+                / sigma
+        } else {
+            0.0
+        };
+    }
+    sigma
 }

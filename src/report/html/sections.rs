@@ -348,13 +348,16 @@ fn robust_comparison(r: &Value) -> Markup {
         .and_then(Value::as_object);
     html! {
         h3 { "The robust optimum beside the nominal one" }
-        p { "Each constraint tightened by its first-order spread at the design, for " (target)
+        p { "Each constraint and each rule of the part tightened by its first-order spread at the design, for " (target)
             "; yields by Monte Carlo on " (num(r.get("samples"))) " samples (seed " (num(r.get("seed"))) ")." }
         table {
             thead { tr { th { "" } th.num { "nominal" } th.num { "robust" } } }
             tbody {
                 tr { td { "objective" } td.num { (num(nominal.and_then(|s| s.get("objective")))) } td.num { (num(robust.and_then(|s| s.get("objective")))) } }
                 tr { td { "yield (95 % interval)" } td.num { (yield_of(nominal)) } td.num { (yield_of(robust)) } }
+                tr { td { "cannot be made (breaks a rule of the part)" }
+                     td.num { (percent(nominal.and_then(|s| s.get("unmakeable")))) }
+                     td.num { (percent(robust.and_then(|s| s.get("unmakeable")))) } }
                 @if let Some(m) = margins {
                     @for (name, v) in m {
                         tr { td { "margin of " code { (name) } ", standard deviations" }

@@ -191,8 +191,8 @@ impl Display for RobustTable<'_> {
             .map_or(String::new(), |y| format!(" for a yield of {}", pc(y)));
         writeln!(
             s,
-            "robust study: every constraint kept {} first-order standard deviations inside \
-             its limits{target}; yields by {} Monte Carlo samples",
+            "robust study: every constraint and rule of the part kept {} first-order standard \
+             deviations inside its limits{target}; yields by {} Monte Carlo samples",
             significant(c.k_sigma, 4),
             c.samples
         )?;

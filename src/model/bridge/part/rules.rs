@@ -27,6 +27,7 @@ use crate::model::bridge::Trig;
 use crate::model::bridge::{Geometry, Layout};
 use crate::model::hinge::HingeKind;
 use crate::model::hinge::MAX_HINGE_DIMENSIONS;
+use crate::model::jet2::Jet2;
 use crate::model::part_rules::{PartRule, Witness};
 use crate::model::scalar::{max, Jet, Scalar};
 
@@ -179,6 +180,41 @@ pub fn margins_with_gradient<const N: usize>(
         row.copy_from_slice(&yi.grad);
     }
     out.copy_from_slice(&values[..out.len()]);
+}
+
+/// [`margins`] at the design `x` (`N` parameters) into `out`, the same numbers to the bit,
+/// their gradients into `jacobian` (`N` a row) and their Hessians into `hessian` (`N * N`
+/// a rule, row-major): [`margins_seeded`] over [`Jet2<N>`], for the spreads of a robust
+/// study's rules.
+pub fn margins_with_hessian<const N: usize>(
+    s: &PartSettings,
+    layout: &Layout,
+    x: &[f64],
+    out: &mut [f64],
+    jacobian: &mut [f64],
+    hessian: &mut [f64],
+) {
+    let real = layout.geometry(x);
+    let seeded: Vec<Jet2<N>> = x
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| Jet2::variable(v, i))
+        .collect();
+    let mut y = vec![Jet2::<N>::from(0.0); out.len()];
+    let mut values = vec![0.0; out.len()];
+    margins_seeded(
+        s,
+        layout,
+        &real,
+        &layout.geometry(&seeded),
+        &mut values,
+        &mut y,
+    );
+    for (k, yk) in y.iter().enumerate() {
+        jacobian[k * N..(k + 1) * N].copy_from_slice(&yk.grad);
+        yk.hessian(&mut hessian[k * N * N..(k + 1) * N * N]);
+    }
+    out.copy_from_slice(&values);
 }
 
 /// The size rules' margins and the pocket's at `g`, the first `out.len()` of them, as

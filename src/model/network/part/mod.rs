@@ -164,6 +164,22 @@ impl PartMaker for NetworkPart {
         self.drawing.rules().margins_with_gradient(x, out, jacobian);
     }
 
+    fn rule_hessians(&self) -> bool {
+        true
+    }
+
+    fn rule_margins_with_hessian(
+        &self,
+        x: &[f64],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    ) {
+        self.drawing
+            .rules()
+            .margins_with_hessian(x, out, jacobian, hessian);
+    }
+
     fn rule_witnesses(&self, x: &[f64], out: &mut [Option<Witness>]) {
         self.drawing.rules().witnesses(x, out);
     }

@@ -3,6 +3,7 @@
 //! dual numbers ([`Rules`]).
 
 use super::*;
+use crate::model::jet2::Jet2;
 
 /// What gives a clearance rule's margin at a design: the pair of shapes, the feature of
 /// their clearance and the slot asked.
@@ -377,6 +378,64 @@ impl Rules<'_> {
             .gradients::<N>(x, &selection, rows, jacobian));
     }
 
+    /// As [`Rules::margins_with_gradient`], with each margin's Hessian over every parameter
+    /// (`x.len()^2` a rule, row-major), over [`Jet2`]: for the spreads of a robust study's
+    /// rules.
+    pub fn margins_with_hessian(
+        &self,
+        x: &[f64],
+        out: &mut [f64],
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    ) {
+        if out.is_empty() {
+            return;
+        }
+        let searched = self.searched(out.len());
+        let Some(real) = self.layout.shapes(self.d, self.s, x, |_| searched) else {
+            out.fill(f64::NAN);
+            jacobian.fill(f64::NAN);
+            hessian.fill(f64::NAN);
+            return;
+        };
+        let selection = self.layout.find(&real, self.s, out);
+        with_count!(x.len(), |N| self
+            .second_derivatives::<N>(x, &selection, jacobian, hessian));
+    }
+
+    /// The first `rows` margins over `D` at `seeded`, the design `selection` was found at
+    /// over dual numbers: only the pieces the winning pairs read are built over `D` (the
+    /// others' corners over dual numbers were most of an evaluation with gradients).
+    fn margins_over<D: Scalar>(&self, seeded: &[D], selection: &Selection, rows: usize) -> Vec<D> {
+        let dual = self
+            .layout
+            .shapes(self.d, self.s, seeded, |k| selection.reads(k))
+            .expect("the expressions have values where their real parts do");
+        let mut y = vec![D::from(0.0); rows];
+        selection.margins(self.layout, &dual, self.s, &mut y);
+        y
+    }
+
+    /// The rows' gradients and Hessians over `Jet2<N>`, `N` the count of parameters.
+    fn second_derivatives<const N: usize>(
+        &self,
+        x: &[f64],
+        selection: &Selection,
+        jacobian: &mut [f64],
+        hessian: &mut [f64],
+    ) {
+        let seeded: Vec<Jet2<N>> = x
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| Jet2::variable(v, i))
+            .collect();
+        let y = self.margins_over(&seeded, selection, jacobian.len() / N);
+        for (k, yk) in y.iter().enumerate() {
+            jacobian[k * N..(k + 1) * N].copy_from_slice(&yk.grad);
+            yk.hessian(&mut hessian[k * N * N..(k + 1) * N * N]);
+        }
+    }
+
     /// Whether the first `rows` rules take clearances, not only the size rules: a study's
     /// first stage asks for the size rules alone (none for a network without beams), and
     /// the solids were built and searched at each of its evaluations for nothing.
@@ -397,14 +456,7 @@ impl Rules<'_> {
             .enumerate()
             .map(|(i, &v)| Jet::variable(v, i))
             .collect();
-        // only the pieces the winning pairs read: the others' corners over dual numbers were
-        // most of an evaluation with gradients
-        let dual = self
-            .layout
-            .shapes(self.d, self.s, &seeded, |k| selection.reads(k))
-            .expect("the expressions have values where their real parts do");
-        let mut y = vec![Jet::<N>::from(0.0); rows];
-        selection.margins(self.layout, &dual, self.s, &mut y);
+        let y = self.margins_over(&seeded, selection, rows);
         for (row, yi) in jacobian.chunks_exact_mut(N).zip(&y) {
             row.copy_from_slice(&yi.grad);
         }
